@@ -1,0 +1,62 @@
+// A Kernel: what a script computes, as the expand stage leaves it for the optimizer.
+//
+// Each assignment of the script becomes one KernelValue: a sparse multivector whose coefficients are GiNaC
+// expressions over the input symbols and over the coefficient symbols of *earlier* values (so the
+// statement structure survives, which -O0 emits as written). Expressions inside one statement, macro calls
+// included, are already expanded into that statement's coefficients. The optimizer substitutes values into
+// each other (-O1 and up) to get outputs over the inputs alone.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <vector>
+
+#include "algebra/blade.hpp"
+#include "front/ast.hpp"
+
+namespace cgagen {
+
+// One input of the generated function, in order of first use in the script (or of its `input` pragma).
+struct KernelInput {
+  std::string name;
+  // Scalar input: blades == {0} and one symbol named `name`.
+  // Multivector input (`#pragma input NAME BLADE...`): the declared blades (in the pragma's order) and one
+  // symbol per blade, named NAME_<blade_ident>.
+  bool is_multivector = false;
+  std::vector<algebra::BladeIndex> blades;
+  std::vector<GiNaC::symbol> symbols;
+};
+
+// One assignment `name = expr;` of the script. A name assigned twice gives two values.
+struct KernelValue {
+  std::string name;
+  front::SourceLoc loc;
+  std::vector<algebra::BladeIndex> blades;  // Gaalop order; blades whose coefficient is not identically 0
+  std::vector<GiNaC::ex> coeffs;            // one per blade, over inputs' and earlier values' symbols
+  std::vector<GiNaC::symbol> symbols;       // one per blade: how later values refer to this coefficient
+};
+
+struct KernelOutput {
+  std::string name;
+  front::SourceLoc loc;
+  int value = -1;  // index into Kernel::values: the last assignment of `name` in the script
+  // The blades the generated function returns, in this order: those of `#pragma output NAME ...` when
+  // given (blades not in the value are returned as 0), else the value's blades.
+  std::vector<algebra::BladeIndex> blades;
+};
+
+struct ScalarRange {  // `#pragma range MIN <= NAME <= MAX`
+  std::string name;
+  double min = 0, max = 0;
+};
+
+struct Kernel {
+  std::string name;  // the function name (the script's file stem unless overridden)
+  std::vector<KernelInput> inputs;
+  std::vector<KernelValue> values;    // in script order
+  std::vector<KernelOutput> outputs;  // in order of first marking as output
+  std::vector<ScalarRange> ranges;
+};
+
+}  // namespace cgagen

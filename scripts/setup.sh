@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages cgagen needs, and only those that are missing.
+# Safe to run again: when everything is present it touches nothing and takes a second.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libginac-dev libcln-dev libfmt-dev libglm-dev
+  glslang-dev glslang-tools spirv-tools
+  catch2 libassimp-dev assimp-testmodels libbenchmark-dev
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libstb-dev
+  clang libclang-rt-14-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: not root and no sudo; install: ${missing[*]}" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y --no-install-recommends "${missing[@]}"
