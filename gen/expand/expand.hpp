@@ -1,0 +1,18 @@
+// The expand stage: walks the AST, evaluates every statement into a sparse symbolic multivector (blade ->
+// GiNaC expression) and records inputs, values, outputs and pragmas as a Kernel.
+#pragma once
+
+#include <string>
+
+#include "expand/kernel.hpp"
+#include "front/ast.hpp"
+#include "front/diagnostics.hpp"
+
+namespace cgagen {
+
+// Throws front::CompileError (with the location of the offending expression) for every fault in the
+// script: unknown macro, wrong arity, non-scalar function argument, division by a non-invertible
+// multivector, macro recursion, unknown blade in a pragma, ...
+Kernel expand(const front::Script& script, const std::string& kernel_name);
+
+}  // namespace cgagen
