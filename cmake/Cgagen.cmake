@@ -1,0 +1,1 @@
+# cgagen_generate(): run the cgagen tool on CluScript files at build time. (Filled in by the generator work.)
