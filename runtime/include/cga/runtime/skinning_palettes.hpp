@@ -1,0 +1,75 @@
+// Palette entries of each skinning method from a Transform (TRS with uniform scale), and the bridge from the
+// skinning loops to the generated motor kernels (cga::kernels, built from runtime/scripts/*.clu).
+// These conversions are for tests, examples and single transforms; whole poses come from the runtime's
+// local-to-model job.
+#pragma once
+
+#include <span>
+#include <stdexcept>
+
+#include "cga/runtime/types.hpp"
+
+#if __has_include(<motor_to_matrix.hpp>)
+#include <motor_to_matrix.hpp>
+#define CGA_SKINNING_HAVE_MOTOR_KERNELS 1
+#else
+#define CGA_SKINNING_HAVE_MOTOR_KERNELS 0
+#endif
+
+namespace cga {
+
+// The row-major 3x4 matrix of p -> s R p + t (see MatrixPalette).
+inline glm::mat3x4 to_skinning_matrix(const Transform& x) {
+  const glm::mat3 linear = glm::mat3_cast(x.rotation) * x.scale;  // column-major: linear[c][r]
+  glm::mat3x4 m;
+  for (int r = 0; r < 3; ++r) m[r] = glm::vec4(linear[0][r], linear[1][r], linear[2][r], x.translation[r]);
+  return m;
+}
+
+// The unit dual quaternion of the rigid part (rotation, translation); a dual quaternion cannot hold the
+// scale, so a Transform with scale != 1 is rejected rather than silently dropped.
+inline glm::dualquat to_dual_quat(const Transform& x) {
+  if (x.scale != 1.0f)
+    throw std::invalid_argument("to_dual_quat: dual quaternions cannot represent a scale != 1");
+  return glm::dualquat(glm::normalize(x.rotation), x.translation);
+}
+
+// Applies a row-major 3x4 matrix to a point.
+inline glm::vec3 transform_point(const glm::mat3x4& m, const glm::vec3& p) {
+  return {glm::dot(m[0], glm::vec4(p, 1.0f)), glm::dot(m[1], glm::vec4(p, 1.0f)), glm::dot(m[2], glm::vec4(p, 1.0f))};
+}
+
+// Dual quaternions as 8 floats (real x y z w, dual x y z w), the layout the dqs loop reads.
+inline void pack_dual_quats(std::span<const glm::dualquat> in, std::span<float> out) {
+  if (out.size() < 8 * in.size()) throw std::invalid_argument("pack_dual_quats: output too small");
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    const glm::dualquat& q = in[k];
+    const float v[8] = {q.real.x, q.real.y, q.real.z, q.real.w, q.dual.x, q.dual.y, q.dual.z, q.dual.w};
+    for (int e = 0; e < 8; ++e) out[8 * k + e] = v[e];
+  }
+}
+
+namespace detail {
+
+inline constexpr bool kHaveMotorKernels = CGA_SKINNING_HAVE_MOTOR_KERNELS != 0;
+
+// The weight-normalized point transform of a (possibly blended, unnormalized) motor as a row-major 3x4
+// matrix, computed by the generated motor_to_matrix kernel.
+inline void motor_matrix(const float motor[12], float out[12]) {
+#if CGA_SKINNING_HAVE_MOTOR_KERNELS
+  float c1[3], c2[3], c3[3], t[3];
+  cga::kernels::motor_to_matrix(motor, c1, c2, c3, t);
+  for (int r = 0; r < 3; ++r) {
+    out[4 * r + 0] = c1[r];
+    out[4 * r + 1] = c2[r];
+    out[4 * r + 2] = c3[r];
+    out[4 * r + 3] = t[r];
+  }
+#else
+  (void)motor;
+  for (int e = 0; e < 12; ++e) out[e] = 0.0f;  // unreachable: jobs refuse cga methods without the kernels
+#endif
+}
+
+}  // namespace detail
+}  // namespace cga

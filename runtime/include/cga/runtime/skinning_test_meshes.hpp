@@ -1,0 +1,42 @@
+// Meshes made in code for skinning tests, pictures and demos: the two-bone twist cylinder, the classic case
+// where linear blend skinning collapses ("candy wrapper") and motor / dual-quaternion blending does not.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cga/runtime/types.hpp"
+
+namespace cga {
+
+struct TwistCylinderSpec {
+  float radius = 1.0f;
+  float length = 4.0f;       // along +z, from z = 0
+  int segments = 32;         // vertices around
+  int rings = 33;            // vertex rings along z; made odd so one ring sits exactly at z = length / 2
+  float blend_width = 1.0f;  // the weight of bone 1 ramps linearly from 0 to 1 over this length around the middle
+};
+
+// A cylinder side along z skinned to two joints: joint 0 at the origin, joint 1 (child) at z = length / 2.
+// Weights: joint 1's weight w1 = clamp((z - (length - blend_width) / 2) / blend_width, 0, 1), joint 0 has
+// 1 - w1; the middle ring has 0.5 / 0.5. Normals are radial. The mesh palette is the skeleton (joint_remap
+// 0, 1) with inverse binds at the joints' rest positions.
+struct TwistCylinder {
+  TwistCylinderSpec spec;
+  Skeleton skeleton;
+  SkinnedMesh mesh;
+  std::vector<std::uint32_t> middle_ring;  // vertex indices of the ring at z = length / 2
+  std::vector<std::uint32_t> bone0_only;   // vertices with weight 1 on joint 0
+  std::vector<std::uint32_t> bone1_only;   // vertices with weight 1 on joint 1
+};
+
+// Throws std::invalid_argument on a spec that cannot make a cylinder (radius or length <= 0, < 3 segments,
+// < 3 rings, blend_width outside (0, length]).
+TwistCylinder make_twist_cylinder(const TwistCylinderSpec& spec = {});
+
+// The mesh-space skinning transforms (palette entries 0 and 1) that twist joint 1 by `angle` radians about
+// the cylinder axis and scale it uniformly by `scale` about the joint; joint 0 stays at identity.
+std::vector<Transform> twist_cylinder_skinning_transforms(const TwistCylinderSpec& spec, float angle,
+                                                          float scale = 1.0f);
+
+}  // namespace cga

@@ -1,0 +1,361 @@
+// SkinningJob: validation and the four CPU skinning loops (lbs, dqs, cga_points, cga_motors).
+//
+// Layout of the hot loops: vertices are processed in blocks of kBlock; a block's joints and weights are
+// checked first (they are then in L1 for the skinning pass), and the per-vertex body is flat straight-line
+// code on local arrays, written so GCC vectorizes it across vertices. The loops are built twice
+// (target_clones): x86-64-v3 (AVX2 + FMA, what the speed targets assume) and the portable default.
+#include "cga/runtime/skinning.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "cga/runtime/skinning_palettes.hpp"
+
+// runtime/CMakeLists.txt compiles this file with -O3 -fno-math-errno -fno-trapping-math: at the project's
+// -O2, GCC 12's "very cheap" vectorizer cost model refuses gathers, and sqrt's errno and trapping compares
+// keep the normal loops scalar (neither flag changes a result; nothing here reads errno or FP exceptions).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define CGA_SKIN_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define CGA_SKIN_CLONES
+#endif
+#define CGA_ALWAYS_INLINE inline __attribute__((always_inline))
+
+namespace cga {
+
+static_assert(sizeof(glm::mat3x4) == 12 * sizeof(float), "matrix palette entries are read as 12 floats");
+static_assert(sizeof(Motor) == 12 * sizeof(float), "motor palette entries are read as 12 floats");
+
+std::string_view to_string(SkinningMethod method) {
+  switch (method) {
+    case SkinningMethod::lbs: return "lbs";
+    case SkinningMethod::dqs: return "dqs";
+    case SkinningMethod::cga_points: return "cga-points";
+    case SkinningMethod::cga_motors: return "cga-motors";
+  }
+  throw std::invalid_argument(fmt::format("to_string: unknown SkinningMethod {}", static_cast<int>(method)));
+}
+
+SkinningMethod parse_skinning_method(std::string_view text) {
+  std::string canonical(text);
+  for (char& c : canonical)
+    if (c == '_') c = '-';
+  for (SkinningMethod m : kAllSkinningMethods)
+    if (to_string(m) == canonical) return m;
+  throw std::invalid_argument(
+      fmt::format("unknown skinning method '{}' (choose lbs, dqs, cga-points or cga-motors)", text));
+}
+
+bool cga_skinning_kernels_available() { return detail::kHaveMotorKernels; }
+
+void SkinnedOutput::resize_for(const SkinnedMesh& mesh) {
+  const std::size_t n = mesh.vertex_count();
+  px.assign(n, 0.0f);
+  py.assign(n, 0.0f);
+  pz.assign(n, 0.0f);
+  const std::size_t nn = mesh.has_normals() ? n : 0;
+  nx.assign(nn, 0.0f);
+  ny.assign(nn, 0.0f);
+  nz.assign(nn, 0.0f);
+}
+
+SkinningJob make_skinning_job(SkinningMethod method, const SkinnedMesh& mesh, SkinnedOutput& out) {
+  out.resize_for(mesh);
+  SkinningJob job;
+  job.method = method;
+  job.in_px = mesh.px;
+  job.in_py = mesh.py;
+  job.in_pz = mesh.pz;
+  job.in_nx = mesh.nx;
+  job.in_ny = mesh.ny;
+  job.in_nz = mesh.nz;
+  job.joints = mesh.joints;
+  job.weights = mesh.weights;
+  job.out_px = out.px;
+  job.out_py = out.py;
+  job.out_pz = out.pz;
+  job.out_nx = out.nx;
+  job.out_ny = out.ny;
+  job.out_nz = out.nz;
+  return job;
+}
+
+namespace {
+
+constexpr std::size_t kBlock = 256;
+
+std::size_t palette_size(const SkinningJob& job) {
+  switch (job.method) {
+    case SkinningMethod::lbs: return job.matrices.size();
+    case SkinningMethod::dqs: return job.dual_quats.size();
+    case SkinningMethod::cga_points:
+    case SkinningMethod::cga_motors: return job.motors.size();
+  }
+  return 0;
+}
+
+// The O(1) checks: sizes, normals, palette limits, kernels present.
+std::string shape_error(const SkinningJob& job) {
+  const std::size_t n = job.in_px.size();
+  if (job.in_py.size() != n || job.in_pz.size() != n)
+    return fmt::format("input positions differ in size (x {}, y {}, z {})", n, job.in_py.size(), job.in_pz.size());
+  if (job.out_px.size() != n || job.out_py.size() != n || job.out_pz.size() != n)
+    return fmt::format("output positions must hold {} vertices (x {}, y {}, z {})", n, job.out_px.size(),
+                       job.out_py.size(), job.out_pz.size());
+  if (job.joints.size() != n) return fmt::format("{} joint quadruples for {} vertices", job.joints.size(), n);
+  if (job.weights.size() != n) return fmt::format("{} weight quadruples for {} vertices", job.weights.size(), n);
+  const bool any_in_normals = !job.in_nx.empty() || !job.in_ny.empty() || !job.in_nz.empty();
+  const bool any_out_normals = !job.out_nx.empty() || !job.out_ny.empty() || !job.out_nz.empty();
+  if (any_in_normals) {
+    if (job.in_nx.size() != n || job.in_ny.size() != n || job.in_nz.size() != n)
+      return fmt::format("input normals must be empty or hold {} vertices (x {}, y {}, z {})", n,
+                         job.in_nx.size(), job.in_ny.size(), job.in_nz.size());
+    if (job.out_nx.size() != n || job.out_ny.size() != n || job.out_nz.size() != n)
+      return fmt::format("output normals must hold {} vertices (x {}, y {}, z {})", n, job.out_nx.size(),
+                         job.out_ny.size(), job.out_nz.size());
+  } else if (any_out_normals) {
+    return "output normals given without input normals";
+  }
+  if (job.method == SkinningMethod::cga_points || job.method == SkinningMethod::cga_motors) {
+    if (!detail::kHaveMotorKernels)
+      return fmt::format("{} needs the generated motor_to_matrix kernel, absent from this build",
+                         to_string(job.method));
+  }
+  const std::size_t palette = palette_size(job);
+  if ((job.method == SkinningMethod::cga_points || job.method == SkinningMethod::dqs) &&
+      palette > kMaxConvertedPalette)
+    return fmt::format("{} converts at most {} palette entries per run, the palette has {}",
+                       to_string(job.method), kMaxConvertedPalette, palette);
+  if (palette > std::size_t{std::numeric_limits<std::uint16_t>::max()} + 1)
+    return fmt::format("palette of {} entries is larger than 16-bit joint indices can address", palette);
+  return {};
+}
+
+// Joint indices below the palette size and finite weights, for vertices [begin, end). Branch-free so the
+// check vectorizes; the caller looks for the culprit only when it fails.
+CGA_ALWAYS_INLINE bool block_ok(const std::array<std::uint16_t, 4>* joints, const std::array<float, 4>* weights,
+                                std::size_t begin, std::size_t end, std::size_t palette) {
+  unsigned max_joint = 0;
+  bool finite = true;
+  for (std::size_t i = begin; i < end; ++i)
+    for (int k = 0; k < 4; ++k) {
+      max_joint = std::max<unsigned>(max_joint, joints[i][k]);
+      finite &= std::fabs(weights[i][k]) <= std::numeric_limits<float>::max();
+    }
+  return finite && (end == begin || max_joint < palette);
+}
+
+std::string data_error(const SkinningJob& job) {
+  const std::size_t palette = palette_size(job);
+  for (std::size_t i = 0; i < job.vertex_count(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      if (job.joints[i][k] >= palette)
+        return fmt::format("vertex {} influence {}: joint {} is outside the {} palette of {} entries", i, k,
+                           job.joints[i][k], to_string(job.method), palette);
+      if (!std::isfinite(job.weights[i][k]))
+        return fmt::format("vertex {} influence {}: weight {} is not finite", i, k, job.weights[i][k]);
+    }
+  return {};
+}
+
+// Pointers of one run, restrict-qualified so the compiler knows outputs do not alias inputs.
+struct Streams {
+  const float* __restrict px;
+  const float* __restrict py;
+  const float* __restrict pz;
+  const float* __restrict nx;
+  const float* __restrict ny;
+  const float* __restrict nz;
+  const std::array<std::uint16_t, 4>* __restrict joints;
+  const std::array<float, 4>* __restrict weights;
+  float* __restrict ox;
+  float* __restrict oy;
+  float* __restrict oz;
+  float* __restrict onx;
+  float* __restrict ony;
+  float* __restrict onz;
+};
+
+// Applies a row-major 3x4 matrix to the point i (and the linear part to its normal, renormalized).
+template <bool kNormals>
+CGA_ALWAYS_INLINE void apply_matrix(const float m[12], const Streams& s, std::size_t i) {
+  const float x = s.px[i], y = s.py[i], z = s.pz[i];
+  s.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
+  s.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
+  s.oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
+  if constexpr (kNormals) {
+    const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
+    const float u = m[0] * a + m[1] * b + m[2] * c;
+    const float v = m[4] * a + m[5] * b + m[6] * c;
+    const float w = m[8] * a + m[9] * b + m[10] * c;
+    const float len2 = u * u + v * v + w * w;
+    // A degenerate blend (zero linear part) gives a zero normal rather than NaN.
+    // Written without a conditional division so the loop if-converts and vectorizes.
+    const float inv = (len2 > 0.0f ? 1.0f : 0.0f) / std::sqrt(std::max(len2, 1e-30f));
+    s.onx[i] = u * inv;
+    s.ony[i] = v * inv;
+    s.onz[i] = w * inv;
+  }
+}
+
+// lbs and cga_points: blend the 4 row-major 3x4 matrices of the vertex, then apply once.
+template <bool kNormals>
+CGA_ALWAYS_INLINE void matrix_block(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                    std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::array<std::uint16_t, 4> j = s.joints[i];
+    const std::array<float, 4> w = s.weights[i];
+    const float* a = pal + 12 * std::size_t{j[0]};
+    const float* b = pal + 12 * std::size_t{j[1]};
+    const float* c = pal + 12 * std::size_t{j[2]};
+    const float* d = pal + 12 * std::size_t{j[3]};
+    float m[12];
+    for (int e = 0; e < 12; ++e) m[e] = w[0] * a[e] + w[1] * b[e] + w[2] * c[e] + w[3] * d[e];
+    apply_matrix<kNormals>(m, s, i);
+  }
+}
+
+CGA_SKIN_CLONES void matrix_block_p(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
+  matrix_block<false>(pal, s, begin, end);
+}
+CGA_SKIN_CLONES void matrix_block_pn(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
+  matrix_block<true>(pal, s, begin, end);
+}
+
+// dqs: blend 8 dual-quaternion coefficients with the antipodality fix, then transform by the normalized
+// blend. Written on the unnormalized blend b = (r, d) with n = |r|^2:
+//   p' = ((r_w^2 - r_v.r_v) p + 2 (r_v.p) r_v + 2 r_w (r_v x p)) / n + 2 (r_w d_v - d_w r_v + r_v x d_v) / n
+template <bool kNormals>
+CGA_ALWAYS_INLINE void dq_block(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t j[4] = {s.joints[i][0], s.joints[i][1], s.joints[i][2], s.joints[i][3]};
+    // Weights read one by one: GCC does not vectorize the copy of the whole std::array here.
+    const float w[4] = {s.weights[i][0], s.weights[i][1], s.weights[i][2], s.weights[i][3]};
+    const float* q[4] = {pal + 8 * j[0], pal + 8 * j[1], pal + 8 * j[2], pal + 8 * j[3]};
+    float b[8];
+    for (int e = 0; e < 8; ++e) b[e] = w[0] * q[0][e];
+    for (int k = 1; k < 4; ++k) {
+      const float dot = q[0][0] * q[k][0] + q[0][1] * q[k][1] + q[0][2] * q[k][2] + q[0][3] * q[k][3];
+      const float wk = std::copysign(w[k], dot);
+      for (int e = 0; e < 8; ++e) b[e] += wk * q[k][e];
+    }
+    // Packed as (r_x, r_y, r_z, r_w, d_x, d_y, d_z, d_w), see pack_dual_quats.
+    const float rx = b[0], ry = b[1], rz = b[2], rw = b[3];
+    const float dx = b[4], dy = b[5], dz = b[6], dw = b[7];
+    const float inv = 1.0f / (rx * rx + ry * ry + rz * rz + rw * rw);
+    const float diag = rw * rw - (rx * rx + ry * ry + rz * rz);
+    const float tx = 2.0f * (rw * dx - dw * rx + (ry * dz - rz * dy));
+    const float ty = 2.0f * (rw * dy - dw * ry + (rz * dx - rx * dz));
+    const float tz = 2.0f * (rw * dz - dw * rz + (rx * dy - ry * dx));
+    // Rotation as a matrix (columns are the rotated axes), scaled by n; shared by point and normal.
+    const float m[12] = {
+        (diag + 2 * rx * rx) * inv, 2 * (rx * ry - rw * rz) * inv, 2 * (rx * rz + rw * ry) * inv, tx * inv,
+        2 * (ry * rx + rw * rz) * inv, (diag + 2 * ry * ry) * inv, 2 * (ry * rz - rw * rx) * inv, ty * inv,
+        2 * (rz * rx - rw * ry) * inv, 2 * (rz * ry + rw * rx) * inv, (diag + 2 * rz * rz) * inv, tz * inv};
+    apply_matrix<kNormals>(m, s, i);
+  }
+}
+
+CGA_SKIN_CLONES void dq_block_p(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
+  dq_block<false>(pal, s, begin, end);
+}
+CGA_SKIN_CLONES void dq_block_pn(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
+  dq_block<true>(pal, s, begin, end);
+}
+
+// cga_motors: blend the 12 motor coefficients (sign fix on the rotor parts: blades 1, e12, e13, e23), turn the
+// blend into its weight-normalized point-transform matrix with the generated kernel, apply once.
+template <bool kNormals>
+CGA_ALWAYS_INLINE void motor_block(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                   std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::array<std::uint16_t, 4> j = s.joints[i];
+    const std::array<float, 4> w = s.weights[i];
+    const float* q[4] = {pal + 12 * std::size_t{j[0]}, pal + 12 * std::size_t{j[1]},
+                         pal + 12 * std::size_t{j[2]}, pal + 12 * std::size_t{j[3]}};
+    float b[12];
+    for (int e = 0; e < 12; ++e) b[e] = w[0] * q[0][e];
+    for (int k = 1; k < 4; ++k) {
+      const float dot = q[0][blade::s] * q[k][blade::s] + q[0][blade::e12] * q[k][blade::e12] +
+                        q[0][blade::e13] * q[k][blade::e13] + q[0][blade::e23] * q[k][blade::e23];
+      const float wk = std::copysign(w[k], dot);
+      for (int e = 0; e < 12; ++e) b[e] += wk * q[k][e];
+    }
+    float m[12];
+    detail::motor_matrix(b, m);
+    apply_matrix<kNormals>(m, s, i);
+  }
+}
+
+CGA_SKIN_CLONES void motor_block_p(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
+  motor_block<false>(pal, s, begin, end);
+}
+CGA_SKIN_CLONES void motor_block_pn(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
+  motor_block<true>(pal, s, begin, end);
+}
+
+using BlockFn = void (*)(const float*, const Streams&, std::size_t, std::size_t);
+
+}  // namespace
+
+std::string SkinningJob::ValidationError() const {
+  std::string error = shape_error(*this);
+  if (error.empty()) error = data_error(*this);
+  return error;
+}
+
+bool SkinningJob::Run() const {
+  if (!shape_error(*this).empty()) return false;
+  const std::size_t n = vertex_count();
+  const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
+                  in_nz.data(),  joints.data(), weights.data(), out_px.data(), out_py.data(),
+                  out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data()};
+  const bool normals = has_normals();
+
+  // Per-run palette preparation: cga_points converts every motor once (on the stack, no allocation);
+  // dqs repacks the GLM dual quaternions as 8 plain floats.
+  alignas(64) float converted[kMaxConvertedPalette * 12];
+  const float* pal = nullptr;
+  BlockFn block = nullptr;
+  std::size_t palette = 0;
+  switch (method) {
+    case SkinningMethod::lbs:
+      pal = reinterpret_cast<const float*>(matrices.data());
+      palette = matrices.size();
+      block = normals ? matrix_block_pn : matrix_block_p;
+      break;
+    case SkinningMethod::cga_points:
+      for (std::size_t k = 0; k < motors.size(); ++k) detail::motor_matrix(motors[k].c.data(), converted + 12 * k);
+      pal = converted;
+      palette = motors.size();
+      block = normals ? matrix_block_pn : matrix_block_p;
+      break;
+    case SkinningMethod::dqs:
+      // Two dual quaternions per 64-byte line; packing keeps the loop free of GLM's member layout.
+      pack_dual_quats(dual_quats, std::span<float>(converted, 8 * dual_quats.size()));
+      pal = converted;
+      palette = dual_quats.size();
+      block = normals ? dq_block_pn : dq_block_p;
+      break;
+    case SkinningMethod::cga_motors:
+      pal = reinterpret_cast<const float*>(motors.data());
+      palette = motors.size();
+      block = normals ? motor_block_pn : motor_block_p;
+      break;
+  }
+  for (std::size_t begin = 0; begin < n; begin += kBlock) {
+    const std::size_t end = std::min(n, begin + kBlock);
+    if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
+    block(pal, s, begin, end);
+  }
+  return true;
+}
+
+}  // namespace cga
