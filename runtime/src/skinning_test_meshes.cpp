@@ -1,9 +1,10 @@
-// The two-bone twist cylinder (see skinning_test_meshes.hpp).
+// The two-bone twist cylinder and the random meshes and poses of skinning_test_meshes.hpp.
 #include "cga/runtime/skinning_test_meshes.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -73,6 +74,76 @@ std::vector<Transform> twist_cylinder_skinning_transforms(const TwistCylinderSpe
   twist.scale = scale;
   twist.translation = (1.0f - scale) * c;
   return {Transform{}, twist};
+}
+
+namespace {
+
+// mt19937's output is specified by the standard, the distributions are not: convert by hand.
+struct Random {
+  std::mt19937 engine;
+  explicit Random(std::uint32_t seed) : engine(seed) {}
+  float uniform(float lo, float hi) {
+    return lo + (hi - lo) * static_cast<float>(engine() >> 8) * (1.0f / 16777216.0f);
+  }
+  std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(engine() % n); }
+};
+
+}  // namespace
+
+SkinnedMesh make_random_skinned_mesh(std::size_t vertex_count, int joint_count, std::uint32_t seed, float extent) {
+  if (joint_count < 4 || joint_count > 65536)
+    throw std::invalid_argument(
+        fmt::format("make_random_skinned_mesh: joint_count {} outside [4, 65536]", joint_count));
+  Random rng(seed);
+  SkinnedMesh m;
+  m.name = fmt::format("random_{}_{}", vertex_count, seed);
+  for (std::size_t i = 0; i < vertex_count; ++i) {
+    m.px.push_back(rng.uniform(-extent, extent));
+    m.py.push_back(rng.uniform(-extent, extent));
+    m.pz.push_back(rng.uniform(-extent, extent));
+    glm::vec3 n(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    n = glm::length(n) > 1e-3f ? glm::normalize(n) : glm::vec3(0, 0, 1);
+    m.nx.push_back(n.x);
+    m.ny.push_back(n.y);
+    m.nz.push_back(n.z);
+    const int used = rng.below(4) == 0 ? 1 + static_cast<int>(rng.below(3)) : 4;
+    std::array<std::uint16_t, 4> j{0, 0, 0, 0};
+    std::array<float, 4> w{0, 0, 0, 0};
+    float sum = 0.0f;
+    for (int k = 0; k < used; ++k) {
+      bool fresh = false;
+      while (!fresh) {  // distinct joints, as exporters give
+        j[k] = static_cast<std::uint16_t>(rng.below(static_cast<std::uint32_t>(joint_count)));
+        fresh = std::find(j.begin(), j.begin() + k, j[k]) == j.begin() + k;
+      }
+      w[k] = rng.uniform(0.05f, 1.0f);
+      sum += w[k];
+    }
+    for (int k = 0; k < used; ++k) w[k] /= sum;
+    m.joints.push_back(j);
+    m.weights.push_back(w);
+  }
+  return m;
+}
+
+std::vector<Transform> make_random_transforms(int count, std::uint32_t seed, float max_translation,
+                                              float max_log_scale) {
+  Random rng(seed);
+  std::vector<Transform> out;
+  for (int k = 0; k < count; ++k) {
+    Transform x;
+    // Shoemake's uniform unit quaternion.
+    const float u1 = rng.uniform(0, 1), u2 = rng.uniform(0, 2 * std::numbers::pi_v<float>),
+                u3 = rng.uniform(0, 2 * std::numbers::pi_v<float>);
+    const float a = std::sqrt(1 - u1), b = std::sqrt(u1);
+    x.rotation = glm::normalize(glm::quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3)));
+    x.translation = glm::vec3(rng.uniform(-max_translation, max_translation),
+                              rng.uniform(-max_translation, max_translation),
+                              rng.uniform(-max_translation, max_translation));
+    x.scale = max_log_scale > 0 ? std::exp(rng.uniform(-max_log_scale, max_log_scale)) : 1.0f;
+    out.push_back(x);
+  }
+  return out;
 }
 
 }  // namespace cga

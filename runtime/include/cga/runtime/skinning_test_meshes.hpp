@@ -1,5 +1,6 @@
-// Meshes made in code for skinning tests, pictures and demos: the two-bone twist cylinder, the classic case
-// where linear blend skinning collapses ("candy wrapper") and motor / dual-quaternion blending does not.
+// Meshes made in code for skinning tests, pictures, demos and benchmarks: the two-bone twist cylinder, the
+// classic case where linear blend skinning collapses ("candy wrapper") and motor / dual-quaternion blending
+// does not, and deterministic random meshes and poses.
 #pragma once
 
 #include <cstdint>
@@ -38,5 +39,16 @@ TwistCylinder make_twist_cylinder(const TwistCylinderSpec& spec = {});
 // the cylinder axis and scale it uniformly by `scale` about the joint; joint 0 stays at identity.
 std::vector<Transform> twist_cylinder_skinning_transforms(const TwistCylinderSpec& spec, float angle,
                                                           float scale = 1.0f);
+
+// A deterministic random skinned mesh for tests and benchmarks: positions in [-extent, extent]^3, unit normals,
+// 4 influences per vertex on distinct joints in [0, joint_count) with weights summing to 1 (about a quarter of
+// the vertices use fewer than 4 slots, the rest weight 0 on joint 0). Same seed, same mesh, on every platform.
+SkinnedMesh make_random_skinned_mesh(std::size_t vertex_count, int joint_count, std::uint32_t seed,
+                                     float extent = 1.0f);
+
+// Deterministic random transforms: unit rotations uniform over SO(3), translations in [-max_translation,
+// max_translation]^3, scale 1 or, when max_log_scale > 0, exp(uniform(-max_log_scale, max_log_scale)).
+std::vector<Transform> make_random_transforms(int count, std::uint32_t seed, float max_translation = 1.0f,
+                                              float max_log_scale = 0.0f);
 
 }  // namespace cga
