@@ -1,0 +1,163 @@
+// Symbolic multivector operations (see multivector.hpp).
+#include "symbolic/multivector.hpp"
+
+#include <array>
+#include <sstream>
+#include <vector>
+
+namespace cgagen::symbolic {
+namespace {
+
+// Does e contain a power with a negative exponent (a denominator)? Only then is normal() worth calling.
+bool has_denominator(const GiNaC::ex& e) {
+  if (GiNaC::is_a<GiNaC::power>(e)) {
+    const GiNaC::ex& exponent = e.op(1);
+    if (GiNaC::is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_negative())
+      return true;
+  }
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (has_denominator(e.op(i))) return true;
+  return false;
+}
+
+GiNaC::ex to_ex(const algebra::Rational& r) { return GiNaC::numeric(r.num) / GiNaC::numeric(r.den); }
+
+// Canonical form of a coefficient: expanded, and 0 when it normalizes to 0.
+GiNaC::ex canonical(const GiNaC::ex& c) {
+  GiNaC::ex e = c.expand();
+  if (!e.is_zero() && has_denominator(e) && GiNaC::normal(e).is_zero()) return 0;
+  return e;
+}
+
+}  // namespace
+
+bool is_identically_zero(const GiNaC::ex& e) { return canonical(e).is_zero(); }
+
+Multivector::Multivector(const GiNaC::ex& scalar) { set(0, scalar); }
+
+Multivector Multivector::blade(BladeIndex i, const GiNaC::ex& coeff) {
+  Multivector m;
+  m.set(i, coeff);
+  return m;
+}
+
+GiNaC::ex Multivector::coeff(BladeIndex i) const {
+  auto it = terms_.find(i);
+  return it == terms_.end() ? GiNaC::ex(0) : it->second;
+}
+
+void Multivector::set(BladeIndex i, const GiNaC::ex& c) {
+  if (i < 0 || i >= algebra::kBladeCount) throw std::out_of_range("blade index out of range");
+  GiNaC::ex e = canonical(c);
+  if (e.is_zero()) terms_.erase(i);
+  else terms_[i] = e;
+}
+
+bool Multivector::is_homogeneous(int k) const {
+  for (const auto& [b, c] : terms_)
+    if (algebra::blade_grade(b) != k) return false;
+  return true;
+}
+
+Multivector Multivector::operator-() const {
+  Multivector r = *this;
+  for (auto& [b, c] : r.terms_) c = -c;  // negating an expanded sum keeps it expanded and nonzero
+  return r;
+}
+
+Multivector& Multivector::operator+=(const Multivector& b) {
+  for (const auto& [i, c] : b.terms_) set(i, coeff(i) + c);
+  return *this;
+}
+
+Multivector& Multivector::operator-=(const Multivector& b) {
+  for (const auto& [i, c] : b.terms_) set(i, coeff(i) - c);
+  return *this;
+}
+
+Multivector Multivector::product(algebra::ProductKind kind, const Multivector& a, const Multivector& b) {
+  std::array<GiNaC::exvector, algebra::kBladeCount> acc;
+  for (const auto& [i, ca] : a.terms_) {
+    for (const auto& [j, cb] : b.terms_) {
+      const auto& terms = algebra::product(kind, i, j);
+      if (terms.empty()) continue;
+      GiNaC::ex ab = ca * cb;
+      for (const auto& t : terms) acc[t.blade].push_back(t.coeff == algebra::Rational(1) ? ab : to_ex(t.coeff) * ab);
+    }
+  }
+  Multivector r;
+  for (int k = 0; k < algebra::kBladeCount; ++k)
+    if (!acc[k].empty()) r.set(k, GiNaC::add(acc[k]));
+  return r;
+}
+
+Multivector operator*(const Multivector& a, const Multivector& b) {
+  return Multivector::product(algebra::ProductKind::Geometric, a, b);
+}
+Multivector operator^(const Multivector& a, const Multivector& b) {
+  return Multivector::product(algebra::ProductKind::Outer, a, b);
+}
+Multivector inner(const Multivector& a, const Multivector& b) {
+  return Multivector::product(algebra::ProductKind::Inner, a, b);
+}
+
+Multivector operator*(const GiNaC::ex& s, const Multivector& a) {
+  Multivector r;
+  for (const auto& [b, c] : a.terms_) r.set(b, s * c);
+  return r;
+}
+
+Multivector operator/(const Multivector& a, const GiNaC::ex& s) {
+  Multivector r;
+  for (const auto& [b, c] : a.terms_) r.set(b, c / s);
+  return r;
+}
+
+Multivector Multivector::reverse() const {
+  Multivector r = *this;
+  for (auto& [b, c] : r.terms_)
+    if (algebra::reverse_sign(b) < 0) c = -c;
+  return r;
+}
+
+Multivector Multivector::involute() const {
+  Multivector r = *this;
+  for (auto& [b, c] : r.terms_)
+    if (algebra::involution_sign(b) < 0) c = -c;
+  return r;
+}
+
+Multivector Multivector::grade(int k) const {
+  Multivector r;
+  for (const auto& [b, c] : terms_)
+    if (algebra::blade_grade(b) == k) r.terms_[b] = c;
+  return r;
+}
+
+Multivector Multivector::dual() const { return *this * blade(31, -1); }
+
+Multivector Multivector::expanded() const {
+  return map([](const GiNaC::ex& c) { return c; });
+}
+
+std::string Multivector::str() const {
+  if (terms_.empty()) return "0";
+  std::ostringstream os;
+  bool first = true;
+  for (const auto& [b, c] : terms_) {
+    if (!first) os << " + ";
+    first = false;
+    if (b == 0) {
+      os << c;
+    } else if (c.is_equal(GiNaC::ex(1))) {
+      os << algebra::blade_name(b);
+    } else {
+      os << "(" << c << ")*" << algebra::blade_name(b);
+    }
+  }
+  return os.str();
+}
+
+bool operator==(const Multivector& a, const Multivector& b) { return (a - b).is_zero(); }
+
+}  // namespace cgagen::symbolic
