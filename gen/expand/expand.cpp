@@ -1,0 +1,546 @@
+// The expander: evaluates a parsed CluScript statement by statement into symbolic multivectors and
+// records the Kernel (inputs, one value per assignment, outputs, ranges). See expand.hpp, kernel.hpp
+// and the "Semantics" section of docs/language.md.
+#include "expand/expand.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "symbolic/multivector.hpp"
+
+namespace cgagen {
+namespace {
+
+using front::CompileError;
+using front::Expr;
+using front::SourceLoc;
+using front::Stmt;
+using symbolic::Multivector;
+using GiNaC::ex;
+
+// Blade list for messages: "e1, e1^e2".
+std::string blade_list(const Multivector& m) {
+  std::string s;
+  for (const auto& [b, c] : m.terms()) s += (s.empty() ? "" : ", ") + algebra::blade_name(b);
+  return s;
+}
+
+std::string describe(const Multivector& m) { return "a multivector with blades " + blade_list(m); }
+
+// "0.5" -> 1/2, "1e-3" -> 1/1000, "12" -> 12, exactly.
+std::optional<ex> parse_number(const std::string& text) {
+  std::string digits;
+  int frac = 0;
+  size_t i = 0;
+  bool dot = false, any = false;
+  for (; i < text.size(); ++i) {
+    char c = text[i];
+    if (c >= '0' && c <= '9') {
+      digits += c;
+      any = true;
+      if (dot) ++frac;
+    } else if (c == '.' && !dot) {
+      dot = true;
+    } else {
+      break;
+    }
+  }
+  if (!any) return std::nullopt;
+  long exponent = 0;
+  if (i < text.size()) {
+    if (text[i] != 'e' && text[i] != 'E') return std::nullopt;
+    ++i;
+    std::string e = text.substr(i);
+    if (e.empty()) return std::nullopt;
+    size_t j = (e[0] == '+' || e[0] == '-') ? 1 : 0;
+    if (j == e.size() || e.find_first_not_of("0123456789", j) != std::string::npos || e.size() > 6)
+      return std::nullopt;
+    exponent = std::strtol(e.c_str(), nullptr, 10);
+  }
+  digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size()));
+  GiNaC::numeric value = digits.empty() ? GiNaC::numeric(0) : GiNaC::numeric(digits.c_str());
+  long scale = exponent - frac;
+  GiNaC::numeric ten(10);
+  if (scale >= 0) value *= GiNaC::pow(ten, GiNaC::numeric(scale));
+  else value /= GiNaC::pow(ten, GiNaC::numeric(-scale));
+  return ex(value);
+}
+
+// Is the expanded expression e >= 0 for every real value of its symbols, visibly (a sum of positive
+// multiples of even powers)? Used to pick the closed form of exp.
+bool manifestly_nonnegative(const ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) {
+    const auto& n = GiNaC::ex_to<GiNaC::numeric>(e);
+    return n.is_real() && !n.is_negative();
+  }
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    for (size_t i = 0; i < e.nops(); ++i)
+      if (!manifestly_nonnegative(e.op(i))) return false;
+    return true;
+  }
+  if (GiNaC::is_a<GiNaC::mul>(e)) {
+    for (size_t i = 0; i < e.nops(); ++i)
+      if (!manifestly_nonnegative(e.op(i))) return false;
+    return true;
+  }
+  if (GiNaC::is_a<GiNaC::power>(e)) {
+    const ex& p = e.op(1);
+    return GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_even();
+  }
+  return false;
+}
+
+// A square root of a manifestly nonnegative t, taking even powers out of the root where factoring shows
+// them. Its sign may differ from sqrt(t); callers use it only in even functions (cos, sin(x)/x, ...).
+ex root_of_square(const ex& t) {
+  ex f = GiNaC::factor(t);
+  ex out = 1, rest = 1;
+  auto take = [&](const ex& factor) {
+    if (GiNaC::is_a<GiNaC::power>(factor) && GiNaC::is_a<GiNaC::numeric>(factor.op(1)) &&
+        GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).is_even())
+      out *= GiNaC::pow(factor.op(0), factor.op(1) / 2);
+    else if (GiNaC::is_a<GiNaC::numeric>(factor))
+      out *= GiNaC::sqrt(factor);
+    else
+      rest *= factor;
+  };
+  if (GiNaC::is_a<GiNaC::mul>(f))
+    for (size_t i = 0; i < f.nops(); ++i) take(f.op(i));
+  else
+    take(f);
+  return rest.is_equal(1) ? out : out * GiNaC::sqrt(rest);
+}
+
+bool is_basis_name(const std::string& n) {
+  static const std::set<std::string> names = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
+  return names.count(n) > 0;
+}
+
+Multivector basis(const std::string& n) {
+  if (n == "e1") return Multivector::e1();
+  if (n == "e2") return Multivector::e2();
+  if (n == "e3") return Multivector::e3();
+  if (n == "einf") return Multivector::einf();
+  if (n == "e0") return Multivector::e0();
+  const Multivector half_inf = Multivector::blade(4, GiNaC::numeric(1, 2));
+  if (n == "ep") return half_inf - Multivector::e0();
+  return half_inf + Multivector::e0();  // em
+}
+
+class Expander {
+ public:
+  explicit Expander(std::string name) { kernel_.name = std::move(name); }
+
+  Kernel run(const front::Script& script) {
+    for (const auto& s : script.statements) exec_top(*s);
+    finish_outputs();
+    return std::move(kernel_);
+  }
+
+ private:
+  struct Frame {
+    std::string macro;
+    std::vector<Multivector> args;
+    std::map<std::string, Multivector> locals;
+  };
+  struct Mark {
+    std::string name;
+    SourceLoc loc;
+  };
+  struct OutputPragma {
+    SourceLoc loc;
+    std::vector<algebra::BladeIndex> blades;
+  };
+
+  Kernel kernel_;
+  std::map<std::string, Multivector> globals_;     // current value of every assigned or input name
+  std::map<std::string, const Stmt*> macros_;
+  std::map<std::string, int> assignments_;         // times each name was assigned (symbol naming)
+  std::map<std::string, int> last_value_;          // index of the last assignment that may be an output
+  std::set<std::string> symbol_names_;
+  std::vector<Frame> frames_;                      // active macro calls, innermost last
+  std::vector<Mark> marks_;                        // in order of first marking
+  std::map<std::string, OutputPragma> output_pragmas_;
+
+  // ---- statements --------------------------------------------------------------------------------
+
+  void exec_top(const Stmt& s) {
+    switch (s.kind) {
+      case Stmt::Kind::Pragma: pragma(s); return;
+      case Stmt::Kind::MacroDef: define_macro(s); return;
+      case Stmt::Kind::ExprStmt: eval(*s.value); return;
+      case Stmt::Kind::Assign: break;
+    }
+    if (s.value) {
+      check_assignable(s);
+      Multivector v = eval(*s.value);
+      record_value(s, v);
+    } else if (!globals_.count(s.name) && !last_value_.count(s.name)) {
+      throw CompileError(s.loc, "output '" + s.name + "' is never assigned");
+    }
+    if (s.marker == front::Marker::Output || s.marker == front::Marker::Visual) mark(s.name, s.loc);
+  }
+
+  void exec_local(const Stmt& s) {
+    switch (s.kind) {
+      case Stmt::Kind::Pragma: throw CompileError(s.loc, "'#pragma' is not allowed inside a macro");
+      case Stmt::Kind::MacroDef: define_macro(s); return;
+      case Stmt::Kind::ExprStmt: eval(*s.value); return;
+      case Stmt::Kind::Assign: break;
+    }
+    if (!s.value) return;  // "?x;" inside a macro marks nothing: macro locals are not outputs
+    check_assignable(s);
+    Multivector v = eval(*s.value);
+    frames_.back().locals[s.name] = std::move(v);
+  }
+
+  void check_assignable(const Stmt& s) {
+    if (is_basis_name(s.name)) throw CompileError(s.loc, "cannot assign to basis vector '" + s.name + "'");
+    if (macros_.count(s.name)) throw CompileError(s.loc, "cannot assign to '" + s.name + "': it is a macro");
+  }
+
+  void define_macro(const Stmt& s) {
+    if (is_basis_name(s.name)) throw CompileError(s.loc, "cannot define a macro named '" + s.name + "'");
+    macros_[s.name] = &s;
+  }
+
+  std::string unique_symbol_name(const std::string& wanted) {
+    std::string n = wanted;
+    for (int k = 2; symbol_names_.count(n); ++k) n = wanted + "_" + std::to_string(k);
+    symbol_names_.insert(n);
+    return n;
+  }
+
+  // One KernelValue per assignment; later statements see the name through the value's own symbols.
+  void record_value(const Stmt& s, const Multivector& v) {
+    int count = ++assignments_[s.name];
+    std::string base = count == 1 ? s.name : s.name + "_" + std::to_string(count);
+    KernelValue kv;
+    kv.name = s.name;
+    kv.loc = s.loc;
+    Multivector ref;
+    for (const auto& [b, c] : v.terms()) {
+      GiNaC::symbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
+      kv.blades.push_back(b);
+      kv.coeffs.push_back(c);
+      kv.symbols.push_back(sym);
+      ref.set(b, sym);
+    }
+    globals_[s.name] = ref;
+    if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
+    kernel_.values.push_back(std::move(kv));
+  }
+
+  void mark(const std::string& name, SourceLoc loc) {
+    for (const auto& m : marks_)
+      if (m.name == name) return;
+    marks_.push_back({name, loc});
+  }
+
+  void finish_outputs() {
+    for (const auto& [name, p] : output_pragmas_) {
+      bool marked = std::any_of(marks_.begin(), marks_.end(), [&](const Mark& m) { return m.name == name; });
+      if (!marked) throw CompileError(p.loc, "'#pragma output' names '" + name + "', which is not an output");
+    }
+    if (marks_.empty()) throw CompileError({1, 1}, "script has no outputs (mark one with ?name)");
+    for (const auto& m : marks_) {
+      auto it = last_value_.find(m.name);
+      if (it == last_value_.end()) throw CompileError(m.loc, "output '" + m.name + "' is never assigned");
+      KernelOutput out;
+      out.name = m.name;
+      out.loc = m.loc;
+      out.value = it->second;
+      auto p = output_pragmas_.find(m.name);
+      out.blades = p != output_pragmas_.end() ? p->second.blades : kernel_.values[it->second].blades;
+      kernel_.outputs.push_back(std::move(out));
+    }
+  }
+
+  // ---- pragmas -----------------------------------------------------------------------------------
+
+  SourceLoc word_loc(const Stmt& s, size_t i) const { return i < s.word_locs.size() ? s.word_locs[i] : s.loc; }
+
+  std::vector<algebra::BladeIndex> pragma_blades(const Stmt& s, const std::string& what) {
+    if (s.words.size() < 3)
+      throw CompileError(s.loc, "'#pragma " + what + "' needs a name and at least one blade");
+    std::vector<algebra::BladeIndex> blades;
+    for (size_t i = 2; i < s.words.size(); ++i) {
+      auto b = algebra::parse_blade(s.words[i]);
+      if (!b) throw CompileError(word_loc(s, i), "unknown blade '" + s.words[i] + "' in '#pragma " + what + "'");
+      if (b->sign < 0)
+        throw CompileError(word_loc(s, i), "blade '" + s.words[i] + "' in '#pragma " + what +
+                                               "' is not in canonical order; write '" +
+                                               algebra::blade_name(b->index) + "'");
+      if (std::find(blades.begin(), blades.end(), b->index) != blades.end())
+        throw CompileError(word_loc(s, i), "blade '" + s.words[i] + "' is listed twice in '#pragma " + what + "'");
+      blades.push_back(b->index);
+    }
+    return blades;
+  }
+
+  void pragma(const Stmt& s) {
+    if (s.words.empty()) throw CompileError(s.loc, "empty '#pragma'");
+    const std::string& kind = s.words[0];
+    if (kind == "output") {
+      auto blades = pragma_blades(s, "output");
+      output_pragmas_[s.words[1]] = {word_loc(s, 1), std::move(blades)};
+    } else if (kind == "input") {
+      auto blades = pragma_blades(s, "input");
+      const std::string& name = s.words[1];
+      if (is_basis_name(name)) throw CompileError(word_loc(s, 1), "cannot declare basis vector '" + name + "' as an input");
+      if (globals_.count(name))
+        throw CompileError(word_loc(s, 1), "'" + name + "' is already used before its '#pragma input'");
+      KernelInput in;
+      in.name = name;
+      in.is_multivector = true;
+      in.blades = blades;
+      Multivector ref;
+      for (auto b : blades) {
+        GiNaC::symbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
+        in.symbols.push_back(sym);
+        ref.set(b, sym);
+      }
+      globals_[name] = ref;
+      kernel_.inputs.push_back(std::move(in));
+    } else if (kind == "range") {
+      range_pragma(s);
+    } else {
+      throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input or range)");
+    }
+  }
+
+  void range_pragma(const Stmt& s) {
+    std::string text;
+    for (size_t i = 1; i < s.words.size(); ++i) text += s.words[i];
+    auto bad = [&]() { return CompileError(s.loc, "'#pragma range' expects MIN <= NAME <= MAX"); };
+    size_t a = text.find("<="), b = a == std::string::npos ? a : text.find("<=", a + 2);
+    if (b == std::string::npos || text.find("<=", b + 2) != std::string::npos) throw bad();
+    std::string lo = text.substr(0, a), name = text.substr(a + 2, b - a - 2), hi = text.substr(b + 2);
+    auto num = [&](const std::string& t) {
+      char* end = nullptr;
+      double v = std::strtod(t.c_str(), &end);
+      if (t.empty() || end != t.c_str() + t.size()) throw bad();
+      return v;
+    };
+    ScalarRange r;
+    r.name = name;
+    r.min = num(lo);
+    r.max = num(hi);
+    if (name.empty()) throw bad();
+    if (r.min > r.max) throw CompileError(s.loc, "'#pragma range' for '" + name + "' has MIN > MAX");
+    kernel_.ranges.push_back(r);
+  }
+
+  // ---- expressions -------------------------------------------------------------------------------
+
+  Multivector lookup(const Expr& e) {
+    const std::string& n = e.text;
+    if (is_basis_name(n)) return basis(n);
+    if (!frames_.empty()) {
+      auto it = frames_.back().locals.find(n);
+      if (it != frames_.back().locals.end()) return it->second;
+    }
+    auto it = globals_.find(n);
+    if (it != globals_.end()) return it->second;
+    if (macros_.count(n)) throw CompileError(e.loc, "'" + n + "' is a macro; call it as " + n + "(...)");
+    // A free name: a new scalar input, in order of first use.
+    KernelInput in;
+    in.name = n;
+    in.blades = {0};
+    GiNaC::symbol sym(unique_symbol_name(n));
+    in.symbols = {sym};
+    kernel_.inputs.push_back(in);
+    Multivector v(sym);
+    globals_[n] = v;
+    return v;
+  }
+
+  Multivector eval(const Expr& e) {
+    switch (e.kind) {
+      case Expr::Kind::Number: {
+        auto v = parse_number(e.text);
+        if (!v) throw CompileError(e.loc, "malformed number '" + e.text + "'");
+        return Multivector(*v);
+      }
+      case Expr::Kind::Name: return lookup(e);
+      case Expr::Kind::MacroArg: {
+        if (frames_.empty())
+          throw CompileError(e.loc, "_P(" + std::to_string(e.index) + ") used outside a macro");
+        const Frame& f = frames_.back();
+        if (e.index < 1 || e.index > static_cast<int>(f.args.size()))
+          throw CompileError(e.loc, "_P(" + std::to_string(e.index) + ") out of range: macro '" + f.macro +
+                                        "' was called with " + std::to_string(f.args.size()) + " argument" +
+                                        (f.args.size() == 1 ? "" : "s"));
+        return f.args[e.index - 1];
+      }
+      case Expr::Kind::Unary: {
+        Multivector a = eval(*e.args.at(0));
+        switch (e.unary_op) {
+          case front::UnaryOp::Negate: return -a;
+          case front::UnaryOp::Reverse: return a.reverse();
+          case front::UnaryOp::Dual: return a.dual();
+        }
+        break;
+      }
+      case Expr::Kind::Binary: {
+        Multivector a = eval(*e.args.at(0));
+        Multivector b = eval(*e.args.at(1));
+        switch (e.binary_op) {
+          case front::BinaryOp::Add: return a + b;
+          case front::BinaryOp::Sub: return a - b;
+          case front::BinaryOp::Geo: return a * b;
+          case front::BinaryOp::Outer: return a ^ b;
+          case front::BinaryOp::Inner: return inner(a, b);
+          case front::BinaryOp::Div: return divide(a, b, *e.args.at(1));
+        }
+        break;
+      }
+      case Expr::Kind::Call: return call(e);
+    }
+    throw CompileError(e.loc, "internal error: unknown expression kind");
+  }
+
+  Multivector divide(const Multivector& a, const Multivector& b, const Expr& be) {
+    if (b.is_zero()) throw CompileError(be.loc, "division by zero");
+    if (b.is_scalar()) return guarded(be.loc, [&] { return a / b.scalar(); });
+    Multivector rev = b.reverse();
+    Multivector norm = b * rev;
+    if (!norm.is_scalar())
+      throw CompileError(be.loc, "cannot divide by this multivector: d*~d is not a scalar (it has blades " +
+                                     blade_list(norm) + "), so d is not a versor or blade");
+    if (norm.is_zero()) throw CompileError(be.loc, "cannot divide by a null multivector (d*~d = 0)");
+    return guarded(be.loc, [&] { return (a * rev) / norm.scalar(); });
+  }
+
+  // Runs f, turning GiNaC's arithmetic faults (division by zero, ...) into diagnostics at loc.
+  template <class F>
+  Multivector guarded(SourceLoc loc, F&& f) {
+    try {
+      return f();
+    } catch (const CompileError&) {
+      throw;
+    } catch (const std::exception& ex) {
+      throw CompileError(loc, std::string("cannot evaluate: ") + ex.what());
+    }
+  }
+
+  ex scalar_arg(const std::string& fn, const std::vector<Multivector>& args, const Expr& call, size_t i) {
+    if (!args[i].is_scalar()) {
+      std::string which = args.size() == 1 ? "a scalar argument" : "scalar arguments";
+      throw CompileError(call.args[i]->loc,
+                         "'" + fn + "' takes " + which + ", got " + describe(args[i]) +
+                             (args.size() == 1 ? "" : " as argument " + std::to_string(i + 1)));
+    }
+    return args[i].scalar();
+  }
+
+  void check_arity(const Expr& e, size_t n) {
+    if (e.args.size() != n)
+      throw CompileError(e.loc, "'" + e.text + "' takes " + std::to_string(n) + " argument" + (n == 1 ? "" : "s") +
+                                    ", got " + std::to_string(e.args.size()));
+  }
+
+  Multivector call(const Expr& e) {
+    const std::string& fn = e.text;
+    std::vector<Multivector> args;
+    auto macro = macros_.find(fn);
+    if (macro != macros_.end()) {
+      for (const auto& a : e.args) args.push_back(eval(*a));
+      return call_macro(*macro->second, std::move(args), e);
+    }
+    using Fn1 = std::function<ex(const ex&)>;
+    static const std::map<std::string, Fn1> scalar1 = {
+        {"abs", [](const ex& x) { return GiNaC::abs(x); }},   {"sqrt", [](const ex& x) { return GiNaC::sqrt(x); }},
+        {"sin", [](const ex& x) { return GiNaC::sin(x); }},   {"cos", [](const ex& x) { return GiNaC::cos(x); }},
+        {"tan", [](const ex& x) { return GiNaC::tan(x); }},   {"asin", [](const ex& x) { return GiNaC::asin(x); }},
+        {"acos", [](const ex& x) { return GiNaC::acos(x); }}, {"atan", [](const ex& x) { return GiNaC::atan(x); }},
+        {"log", [](const ex& x) { return GiNaC::log(x); }},
+    };
+    static const std::map<std::string, size_t> arity = {
+        {"atan2", 2}, {"exp", 1}, {"VecN3", 3}, {"createPoint", 3}, {"TranslatorN3", 3}, {"RotorN3", 4}};
+    auto f1 = scalar1.find(fn);
+    auto ar = arity.find(fn);
+    if (f1 == scalar1.end() && ar == arity.end()) throw CompileError(e.loc, "unknown function '" + fn + "'");
+    check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
+    for (const auto& a : e.args) args.push_back(eval(*a));
+    return guarded(e.loc, [&]() -> Multivector {
+      if (f1 != scalar1.end()) return Multivector(f1->second(scalar_arg(fn, args, e, 0)));
+      if (fn == "exp") return exp(args[0], e);
+      std::vector<ex> s;
+      for (size_t i = 0; i < args.size(); ++i) s.push_back(scalar_arg(fn, args, e, i));
+      if (fn == "atan2") return Multivector(GiNaC::atan2(s[0], s[1]));
+      if (fn == "VecN3" || fn == "createPoint") {
+        Multivector p = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
+        p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2);
+        return p + Multivector::e0();
+      }
+      if (fn == "TranslatorN3") {
+        Multivector t = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
+        return Multivector(ex(1)) - GiNaC::numeric(1, 2) * (t * Multivector::einf());
+      }
+      // RotorN3 (Gaalop): cos(a/2) + sin(a/2) * (-x e23 + y e13 - z e12) / |(x,y,z)|
+      ex len = GiNaC::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+      ex half = s[3] / 2;
+      Multivector plane = Multivector::blade(10, -s[0]) + Multivector::blade(7, s[1]) + Multivector::blade(6, -s[2]);
+      return Multivector(GiNaC::cos(half)) + (GiNaC::sin(half) / len) * plane;
+    });
+  }
+
+  // exp of a scalar, or closed form for a bivector B with scalar square.
+  Multivector exp(const Multivector& b, const Expr& e) {
+    if (b.is_scalar()) return Multivector(GiNaC::exp(b.scalar()));
+    SourceLoc at = e.args[0]->loc;
+    if (!b.is_homogeneous(2))
+      throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got " + describe(b));
+    Multivector sq = b * b;
+    if (!sq.is_scalar())
+      throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
+                             "square has blades " + blade_list(sq));
+    ex s = sq.scalar();
+    if (s.is_zero()) return Multivector(ex(1)) + b;
+    if (manifestly_nonnegative((-s).expand())) {  // B^2 = -theta^2: rotation
+      ex theta = root_of_square((-s).expand());
+      return Multivector(GiNaC::cos(theta)) + (GiNaC::sin(theta) / theta) * b;
+    }
+    if (manifestly_nonnegative(s)) {  // B^2 = theta^2: boost
+      ex theta = root_of_square(s);
+      return Multivector(GiNaC::cosh(theta)) + (GiNaC::sinh(theta) / theta) * b;
+    }
+    throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument (B*B = " +
+                               to_text(s) + ")");
+  }
+
+  static std::string to_text(const ex& s) {
+    std::ostringstream os;
+    os << s;
+    return os.str();
+  }
+
+  Multivector call_macro(const Stmt& def, std::vector<Multivector> args, const Expr& e) {
+    for (size_t i = 0; i < frames_.size(); ++i) {
+      if (frames_[i].macro != def.name) continue;
+      std::string chain;
+      for (size_t j = i; j < frames_.size(); ++j) chain += "'" + frames_[j].macro + "' -> ";
+      throw CompileError(e.loc, "recursive macro call " + chain + "'" + def.name + "'");
+    }
+    frames_.push_back({def.name, std::move(args), {}});
+    for (const auto& s : def.body) exec_local(*s);
+    Multivector r = def.result ? eval(*def.result) : Multivector();
+    frames_.pop_back();
+    return r;
+  }
+};
+
+}  // namespace
+
+Kernel expand(const front::Script& script, const std::string& kernel_name) {
+  Expander x(kernel_name);
+  return x.run(script);
+}
+
+}  // namespace cgagen
