@@ -49,7 +49,7 @@ bool near(const MV& a, const MV& b, double scale = 1.0, double tol = 1e-12) {
 
 bool near3(const P3& a, const P3& b, double rel = kRel) {
   double scale = 1.0, diff = 0.0;
-  for (int i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < 3; ++i) {
     scale = std::max(scale, std::abs(b[i]));
     diff = std::max(diff, std::abs(a[i] - b[i]));
   }
@@ -333,6 +333,12 @@ TEST_CASE("exp by series matches closed forms", "[oracle][exp]") {
   const MV A = rng.multivector(-0.5, 0.5);
   CHECK(near(oracle::exp(A) * oracle::exp(-A), S(1), 1, 1e-12));
   CHECK(near(oracle::exp(MV{}), S(1)));
+}
+
+TEST_CASE("scalars of other arithmetic types mix with MV<double>", "[oracle][types]") {
+  CHECK(near(2 * e1(), e1() + e1()));
+  CHECK(near(e1() * 0.5f, e1() / 2));
+  CHECK(near(oracle::up(std::array<double, 3>{1, 2, 3}), oracle::up(1.0, 2.0, 3.0)));
 }
 
 TEST_CASE("pseudoscalar and dual", "[oracle][facts]") {

@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -104,18 +105,19 @@ template <class T>
 MV<T> operator+(const MV<T>& a) {
   return a;
 }
+// The scalar is not deduced (type_identity), so 2 * A or 0.5f * A work for MV<double>.
 template <class T>
-MV<T> operator*(T s, const MV<T>& a) {
+MV<T> operator*(std::type_identity_t<T> s, const MV<T>& a) {
   MV<T> r;
   for (unsigned i = 0; i < kBlades; ++i) r.c[i] = s * a.c[i];
   return r;
 }
 template <class T>
-MV<T> operator*(const MV<T>& a, T s) {
+MV<T> operator*(const MV<T>& a, std::type_identity_t<T> s) {
   return s * a;
 }
 template <class T>
-MV<T> operator/(const MV<T>& a, T s) {
+MV<T> operator/(const MV<T>& a, std::type_identity_t<T> s) {
   MV<T> r;
   for (unsigned i = 0; i < kBlades; ++i) r.c[i] = a.c[i] / s;
   return r;
@@ -326,6 +328,11 @@ MV<T> exp(const MV<T>& b) {
 template <class T>
 MV<T> up(T x, T y, T z) {
   return x * e1<T>() + y * e2<T>() + z * e3<T>() + (T(0.5) * (x * x + y * y + z * z)) * einf<T>() + e0<T>();
+}
+
+template <class T>
+MV<T> up(const std::array<T, 3>& p) {
+  return up(p[0], p[1], p[2]);
 }
 
 // Euclidean part of X divided by its weight -X.einf. Throws std::domain_error for weight 0.
