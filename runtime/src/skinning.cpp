@@ -125,12 +125,9 @@ std::string shape_error(const SkinningJob& job) {
                          to_string(job.method));
   }
   const std::size_t palette = palette_size(job);
-  if ((job.method == SkinningMethod::cga_points || job.method == SkinningMethod::dqs) &&
-      palette > kMaxConvertedPalette)
+  if (palette > kMaxConvertedPalette)
     return fmt::format("{} converts at most {} palette entries per run, the palette has {}",
                        to_string(job.method), kMaxConvertedPalette, palette);
-  if (palette > std::size_t{std::numeric_limits<std::uint16_t>::max()} + 1)
-    return fmt::format("palette of {} entries is larger than 16-bit joint indices can address", palette);
   return {};
 }
 
@@ -201,22 +198,78 @@ CGA_ALWAYS_INLINE void apply_matrix(const float m[12], const Streams& s, std::si
   }
 }
 
-// lbs and cga_points: blend the 4 row-major 3x4 matrices of the vertex, then apply once.
+// The 8-float vector helpers below are always inlined and file-local, so the AVX argument-passing ABI
+// that -Wpsabi warns about never applies.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// Palettes in the loops' layout: 16 floats per entry, read as two 8-float vectors. GCC's vector extensions
+// keep this portable: the default clone splits each 8-float operation into two SSE ones.
+using v4 = float __attribute__((vector_size(16)));
+using v8 = float __attribute__((vector_size(32)));
+constexpr std::size_t kEntry = 16;
+
+CGA_ALWAYS_INLINE v8 load8(const float* p) {
+  v8 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+CGA_ALWAYS_INLINE v4 low(v8 v) { return v4{v[0], v[1], v[2], v[3]}; }
+CGA_ALWAYS_INLINE v4 high(v8 v) { return v4{v[4], v[5], v[6], v[7]}; }
+
+// A matrix entry is column-major with padded columns: (m00 m10 m20 0)(m01 m11 m21 0)(m02 m12 m22 0)(t 0).
+void matrix_entry_from_rows(const float rows[12], float out[kEntry]) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 3; ++r) out[4 * c + r] = rows[4 * r + c];
+    out[4 * c + 3] = 0.0f;
+  }
+}
+
+// Renormalizes the normals [begin, end) in place (a contiguous pass that vectorizes across vertices);
+// a degenerate normal becomes 0 rather than NaN.
+CGA_ALWAYS_INLINE void renormalize(const Streams& s, std::size_t begin, std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    const float u = s.onx[i], v = s.ony[i], w = s.onz[i];
+    const float len2 = u * u + v * v + w * w;
+    // No conditional division, so the loop if-converts and vectorizes.
+    const float inv = (len2 > 0.0f ? 1.0f : 0.0f) / std::sqrt(std::max(len2, 1e-30f));
+    s.onx[i] = u * inv;
+    s.ony[i] = v * inv;
+    s.onz[i] = w * inv;
+  }
+}
+
+// lbs and cga_points: blend the vertex's 4 matrices (vectorized within the vertex: columns 0-1 and 2-3 are
+// one 8-float vector each), then apply: p' = c0 x + c1 y + c2 z + t.
 template <bool kNormals>
 CGA_ALWAYS_INLINE void matrix_block(const float* __restrict pal, const Streams& s, std::size_t begin,
                                     std::size_t end) {
-#pragma GCC ivdep
   for (std::size_t i = begin; i < end; ++i) {
     const std::array<std::uint16_t, 4> j = s.joints[i];
     const std::array<float, 4> w = s.weights[i];
-    const float* a = pal + 12 * std::size_t{j[0]};
-    const float* b = pal + 12 * std::size_t{j[1]};
-    const float* c = pal + 12 * std::size_t{j[2]};
-    const float* d = pal + 12 * std::size_t{j[3]};
-    float m[12];
-    for (int e = 0; e < 12; ++e) m[e] = w[0] * a[e] + w[1] * b[e] + w[2] * c[e] + w[3] * d[e];
-    apply_matrix<kNormals>(m, s, i);
+    // Two partial sums per half: shorter FMA dependency chains.
+    const float* a = pal + kEntry * j[0];
+    const float* b = pal + kEntry * j[1];
+    const float* c = pal + kEntry * j[2];
+    const float* d = pal + kEntry * j[3];
+    const v8 lo = (w[0] * load8(a) + w[1] * load8(b)) + (w[2] * load8(c) + w[3] * load8(d));
+    const v8 hi = (w[0] * load8(a + 8) + w[1] * load8(b + 8)) + (w[2] * load8(c + 8) + w[3] * load8(d + 8));
+    const float x = s.px[i], y = s.py[i], z = s.pz[i];
+    const v8 t = lo * v8{x, x, x, x, y, y, y, y} + hi * v8{z, z, z, z, 1, 1, 1, 1};
+    const v4 p = low(t) + high(t);
+    s.ox[i] = p[0];
+    s.oy[i] = p[1];
+    s.oz[i] = p[2];
+    if constexpr (kNormals) {
+      const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
+      const v8 u = lo * v8{a, a, a, a, b, b, b, b} + hi * v8{c, c, c, c, 0, 0, 0, 0};
+      const v4 n = low(u) + high(u);
+      s.onx[i] = n[0];
+      s.ony[i] = n[1];
+      s.onz[i] = n[2];
+    }
   }
+  if constexpr (kNormals) renormalize(s, begin, end);
 }
 
 CGA_SKIN_CLONES void matrix_block_p(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
@@ -269,29 +322,47 @@ CGA_SKIN_CLONES void dq_block_pn(const float* pal, const Streams& s, std::size_t
   dq_block<true>(pal, s, begin, end);
 }
 
-// cga_motors: blend the 12 motor coefficients (sign fix on the rotor parts: blades 1, e12, e13, e23), turn the
-// blend into its weight-normalized point-transform matrix with the generated kernel, apply once.
+// cga_motors, in two passes over a block. 1: blend the vertex's 4 motors (sign fix on the rotor parts: blades
+// 1, e12, e13, e23), vectorized within the vertex, into a block buffer. 2: turn each blended motor into its
+// weight-normalized point-transform matrix with the generated kernel and apply it; this pass reads the buffer
+// contiguously and vectorizes across vertices. A motor entry is the 12 coefficients padded to 16.
 template <bool kNormals>
 CGA_ALWAYS_INLINE void motor_block(const float* __restrict pal, const Streams& s, std::size_t begin,
                                    std::size_t end) {
-#pragma GCC ivdep
+  alignas(64) float blended[kBlock][kEntry];
   for (std::size_t i = begin; i < end; ++i) {
     const std::array<std::uint16_t, 4> j = s.joints[i];
     const std::array<float, 4> w = s.weights[i];
-    const float* q[4] = {pal + 12 * std::size_t{j[0]}, pal + 12 * std::size_t{j[1]},
-                         pal + 12 * std::size_t{j[2]}, pal + 12 * std::size_t{j[3]}};
-    float b[12];
-    for (int e = 0; e < 12; ++e) b[e] = w[0] * q[0][e];
+    const float* q0 = pal + kEntry * j[0];
+    v8 lo = w[0] * load8(q0);
+    v8 hi = w[0] * load8(q0 + 8);
     for (int k = 1; k < 4; ++k) {
-      const float dot = q[0][blade::s] * q[k][blade::s] + q[0][blade::e12] * q[k][blade::e12] +
-                        q[0][blade::e13] * q[k][blade::e13] + q[0][blade::e23] * q[k][blade::e23];
-      const float wk = std::copysign(w[k], dot);
-      for (int e = 0; e < 12; ++e) b[e] += wk * q[k][e];
+      const float* q = pal + kEntry * j[k];
+      const float dot = q0[blade::s] * q[blade::s] + q0[blade::e12] * q[blade::e12] +
+                        q0[blade::e13] * q[blade::e13] + q0[blade::e23] * q[blade::e23];
+      const float wk = __builtin_copysignf(w[k], dot);
+      lo += wk * load8(q);
+      hi += wk * load8(q + 8);
     }
-    float m[12];
-    detail::motor_matrix(b, m);
-    apply_matrix<kNormals>(m, s, i);
+    __builtin_memcpy(blended[i - begin], &lo, sizeof lo);
+    __builtin_memcpy(blended[i - begin] + 8, &hi, sizeof hi);
   }
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    float m[12];
+    detail::motor_matrix(blended[i - begin], m);
+    const float x = s.px[i], y = s.py[i], z = s.pz[i];
+    s.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
+    s.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
+    s.oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
+    if constexpr (kNormals) {
+      const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
+      s.onx[i] = m[0] * a + m[1] * b + m[2] * c;
+      s.ony[i] = m[4] * a + m[5] * b + m[6] * c;
+      s.onz[i] = m[8] * a + m[9] * b + m[10] * c;
+    }
+  }
+  if constexpr (kNormals) renormalize(s, begin, end);
 }
 
 CGA_SKIN_CLONES void motor_block_p(const float* pal, const Streams& s, std::size_t begin, std::size_t end) {
@@ -319,34 +390,36 @@ bool SkinningJob::Run() const {
                   out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data()};
   const bool normals = has_normals();
 
-  // Per-run palette preparation: cga_points converts every motor once (on the stack, no allocation);
-  // dqs repacks the GLM dual quaternions as 8 plain floats.
-  alignas(64) float converted[kMaxConvertedPalette * 12];
-  const float* pal = nullptr;
+  // Per-run palette preparation into the loops' layout, on the stack (Run() never allocates): lbs transposes
+  // its matrices, cga_points converts every motor once with the generated kernel, cga_motors pads its motors
+  // to 16 floats, dqs repacks GLM's dual quaternions as 8 plain floats.
+  alignas(64) float converted[kMaxConvertedPalette * kEntry];
+  const float* pal = converted;
   BlockFn block = nullptr;
-  std::size_t palette = 0;
+  const std::size_t palette = palette_size(*this);
   switch (method) {
     case SkinningMethod::lbs:
-      pal = reinterpret_cast<const float*>(matrices.data());
-      palette = matrices.size();
+      for (std::size_t k = 0; k < palette; ++k)
+        matrix_entry_from_rows(reinterpret_cast<const float*>(&matrices[k]), converted + kEntry * k);
       block = normals ? matrix_block_pn : matrix_block_p;
       break;
     case SkinningMethod::cga_points:
-      for (std::size_t k = 0; k < motors.size(); ++k) detail::motor_matrix(motors[k].c.data(), converted + 12 * k);
-      pal = converted;
-      palette = motors.size();
+      for (std::size_t k = 0; k < palette; ++k) {
+        float rows[12];
+        detail::motor_matrix(motors[k].c.data(), rows);
+        matrix_entry_from_rows(rows, converted + kEntry * k);
+      }
       block = normals ? matrix_block_pn : matrix_block_p;
       break;
     case SkinningMethod::dqs:
-      // Two dual quaternions per 64-byte line; packing keeps the loop free of GLM's member layout.
-      pack_dual_quats(dual_quats, std::span<float>(converted, 8 * dual_quats.size()));
-      pal = converted;
-      palette = dual_quats.size();
+      pack_dual_quats(dual_quats, std::span<float>(converted, 8 * palette));
       block = normals ? dq_block_pn : dq_block_p;
       break;
     case SkinningMethod::cga_motors:
-      pal = reinterpret_cast<const float*>(motors.data());
-      palette = motors.size();
+      for (std::size_t k = 0; k < palette; ++k) {
+        for (int e = 0; e < 12; ++e) converted[kEntry * k + e] = motors[k].c[e];
+        for (std::size_t e = 12; e < kEntry; ++e) converted[kEntry * k + e] = 0.0f;
+      }
       block = normals ? motor_block_pn : motor_block_p;
       break;
   }

@@ -44,8 +44,8 @@ SkinningMethod parse_skinning_method(std::string_view text);
 // True when this build has the generated kernels that cga_points / cga_motors run on.
 bool cga_skinning_kernels_available();
 
-// Largest palette that cga_points (motors -> 3x4 matrices) and dqs (dual quaternions -> packed floats)
-// convert per run; the converted palette lives on Run()'s stack, which never allocates.
+// Largest palette a run takes: every method converts its palette once per run into the loop's layout (cga_points:
+// motors -> 3x4 matrices with the generated kernel), on Run()'s stack (64 KiB), since Run() never allocates.
 inline constexpr std::size_t kMaxConvertedPalette = 1024;
 
 // Skins vertices [0, vertex count) from rest (mesh space) to posed. Every span is non-owning. The palette of
