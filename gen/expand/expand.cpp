@@ -164,6 +164,10 @@ class Expander {
   std::map<std::string, int> last_value_;          // index of the last assignment that may be an output
   std::set<std::string> symbol_names_;
   std::vector<Frame> frames_;                      // active macro calls, innermost last
+  // Each value symbol's coefficient expression (over inputs and earlier symbols), and, computed on demand,
+  // that expression with every value symbol inlined down to the inputs: only for zero tests.
+  GiNaC::exmap definitions_;
+  GiNaC::exmap inlined_;
   std::vector<Mark> marks_;                        // in order of first marking
   std::map<std::string, OutputPragma> output_pragmas_;
 
@@ -230,6 +234,7 @@ class Expander {
       kv.coeffs.push_back(c);
       kv.symbols.push_back(sym);
       ref.set(b, sym);
+      definitions_[sym] = c;
     }
     globals_[s.name] = ref;
     if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
@@ -336,6 +341,42 @@ class Expander {
     kernel_.ranges.push_back(r);
   }
 
+  // ---- zero tests through the value chain ---------------------------------------------------------
+
+  // e with every value symbol replaced by its definition, recursively, down to the inputs.
+  ex inline_values(const ex& e) {
+    GiNaC::exmap subs;
+    collect_inlined(e, subs);
+    return subs.empty() ? e : e.subs(subs);
+  }
+
+  void collect_inlined(const ex& e, GiNaC::exmap& subs) {
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      auto def = definitions_.find(e);
+      if (def == definitions_.end() || subs.count(e)) return;
+      auto done = inlined_.find(e);
+      if (done == inlined_.end()) done = inlined_.emplace(e, inline_values(def->second).expand()).first;
+      subs[e] = done->second;
+      return;
+    }
+    for (size_t i = 0; i < e.nops(); ++i) collect_inlined(e.op(i), subs);
+  }
+
+  // Statements see earlier values only through their symbols, so an identity that holds for the values
+  // (c*einf*c is a vector when c is a 2-blade) is invisible here. Where it matters (a divisor, a function
+  // argument, the argument of exp) the blades that must vanish are checked with the values inlined.
+  template <class MustVanish>
+  Multivector drop_vanishing(const Multivector& m, MustVanish must_vanish) {
+    Multivector r = m;
+    for (const auto& [b, c] : m.terms())
+      if (must_vanish(b) && symbolic::is_identically_zero(inline_values(c))) r.set(b, 0);
+    return r;
+  }
+
+  Multivector scalar_part_if_scalar(const Multivector& m) {
+    return m.is_scalar() ? m : drop_vanishing(m, [](algebra::BladeIndex b) { return b != 0; });
+  }
+
   // ---- expressions -------------------------------------------------------------------------------
 
   Multivector lookup(const Expr& e) {
@@ -405,14 +446,15 @@ class Expander {
     throw CompileError(e.loc, "internal error: unknown expression kind");
   }
 
-  Multivector divide(const Multivector& a, const Multivector& b, const Expr& be) {
+  Multivector divide(const Multivector& a, const Multivector& b_in, const Expr& be) {
+    Multivector b = scalar_part_if_scalar(b_in);
     if (b.is_zero()) throw CompileError(be.loc, "division by zero");
     if (b.is_scalar()) return guarded(be.loc, [&] { return a / b.scalar(); });
     Multivector rev = b.reverse();
-    Multivector norm = b * rev;
+    Multivector norm = scalar_part_if_scalar(b * rev);
     if (!norm.is_scalar())
       throw CompileError(be.loc, "cannot divide by this multivector: d*~d is not a scalar (it has blades " +
-                                     blade_list(norm) + "), so d is not a versor or blade");
+                                     blade_list(norm.grade_above(0)) + "), so d is not a versor or blade");
     if (norm.is_zero()) throw CompileError(be.loc, "cannot divide by a null multivector (d*~d = 0)");
     return guarded(be.loc, [&] { return (a * rev) / norm.scalar(); });
   }
@@ -429,7 +471,8 @@ class Expander {
     }
   }
 
-  ex scalar_arg(const std::string& fn, const std::vector<Multivector>& args, const Expr& call, size_t i) {
+  ex scalar_arg(const std::string& fn, std::vector<Multivector>& args, const Expr& call, size_t i) {
+    args[i] = scalar_part_if_scalar(args[i]);
     if (!args[i].is_scalar()) {
       std::string which = args.size() == 1 ? "a scalar argument" : "scalar arguments";
       throw CompileError(call.args[i]->loc,
@@ -471,6 +514,7 @@ class Expander {
     return guarded(e.loc, [&]() -> Multivector {
       if (f1 != scalar1.end()) return Multivector(f1->second(scalar_arg(fn, args, e, 0)));
       if (fn == "exp") return exp(args[0], e);
+      // The arguments of the remaining built-ins must all be scalars.
       std::vector<ex> s;
       for (size_t i = 0; i < args.size(); ++i) s.push_back(scalar_arg(fn, args, e, i));
       if (fn == "atan2") return Multivector(GiNaC::atan2(s[0], s[1]));
@@ -492,15 +536,17 @@ class Expander {
   }
 
   // exp of a scalar, or closed form for a bivector B with scalar square.
-  Multivector exp(const Multivector& b, const Expr& e) {
+  Multivector exp(const Multivector& b_in, const Expr& e) {
+    Multivector b = scalar_part_if_scalar(b_in);
     if (b.is_scalar()) return Multivector(GiNaC::exp(b.scalar()));
     SourceLoc at = e.args[0]->loc;
+    b = drop_vanishing(b, [](algebra::BladeIndex i) { return algebra::blade_grade(i) != 2; });
     if (!b.is_homogeneous(2))
       throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got " + describe(b));
-    Multivector sq = b * b;
+    Multivector sq = scalar_part_if_scalar(b * b);
     if (!sq.is_scalar())
       throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
-                             "square has blades " + blade_list(sq));
+                             "square has blades " + blade_list(sq.grade_above(0)));
     ex s = sq.scalar();
     if (s.is_zero()) return Multivector(ex(1)) + b;
     if (manifestly_nonnegative((-s).expand())) {  // B^2 = -theta^2: rotation

@@ -134,6 +134,13 @@ Multivector Multivector::grade(int k) const {
   return r;
 }
 
+Multivector Multivector::grade_above(int k) const {
+  Multivector r;
+  for (const auto& [b, c] : terms_)
+    if (algebra::blade_grade(b) > k) r.terms_[b] = c;
+  return r;
+}
+
 Multivector Multivector::dual() const { return *this * blade(31, -1); }
 
 Multivector Multivector::expanded() const {

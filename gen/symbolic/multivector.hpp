@@ -58,6 +58,7 @@ class Multivector {
   Multivector reverse() const;   // ~A
   Multivector involute() const;  // grade involution
   Multivector grade(int k) const;
+  Multivector grade_above(int k) const;  // the blades of grade > k
   Multivector dual() const;      // A * (-e1^e2^e3^einf^e0), Gaalop's *A
   // Re-expands every coefficient and, where a coefficient still has a denominator, normalizes it to find
   // identically-zero ones (normal() is only paid for rational coefficients).
