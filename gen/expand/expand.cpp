@@ -4,6 +4,7 @@
 #include "expand/expand.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -168,6 +169,10 @@ class Expander {
   // that expression with every value symbol inlined down to the inputs: only for zero tests.
   GiNaC::exmap definitions_;
   GiNaC::exmap inlined_;
+  // Every input and value symbol at one fixed pseudo-random point (inputs drawn from [0.3, 1.7)): a cheap
+  // first test of whether a coefficient can be zero; only near-zero ones pay for the exact check.
+  GiNaC::exmap samples_;
+  std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
   std::vector<Mark> marks_;                        // in order of first marking
   std::map<std::string, OutputPragma> output_pragmas_;
 
@@ -229,7 +234,10 @@ class Expander {
     kv.loc = s.loc;
     Multivector ref;
     for (const auto& [b, c] : v.terms()) {
+      std::optional<ex> at_sample = sample(c);
+      if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::symbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
+      samples_[sym] = *at_sample;
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
       kv.symbols.push_back(sym);
@@ -307,6 +315,7 @@ class Expander {
       Multivector ref;
       for (auto b : blades) {
         GiNaC::symbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
+        samples_[sym] = next_sample();
         in.symbols.push_back(sym);
         ref.set(b, sym);
       }
@@ -342,6 +351,26 @@ class Expander {
   }
 
   // ---- zero tests through the value chain ---------------------------------------------------------
+
+  ex next_sample() {
+    sample_state_ = sample_state_ * 6364136223846793005ull + 1442695040888963407ull;
+    return GiNaC::numeric(0.3 + 1.4 * static_cast<double>(sample_state_ >> 11) / 9007199254740992.0);
+  }
+
+  // c evaluated at the sample point, or nullopt when c is identically zero with the values inlined.
+  // When c cannot be evaluated there (a pole, a function GiNaC leaves unevaluated) it is kept.
+  std::optional<ex> sample(const ex& c) {
+    ex v;
+    try {
+      v = GiNaC::evalf(c.subs(samples_));
+    } catch (const std::exception&) {
+      return ex(GiNaC::numeric(0));
+    }
+    if (!GiNaC::is_a<GiNaC::numeric>(v)) return v;
+    if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > GiNaC::numeric(1e-8)) return v;
+    if (symbolic::is_identically_zero(inline_values(c))) return std::nullopt;
+    return v;
+  }
 
   // e with every value symbol replaced by its definition, recursively, down to the inputs.
   ex inline_values(const ex& e) {
@@ -394,6 +423,7 @@ class Expander {
     in.name = n;
     in.blades = {0};
     GiNaC::symbol sym(unique_symbol_name(n));
+    samples_[sym] = next_sample();
     in.symbols = {sym};
     kernel_.inputs.push_back(in);
     Multivector v(sym);
