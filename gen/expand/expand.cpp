@@ -138,7 +138,16 @@ class Expander {
   explicit Expander(std::string name) { kernel_.name = std::move(name); }
 
   Kernel run(const front::Script& script) {
-    for (const auto& s : script.statements) exec_top(*s);
+    for (const auto& s : script.statements) {
+      // GiNaC's own faults (a pole, an overflow) anywhere in a statement become a diagnostic, not a crash.
+      try {
+        exec_top(*s);
+      } catch (const CompileError&) {
+        throw;
+      } catch (const std::exception& ex) {
+        throw CompileError(s->loc, std::string("cannot evaluate: ") + ex.what());
+      }
+    }
     finish_outputs();
     return std::move(kernel_);
   }
