@@ -1,0 +1,86 @@
+// Animation data: a clip's per-joint key tracks as loaded (translation / rotation / scale keys at their own
+// times) and, per joint, the merged keys the sampler reads: every key time of the joint's three tracks,
+// with the full TRS at each and its precomputed representations (motor T*R*D, rigid T*R for the paper's
+// lerp, dual quaternion for the baseline). Also the interpolation modes.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cga/runtime/motor.hpp"
+#include "cga/runtime/types.hpp"
+
+namespace cga {
+
+// How the sampler interpolates between two keys (and the blender between two poses).
+//   paper         the paper's eq. 25/27: linear lerp of the rigid motors T*R, linear lerp of the dilators,
+//                 their product (generated motor_lerp_paper). Not a unit motor; points divide by the weight.
+//   nlerp         lerp of the 12 motor coefficients with the antipodal sign fix, then normalized (projected
+//                 back onto T*R*D, see motor_to_transform).
+//   screw         motor log/exp: constant-speed screw motion for the rigid part, geometric scale.
+//   glm_matrix    baseline: quaternion slerp + vector lerp + scale lerp (GLM), to matrices in the hierarchy.
+//   glm_dualquat  baseline: dual-quaternion lerp (GLM dualquat, sign fix) normalized; scale lerped apart.
+enum class Interpolation { paper, nlerp, screw, glm_matrix, glm_dualquat };
+inline constexpr std::array<Interpolation, 5> kAllInterpolations{
+    Interpolation::paper, Interpolation::nlerp, Interpolation::screw, Interpolation::glm_matrix,
+    Interpolation::glm_dualquat};
+// "paper", "nlerp", "screw", "glm-matrix", "glm-dualquat".
+std::string_view to_string(Interpolation mode);
+// Accepts to_string()'s names and the enum spelling; throws std::invalid_argument listing the choices.
+Interpolation parse_interpolation(std::string_view text);
+// Which pose representation a mode produces.
+inline bool uses_motors(Interpolation m) {
+  return m == Interpolation::paper || m == Interpolation::nlerp || m == Interpolation::screw;
+}
+
+struct VectorKey {
+  float time;  // seconds
+  glm::vec3 value;
+};
+// A rotation key: the file's quaternion and its rotor coefficients (rs, r12, r13, r23), converted once at
+// load. Consecutive keys are made sign-continuous (q and -q are the same rotation) so that a lerp between
+// neighbours never takes the long way.
+struct RotationKey {
+  float time;
+  glm::quat value;
+  std::array<float, 4> rotor;
+};
+struct ScaleKey {
+  float time;
+  float value;  // uniform; a non-uniform key was reported and replaced by the geometric mean
+};
+
+// One joint's keys as the file has them (each track at least one key; a joint the clip does not animate
+// holds its rest transform as a single key).
+struct JointTrack {
+  std::vector<VectorKey> translations;
+  std::vector<RotationKey> rotations;
+  std::vector<ScaleKey> scales;
+};
+
+// One joint's merged keys (structure of arrays, same length, times strictly increasing, at least one).
+struct JointKeys {
+  std::vector<float> times;
+  std::vector<Transform> transforms;
+  std::vector<Motor> motors;            // T*R*D
+  std::vector<RigidMotor> rigid;        // T*R (motor_lerp_paper's input)
+  std::vector<glm::dualquat> dual_quats;  // rigid part, for the baseline
+  std::size_t size() const { return times.size(); }
+};
+
+struct Clip {
+  std::string name;
+  float duration = 0.0f;  // seconds
+  float ticks_per_second = 0.0f;
+  std::vector<JointTrack> tracks;  // one per skeleton joint
+  std::vector<JointKeys> keys;     // one per skeleton joint, built from tracks by build_joint_keys
+};
+
+// Fills clip.keys from clip.tracks: the union of each joint's key times, each component interpolated at the
+// times it has no key of its own (lerp; slerp for rotations), and the motor forms (generated kernels).
+void build_joint_keys(Clip& clip);
+
+}  // namespace cga

@@ -1,0 +1,170 @@
+// Motor operations of the runtime: thin wrappers over the kernels generated from runtime/scripts/*.clu
+// (namespace cga::kernels), plus the few operations the script language cannot express because they need
+// single coefficients, square roots of grade parts or trigonometry of them (decomposition back to TRS,
+// normalization, the screw logarithm/exponential). Those work on the 12 coefficients of types.hpp's Motor
+// and call the generated kernels for every geometric product.
+//
+// Coefficient groups of a motor M = T*R*D (D = 1 + k E, k = (1-s)/(1+s), E = einf^e0):
+//   a = R        in c[0], c[1] (e12), c[2] (e13), c[4] (e23)
+//   b = k R      in c[7] (E), c[9] (e12E), c[10] (e13E), c[11] (e23E)
+//   c = -(1+k)/2 (t R) einf   in c[3] (e1inf), c[5] (e2inf), c[6] (e3inf), c[8] (e123inf)
+// so a + b = (1+k) R and a - b = (1-k) R, whose norms give the scale s = |a-b| / |a+b|.
+#pragma once
+
+#include <array>
+#include <stdexcept>
+
+#include "cga/runtime/types.hpp"
+
+#if __has_include(<motor_from_trs.hpp>) && __has_include(<motor_mul.hpp>) && __has_include(<motor_reverse.hpp>) && \
+    __has_include(<motor_lerp_paper.hpp>) && __has_include(<transform_point.hpp>) &&                             \
+    __has_include(<motor_to_matrix.hpp>)
+#include <motor_from_trs.hpp>
+#include <motor_lerp_paper.hpp>
+#include <motor_mul.hpp>
+#include <motor_reverse.hpp>
+#include <motor_to_matrix.hpp>
+#include <transform_point.hpp>
+#define CGA_RUNTIME_HAVE_KERNELS 1
+#else
+#define CGA_RUNTIME_HAVE_KERNELS 0
+#endif
+
+namespace cga {
+
+// True when this build has the kernels generated from runtime/scripts (cgagen built and ran).
+inline constexpr bool kHaveMotorKernels = CGA_RUNTIME_HAVE_KERNELS != 0;
+
+// The rigid part T*R of a motor in motor_lerp_paper's 8-blade order:
+// 1 e1^e2 e1^e3 e1^einf e2^e3 e2^einf e3^einf e1^e2^e3^einf.
+using RigidMotor = std::array<float, 8>;
+
+namespace detail {
+[[noreturn]] inline void no_kernels(const char* what) {
+  throw std::logic_error(std::string(what) +
+                         ": this build has no generated CGA kernels (cgagen did not run on runtime/scripts)");
+}
+}  // namespace detail
+
+// Rotor coefficients (rs, r12, r13, r23) of a unit quaternion: R = w - x e23 - y e31 - z e12.
+inline std::array<float, 4> rotor_from_quat(const glm::quat& q) { return {q.w, -q.z, q.y, -q.x}; }
+inline glm::quat quat_from_rotor(float rs, float r12, float r13, float r23) {
+  glm::quat q;
+  q.w = rs;
+  q.x = -r23;
+  q.y = r13;
+  q.z = -r12;
+  return q;
+}
+
+// M = T*R*D of a transform (generated motor_from_trs).
+inline Motor motor_from_transform(const Transform& x) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  const auto r = rotor_from_quat(x.rotation);
+  Motor m;
+  kernels::motor_from_trs(x.translation.x, x.translation.y, x.translation.z, r[0], r[1], r[2], r[3], x.scale,
+                          m.c.data());
+  return m;
+#else
+  (void)x;
+  detail::no_kernels("motor_from_transform");
+#endif
+}
+
+// C = A*B: apply B, then A (generated motor_mul).
+inline Motor motor_mul(const Motor& a, const Motor& b) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  Motor out;
+  kernels::motor_mul(a.c.data(), b.c.data(), out.c.data());
+  return out;
+#else
+  (void)a, (void)b;
+  detail::no_kernels("motor_mul");
+#endif
+}
+
+// ~A (generated motor_reverse).
+inline Motor motor_reverse(const Motor& a) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  Motor out;
+  kernels::motor_reverse(a.c.data(), out.c.data());
+  return out;
+#else
+  (void)a;
+  detail::no_kernels("motor_reverse");
+#endif
+}
+
+// The paper's eq. 25 + dilator lerp + eq. 27 (generated motor_lerp_paper).
+inline Motor motor_lerp_paper(const RigidMotor& a, const RigidMotor& b, float d1, float d2, float alpha) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  Motor out;
+  kernels::motor_lerp_paper(a.data(), b.data(), d1, d2, alpha, out.c.data());
+  return out;
+#else
+  (void)a, (void)b, (void)d1, (void)d2, (void)alpha;
+  detail::no_kernels("motor_lerp_paper");
+#endif
+}
+
+// M X ~M of a Euclidean point, divided by its weight (generated transform_point).
+inline glm::vec3 motor_transform_point(const Motor& m, const glm::vec3& p) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  float out[4];
+  kernels::transform_point(m.c.data(), p.x, p.y, p.z, out);
+  return glm::vec3(out[0], out[1], out[2]) / out[3];
+#else
+  (void)m, (void)p;
+  detail::no_kernels("motor_transform_point");
+#endif
+}
+
+// The weight-normalized point transform of a motor as a row-major 3x4 matrix (generated motor_to_matrix).
+inline glm::mat3x4 motor_matrix(const Motor& m) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  float c1[3], c2[3], c3[3], t[3];
+  kernels::motor_to_matrix(m.c.data(), c1, c2, c3, t);
+  glm::mat3x4 out;
+  for (int r = 0; r < 3; ++r) out[r] = glm::vec4(c1[r], c2[r], c3[r], t[r]);
+  return out;
+#else
+  (void)m;
+  detail::no_kernels("motor_matrix");
+#endif
+}
+
+// The 8 rigid blades of a motor whose dilation is 1 (or the T*R factor as built by rigid_from_transform).
+inline RigidMotor rigid_blades(const Motor& m) {
+  return {m.c[0], m.c[1], m.c[2], m.c[3], m.c[4], m.c[5], m.c[6], m.c[8]};
+}
+inline Motor motor_from_rigid(const RigidMotor& r) {
+  Motor m;
+  m.c = {r[0], r[1], r[2], r[3], r[4], r[5], r[6], 0.0f, r[7], 0.0f, 0.0f, 0.0f};
+  return m;
+}
+
+// Inner product of the rotor parts a + b of two motors: its sign decides the antipodal fix.
+inline float motor_rotor_dot(const Motor& x, const Motor& y) {
+  const auto& a = x.c;
+  const auto& b = y.c;
+  return (a[0] + a[7]) * (b[0] + b[7]) + (a[1] + a[9]) * (b[1] + b[9]) + (a[2] + a[10]) * (b[2] + b[10]) +
+         (a[4] + a[11]) * (b[4] + b[11]);
+}
+
+// The similarity (t, R, s) nearest to a motor, read from its coefficients (see the header comment): exact for
+// M = T*R*D; for a blend of motors it is the projection that nlerp's normalization uses (rotation from
+// a + b normalized, scale |a - b| / |a + b|, translation by least squares on the einf blades).
+// Throws std::domain_error when the rotor part vanishes.
+Transform motor_to_transform(const Motor& m);
+
+// nlerp's normalization: the exact motor of motor_to_transform(m).
+inline Motor motor_normalize(const Motor& m) { return motor_from_transform(motor_to_transform(m)); }
+
+// Screw-linear interpolation between two similarities: the rigid parts by the motor logarithm/exponential
+// (constant-speed helix about the screw axis of the relative motion ~M1*M2, shortest way), the scale
+// geometrically (s1^(1-alpha) s2^alpha). alpha = 0 and 1 give the inputs exactly.
+Motor motor_screw(const Transform& x1, const Transform& x2, float alpha);
+// The same interpolation on the TRS level (used by motor_screw; exposed for tests and the accuracy tool).
+Transform transform_screw(const Transform& x1, const Transform& x2, float alpha);
+
+}  // namespace cga

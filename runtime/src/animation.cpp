@@ -1,0 +1,105 @@
+// Interpolation mode names and the merged per-joint keys of a clip (see animation.hpp).
+#include "cga/runtime/animation.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace cga {
+
+std::string_view to_string(Interpolation mode) {
+  switch (mode) {
+    case Interpolation::paper: return "paper";
+    case Interpolation::nlerp: return "nlerp";
+    case Interpolation::screw: return "screw";
+    case Interpolation::glm_matrix: return "glm-matrix";
+    case Interpolation::glm_dualquat: return "glm-dualquat";
+  }
+  return "?";
+}
+
+Interpolation parse_interpolation(std::string_view text) {
+  for (Interpolation m : kAllInterpolations) {
+    std::string alt(to_string(m));
+    std::replace(alt.begin(), alt.end(), '-', '_');
+    if (text == to_string(m) || text == alt) return m;
+  }
+  throw std::invalid_argument(
+      fmt::format("unknown interpolation mode '{}' (choose paper, nlerp, screw, glm-matrix, glm-dualquat)", text));
+}
+
+namespace {
+
+// Index i with times[i] <= t < times[i+1] (clamped to the ends) and the fraction between them.
+template <class Key>
+std::pair<std::size_t, float> locate(const std::vector<Key>& keys, float t) {
+  if (keys.size() == 1 || t <= keys.front().time) return {0, 0.0f};
+  if (t >= keys.back().time) return {keys.size() - 1, 0.0f};
+  const auto it = std::upper_bound(keys.begin(), keys.end(), t, [](float v, const Key& k) { return v < k.time; });
+  const std::size_t i = static_cast<std::size_t>(it - keys.begin()) - 1;
+  const float span = keys[i + 1].time - keys[i].time;
+  return {i, span > 0.0f ? (t - keys[i].time) / span : 0.0f};
+}
+
+glm::vec3 eval(const std::vector<VectorKey>& keys, float t) {
+  const auto [i, a] = locate(keys, t);
+  if (a == 0.0f) return keys[i].value;
+  return glm::mix(keys[i].value, keys[i + 1].value, a);
+}
+glm::quat eval(const std::vector<RotationKey>& keys, float t) {
+  const auto [i, a] = locate(keys, t);
+  if (a == 0.0f) return keys[i].value;
+  return glm::normalize(glm::slerp(keys[i].value, keys[i + 1].value, a));
+}
+float eval(const std::vector<ScaleKey>& keys, float t) {
+  const auto [i, a] = locate(keys, t);
+  if (a == 0.0f) return keys[i].value;
+  return keys[i].value + (keys[i + 1].value - keys[i].value) * a;
+}
+
+}  // namespace
+
+void build_joint_keys(Clip& clip) {
+  clip.keys.assign(clip.tracks.size(), {});
+  for (std::size_t j = 0; j < clip.tracks.size(); ++j) {
+    const JointTrack& tr = clip.tracks[j];
+    if (tr.translations.empty() || tr.rotations.empty() || tr.scales.empty())
+      throw std::invalid_argument(fmt::format("clip '{}': joint {} has an empty key track", clip.name, j));
+    std::vector<float> times;
+    for (const auto& k : tr.translations) times.push_back(k.time);
+    for (const auto& k : tr.rotations) times.push_back(k.time);
+    for (const auto& k : tr.scales) times.push_back(k.time);
+    std::sort(times.begin(), times.end());
+    // Times closer than a microsecond are one key (files repeat times with rounding noise).
+    times.erase(std::unique(times.begin(), times.end(), [](float a, float b) { return b - a < 1e-6f; }),
+                times.end());
+    JointKeys& k = clip.keys[j];
+    k.times = times;
+    k.transforms.resize(times.size());
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      k.transforms[i].translation = eval(tr.translations, times[i]);
+      k.transforms[i].rotation = eval(tr.rotations, times[i]);
+      k.transforms[i].scale = eval(tr.scales, times[i]);
+    }
+    // Rotations stay sign-continuous after merging (slerp keeps the sign of its first key).
+    for (std::size_t i = 1; i < times.size(); ++i)
+      if (glm::dot(k.transforms[i - 1].rotation, k.transforms[i].rotation) < 0.0f)
+        k.transforms[i].rotation = -k.transforms[i].rotation;
+    k.dual_quats.resize(times.size());
+    for (std::size_t i = 0; i < times.size(); ++i)
+      k.dual_quats[i] = glm::dualquat(k.transforms[i].rotation, k.transforms[i].translation);
+    if constexpr (kHaveMotorKernels) {
+      k.motors.resize(times.size());
+      k.rigid.resize(times.size());
+      for (std::size_t i = 0; i < times.size(); ++i) {
+        k.motors[i] = motor_from_transform(k.transforms[i]);
+        Transform rigid = k.transforms[i];
+        rigid.scale = 1.0f;
+        k.rigid[i] = rigid_blades(motor_from_transform(rigid));
+      }
+    }
+  }
+}
+
+}  // namespace cga

@@ -1,0 +1,327 @@
+// Assimp -> Character: skeleton, skinned meshes, clips, and the warnings about what had to be approximated.
+#include "cga/runtime/loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+namespace cga {
+
+namespace {
+
+glm::mat4 to_glm(const aiMatrix4x4& m) {
+  glm::mat4 out;  // Assimp is row-major (m[row][col]), GLM column-major (out[col][row])
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[c][r] = m[r][c];
+  return out;
+}
+
+glm::quat to_glm(const aiQuaternion& q) {
+  glm::quat out;
+  out.w = q.w;
+  out.x = q.x;
+  out.y = q.y;
+  out.z = q.z;
+  return out;
+}
+
+// Collects warnings, naming the first few of each kind and counting the rest.
+class Warnings {
+ public:
+  Warnings(std::vector<std::string>& out, int limit) : out_(out), limit_(limit) {}
+  void add(const std::string& kind, std::string text) {
+    if (++counts_[kind] <= limit_) out_.push_back(std::move(text));
+  }
+  void finish() {
+    for (const auto& [kind, n] : counts_)
+      if (n > limit_) out_.push_back(fmt::format("{}: {} more like the above not listed", kind, n - limit_));
+  }
+
+ private:
+  std::vector<std::string>& out_;
+  int limit_;
+  std::map<std::string, int> counts_;
+};
+
+// Nearest uniform scale of a 3D scale: the geometric mean of the absolute values.
+float uniform_scale(const glm::vec3& s) { return std::cbrt(std::abs(s.x * s.y * s.z)); }
+bool is_uniform(const glm::vec3& s) {
+  const float lo = std::min({std::abs(s.x), std::abs(s.y), std::abs(s.z)});
+  const float hi = std::max({std::abs(s.x), std::abs(s.y), std::abs(s.z)});
+  return s.x > 0 && s.y > 0 && s.z > 0 && hi - lo <= 1e-4f * hi;
+}
+
+// TRS with uniform scale of an affine matrix. `exact` tells whether the matrix is a similarity (rotation,
+// uniform positive scale, translation) up to float rounding.
+Transform decompose(const glm::mat4& m, bool& exact) {
+  glm::mat3 a(m);
+  const float det = glm::determinant(a);
+  Transform x;
+  x.translation = glm::vec3(m[3]);
+  x.scale = std::cbrt(std::abs(det));
+  exact = det > 0.0f && x.scale > 0.0f;
+  if (x.scale <= 0.0f || !std::isfinite(x.scale)) {
+    x.scale = 1.0f;
+    return x;
+  }
+  const glm::mat3 r = a / x.scale;
+  const glm::mat3 rtr = glm::transpose(r) * r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (std::abs(rtr[i][j] - (i == j ? 1.0f : 0.0f)) > 1e-3f) exact = false;
+  // Nearest rotation of r (polar decomposition by a few Newton steps; exact input converges at once).
+  glm::mat3 q = r;
+  if (det < 0.0f) q = -q;
+  for (int it = 0; it < 20; ++it) q = 0.5f * (q + glm::transpose(glm::inverse(q)));
+  x.rotation = glm::normalize(glm::quat_cast(q));
+  if (x.rotation.w < 0.0f) x.rotation = -x.rotation;
+  return x;
+}
+
+std::string ai_error(const Assimp::Importer& importer) {
+  const char* e = importer.GetErrorString();
+  return e && *e ? e : "no message";
+}
+
+}  // namespace
+
+glm::mat4 to_mat4(const Transform& x) {
+  glm::mat4 m = glm::mat4_cast(x.rotation) * x.scale;
+  m[3] = glm::vec4(x.translation, 1.0f);
+  return m;
+}
+
+std::vector<glm::mat4> rest_model_matrices(const Skeleton& skeleton) {
+  std::vector<glm::mat4> model(skeleton.joint_count());
+  for (int j = 0; j < skeleton.joint_count(); ++j) {
+    const glm::mat4 local = to_mat4(skeleton.rest_local[j]);
+    model[j] = skeleton.parents[j] < 0 ? local : model[skeleton.parents[j]] * local;
+  }
+  return model;
+}
+
+float character_size(const Character& character) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const glm::mat4& m : rest_model_matrices(character.skeleton)) {
+    lo = glm::min(lo, glm::vec3(m[3]));
+    hi = glm::max(hi, glm::vec3(m[3]));
+  }
+  for (const SkinnedMesh& mesh : character.meshes)
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const glm::vec3 p(mesh.px[v], mesh.py[v], mesh.pz[v]);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  return character.skeleton.joint_count() ? glm::length(hi - lo) : 0.0f;
+}
+
+Character load_character(const std::string& path, const LoadOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw LoadError(fmt::format("{}: cannot load character: no such file", path));
+
+  Assimp::Importer importer;
+  // (No aiProcess_ValidateDataStructure: it rejects scenes without meshes, i.e. every BVH file.)
+  // BVH has no mesh; without this Assimp invents one to draw the bones.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals;
+  const aiScene* scene = importer.ReadFile(path, flags);
+  if (!scene) throw LoadError(fmt::format("{}: Assimp cannot read it: {}", path, ai_error(importer)));
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
+    throw LoadError(fmt::format("{}: Assimp read an incomplete scene: {}", path, ai_error(importer)));
+
+  Character ch;
+  ch.path = path;
+  Warnings warn(ch.warnings, options.max_warnings_per_kind);
+
+  // Which nodes are joints: bones of meshes, else animated nodes; then their ancestors.
+  std::set<std::string> wanted;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+    for (unsigned b = 0; b < scene->mMeshes[m]->mNumBones; ++b) wanted.insert(scene->mMeshes[m]->mBones[b]->mName.C_Str());
+  if (wanted.empty())
+    for (unsigned a = 0; a < scene->mNumAnimations; ++a)
+      for (unsigned c = 0; c < scene->mAnimations[a]->mNumChannels; ++c)
+        wanted.insert(scene->mAnimations[a]->mChannels[c]->mNodeName.C_Str());
+  if (wanted.empty())
+    throw LoadError(fmt::format("{}: no skeleton (no mesh bones and no animated nodes)", path));
+
+  std::set<const aiNode*> keep;
+  std::set<std::string> found;
+  std::vector<const aiNode*> stack{scene->mRootNode};
+  while (!stack.empty()) {
+    const aiNode* n = stack.back();
+    stack.pop_back();
+    if (wanted.count(n->mName.C_Str())) {
+      found.insert(n->mName.C_Str());
+      for (const aiNode* a = n; a; a = a->mParent) keep.insert(a);
+    }
+    for (unsigned i = 0; i < n->mNumChildren; ++i) stack.push_back(n->mChildren[i]);
+  }
+  for (const std::string& name : wanted)
+    if (!found.count(name)) throw LoadError(fmt::format("{}: bone '{}' has no node in the scene", path, name));
+  const aiNode* root = scene->mRootNode;
+  if (!wanted.count(root->mName.C_Str()) && root->mTransformation.IsIdentity()) keep.erase(root);
+
+  // Parents first: depth-first pre-order over the kept nodes.
+  std::unordered_map<const aiNode*, int> index;
+  std::vector<std::pair<const aiNode*, int>> todo{{root, -1}};
+  while (!todo.empty()) {
+    auto [n, parent] = todo.back();
+    todo.pop_back();
+    int self = parent;
+    if (keep.count(n)) {
+      self = ch.skeleton.joint_count();
+      index[n] = self;
+      ch.skeleton.names.push_back(n->mName.C_Str());
+      ch.skeleton.parents.push_back(parent);
+      bool exact = true;
+      ch.skeleton.rest_local.push_back(decompose(to_glm(n->mTransformation), exact));
+      if (!exact)
+        warn.add("rest transform", fmt::format("joint '{}': rest transform is not a similarity (non-uniform "
+                                               "scale, shear or mirror); using the nearest uniform scale",
+                                               n->mName.C_Str()));
+    }
+    for (unsigned i = n->mNumChildren; i-- > 0;) todo.push_back({n->mChildren[i], self});
+  }
+  if (ch.skeleton.joint_count() == 0) throw LoadError(fmt::format("{}: no skeleton", path));
+  if (ch.skeleton.joint_count() > 65535) throw LoadError(fmt::format("{}: too many joints", path));
+
+  if (options.meshes) {
+    for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
+      const aiMesh* am = scene->mMeshes[mi];
+      if (am->mNumBones == 0) {
+        warn.add("unskinned mesh", fmt::format("mesh '{}' has no bones; not loaded", am->mName.C_Str()));
+        continue;
+      }
+      SkinnedMesh mesh;
+      mesh.name = am->mName.C_Str();
+      const unsigned nv = am->mNumVertices;
+      mesh.px.resize(nv), mesh.py.resize(nv), mesh.pz.resize(nv);
+      for (unsigned v = 0; v < nv; ++v)
+        mesh.px[v] = am->mVertices[v].x, mesh.py[v] = am->mVertices[v].y, mesh.pz[v] = am->mVertices[v].z;
+      if (am->mNormals) {
+        mesh.nx.resize(nv), mesh.ny.resize(nv), mesh.nz.resize(nv);
+        for (unsigned v = 0; v < nv; ++v)
+          mesh.nx[v] = am->mNormals[v].x, mesh.ny[v] = am->mNormals[v].y, mesh.nz[v] = am->mNormals[v].z;
+      }
+      for (unsigned f = 0; f < am->mNumFaces; ++f)
+        if (am->mFaces[f].mNumIndices == 3)
+          for (int i = 0; i < 3; ++i) mesh.indices.push_back(am->mFaces[f].mIndices[i]);
+
+      std::vector<std::vector<std::pair<float, std::uint16_t>>> influences(nv);
+      for (unsigned b = 0; b < am->mNumBones; ++b) {
+        const aiBone* bone = am->mBones[b];
+        mesh.joint_remap.push_back(ch.skeleton.find(bone->mName.C_Str()));
+        mesh.inverse_bind_matrix.push_back(to_glm(bone->mOffsetMatrix));
+        bool exact = true;
+        mesh.inverse_bind.push_back(decompose(mesh.inverse_bind_matrix.back(), exact));
+        if (!exact)
+          warn.add("bind matrix", fmt::format("mesh '{}', bone '{}': offset matrix is not a similarity; "
+                                              "motors and dual quaternions use the nearest uniform scale",
+                                              mesh.name, bone->mName.C_Str()));
+        for (unsigned w = 0; w < bone->mNumWeights; ++w) {
+          const aiVertexWeight& vw = bone->mWeights[w];
+          if (vw.mVertexId < nv && vw.mWeight > 0.0f) influences[vw.mVertexId].push_back({vw.mWeight, std::uint16_t(b)});
+        }
+      }
+      mesh.joints.assign(nv, {0, 0, 0, 0});
+      mesh.weights.assign(nv, {0, 0, 0, 0});
+      int over4 = 0, unweighted = 0;
+      for (unsigned v = 0; v < nv; ++v) {
+        auto& inf = influences[v];
+        std::stable_sort(inf.begin(), inf.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        if (inf.size() > 4) ++over4, inf.resize(4);
+        float sum = 0.0f;
+        for (const auto& p : inf) sum += p.first;
+        if (inf.empty() || !(sum > 0.0f)) {
+          ++unweighted;
+          mesh.weights[v] = {1, 0, 0, 0};  // follows palette entry 0 rather than collapsing to the origin
+          continue;
+        }
+        for (std::size_t k = 0; k < inf.size(); ++k) {
+          mesh.joints[v][k] = inf[k].second;
+          mesh.weights[v][k] = inf[k].first / sum;
+        }
+      }
+      if (over4)
+        warn.add("influences", fmt::format("mesh '{}': {} vertices had more than 4 influences; kept the 4 "
+                                           "largest and renormalized", mesh.name, over4));
+      if (unweighted)
+        warn.add("influences", fmt::format("mesh '{}': {} vertices had no bone weight; bound to bone '{}'",
+                                           mesh.name, unweighted, am->mBones[0]->mName.C_Str()));
+      ch.meshes.push_back(std::move(mesh));
+    }
+  }
+
+  if (options.animations) {
+    for (unsigned ai = 0; ai < scene->mNumAnimations; ++ai) {
+      const aiAnimation* an = scene->mAnimations[ai];
+      Clip clip;
+      clip.name = an->mName.C_Str();
+      // Assimp leaves ticks per second 0 when the file does not say; 25 is its documented default.
+      clip.ticks_per_second = an->mTicksPerSecond > 0.0 ? float(an->mTicksPerSecond) : 25.0f;
+      const double tps = clip.ticks_per_second;
+      clip.duration = float(an->mDuration / tps);
+      clip.tracks.resize(ch.skeleton.joint_count());
+      std::vector<bool> animated(ch.skeleton.joint_count(), false);
+      for (unsigned c = 0; c < an->mNumChannels; ++c) {
+        const aiNodeAnim* na = an->mChannels[c];
+        const int j = ch.skeleton.find(na->mNodeName.C_Str());
+        if (j < 0) continue;  // an animated node outside the skeleton (e.g. a mesh's own node)
+        animated[j] = true;
+        JointTrack& tr = clip.tracks[j];
+        for (unsigned k = 0; k < na->mNumPositionKeys; ++k) {
+          const aiVectorKey& key = na->mPositionKeys[k];
+          tr.translations.push_back({float(key.mTime / tps), glm::vec3(key.mValue.x, key.mValue.y, key.mValue.z)});
+        }
+        for (unsigned k = 0; k < na->mNumRotationKeys; ++k) {
+          const aiQuatKey& key = na->mRotationKeys[k];
+          glm::quat q = glm::normalize(to_glm(key.mValue));
+          // q and -q are one rotation; keep neighbours on the same side so lerps take the short way.
+          if (!tr.rotations.empty() && glm::dot(tr.rotations.back().value, q) < 0.0f) q = -q;
+          tr.rotations.push_back({float(key.mTime / tps), q, rotor_from_quat(q)});
+        }
+        for (unsigned k = 0; k < na->mNumScalingKeys; ++k) {
+          const aiVectorKey& key = na->mScalingKeys[k];
+          const glm::vec3 s(key.mValue.x, key.mValue.y, key.mValue.z);
+          float u = uniform_scale(s);
+          if (!is_uniform(s)) {
+            warn.add("scale key " + clip.name,
+                     fmt::format("clip '{}', bone '{}', scale key {}: non-uniform scale ({}, {}, {}) cannot be a "
+                                 "motor; using the uniform scale {} (geometric mean)",
+                                 clip.name, na->mNodeName.C_Str(), k, s.x, s.y, s.z, u));
+          }
+          if (!(u > 0.0f)) u = 1.0f;
+          tr.scales.push_back({float(key.mTime / tps), u});
+        }
+      }
+      // Tracks the file leaves empty hold the rest value.
+      for (int j = 0; j < ch.skeleton.joint_count(); ++j) {
+        JointTrack& tr = clip.tracks[j];
+        const Transform& rest = ch.skeleton.rest_local[j];
+        if (tr.translations.empty()) tr.translations.push_back({0.0f, rest.translation});
+        if (tr.rotations.empty()) tr.rotations.push_back({0.0f, rest.rotation, rotor_from_quat(rest.rotation)});
+        if (tr.scales.empty()) tr.scales.push_back({0.0f, rest.scale});
+        auto by_time = [](const auto& a, const auto& b) { return a.time < b.time; };
+        std::stable_sort(tr.translations.begin(), tr.translations.end(), by_time);
+        std::stable_sort(tr.rotations.begin(), tr.rotations.end(), by_time);
+        std::stable_sort(tr.scales.begin(), tr.scales.end(), by_time);
+      }
+      build_joint_keys(clip);
+      ch.clips.push_back(std::move(clip));
+    }
+  }
+  warn.finish();
+  return ch;
+}
+
+}  // namespace cga
