@@ -349,7 +349,7 @@ TEST_CASE("the bundled scripts parse", "[parser]") {
         std::string::npos);
 }
 
-TEST_CASE("nesting up to the limit parses; long scripts parse", "[parser][stress]") {
+TEST_CASE("nesting up to the limit and long scripts parse", "[parser][stress]") {
   // 200 levels of parentheses, prefix operators and calls are fine (the limit is 256).
   std::string parens = std::string(200, '(') + "a" + std::string(200, ')');
   CHECK(expr(parens) == "a");
