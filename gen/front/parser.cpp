@@ -3,6 +3,7 @@
 // (* ~, and - + right after a tighter operator, as Gaalop allows in a*-b), primary.
 // Recursion is bounded (kMaxNesting) and so is the depth of the tree a long operator chain builds
 // (kMaxTreeDepth), so no input can overflow the stack here or in the stages that walk the tree.
+#include <algorithm>
 #include <deque>
 #include <string>
 
