@@ -1,0 +1,98 @@
+// Hierarchy and palettes: on every key frame of BCN_Epileptic and Testwuson, the motor palette (local motors
+// composed by the generated motor product, times the inverse bind motor) moves the mesh vertices where the
+// GLM matrix palette moves them, within 1e-5 of the character's size; the dual-quaternion palette agrees on
+// these scale-free characters too.
+#include <catch2/catch.hpp>
+
+#include "cga/runtime/jobs.hpp"
+#include "cga/runtime/loader.hpp"
+
+using namespace cga;
+
+namespace {
+
+std::string model(const char* rel) { return std::string(CGA_MODELS_DIR) + "/" + rel; }
+
+glm::vec3 apply(const glm::mat3x4& m, const glm::vec3& p) {
+  return {glm::dot(m[0], glm::vec4(p, 1.0f)), glm::dot(m[1], glm::vec4(p, 1.0f)), glm::dot(m[2], glm::vec4(p, 1.0f))};
+}
+
+struct Palettes {
+  MotorPalette motors;
+  MatrixPalette matrices;
+  DualQuatPalette dual_quats;
+};
+
+// Samples `clip` at t in `mode`, runs the hierarchy and the palette of `mesh`.
+void pose_palette(const Character& ch, const Clip& clip, float t, Interpolation mode, const SkinnedMesh& mesh,
+                  const InverseBind& ib, PoseBuffer& local, PoseBuffer& model_pose, Palettes& out) {
+  SamplingJob s;
+  s.clip = &clip, s.time = t, s.mode = mode;
+  s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
+  s.out_scales = local.scales;
+  REQUIRE(s.Run());
+  LocalToModelJob l2m;
+  l2m.skeleton = &ch.skeleton, l2m.mode = mode;
+  l2m.local_motors = local.motors, l2m.local_transforms = local.transforms, l2m.local_dual_quats = local.dual_quats,
+  l2m.local_scales = local.scales;
+  l2m.model_motors = model_pose.motors, l2m.model_matrices = model_pose.matrices,
+  l2m.model_dual_quats = model_pose.dual_quats, l2m.model_scales = model_pose.scales;
+  REQUIRE(l2m.Run());
+  SkinningPaletteJob pal;
+  pal.mode = mode, pal.joint_remap = mesh.joint_remap, pal.inverse_bind = &ib;
+  pal.model_motors = model_pose.motors, pal.model_matrices = model_pose.matrices,
+  pal.model_dual_quats = model_pose.dual_quats, pal.model_scales = model_pose.scales;
+  out.motors.resize(mesh.joint_remap.size());
+  out.matrices.resize(mesh.joint_remap.size());
+  out.dual_quats.resize(mesh.joint_remap.size());
+  pal.out_motors = out.motors, pal.out_matrices = out.matrices, pal.out_dual_quats = out.dual_quats;
+  REQUIRE(pal.Run());
+}
+
+}  // namespace
+
+TEST_CASE("motor palette equals matrix palette on every key frame") {
+  REQUIRE(kHaveMotorKernels);
+  for (const char* file : {"X/BCN_Epileptic.X", "X/Testwuson.X"}) {
+    const Character ch = load_character(model(file));
+    const float size = character_size(ch);
+    const float tol = 1e-5f * size;
+    const std::size_t n = ch.skeleton.joint_count();
+    PoseBuffer local(n), model_pose(n);
+    Palettes cga_pal, glm_pal, dq_pal;
+    for (const SkinnedMesh& mesh : ch.meshes) {
+      const InverseBind ib = make_inverse_bind(mesh);
+      for (const Clip& clip : ch.clips) {
+        // Every key time of any joint of the clip.
+        std::vector<float> times;
+        for (const JointKeys& k : clip.keys) times.insert(times.end(), k.times.begin(), k.times.end());
+        std::sort(times.begin(), times.end());
+        times.erase(std::unique(times.begin(), times.end()), times.end());
+        INFO(file << " mesh " << mesh.name << " clip " << clip.name << ", " << times.size() << " key times");
+        float worst = 0.0f, worst_dq = 0.0f;
+        for (float t : times) {
+          pose_palette(ch, clip, t, Interpolation::paper, mesh, ib, local, model_pose, cga_pal);
+          pose_palette(ch, clip, t, Interpolation::glm_matrix, mesh, ib, local, model_pose, glm_pal);
+          pose_palette(ch, clip, t, Interpolation::glm_dualquat, mesh, ib, local, model_pose, dq_pal);
+          std::vector<glm::mat3x4> from_motors(cga_pal.motors.size());
+          for (std::size_t k = 0; k < from_motors.size(); ++k) from_motors[k] = motor_matrix(cga_pal.motors[k]);
+          for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+            const glm::vec3 p(mesh.px[v], mesh.py[v], mesh.pz[v]);
+            for (int i = 0; i < 4; ++i) {
+              if (mesh.weights[v][i] == 0.0f) continue;
+              const std::size_t k = mesh.joints[v][i];
+              const glm::vec3 ref = apply(glm_pal.matrices[k], p);
+              worst = std::max(worst, glm::length(apply(from_motors[k], p) - ref));
+              worst = std::max(worst, glm::length(motor_transform_point(cga_pal.motors[k], p) - ref));
+              const glm::dualquat& q = dq_pal.dual_quats[k];
+              worst_dq = std::max(worst_dq, glm::length(q.real * p + dual_quat_translation(q) - ref));
+            }
+          }
+        }
+        INFO("worst motor error " << worst << ", dual quaternion " << worst_dq << ", tolerance " << tol);
+        CHECK(worst <= tol);
+        CHECK(worst_dq <= tol);
+      }
+    }
+  }
+}
