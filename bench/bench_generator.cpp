@@ -1,0 +1,146 @@
+// The generator: wall time of one `cgagen -O2 --target cpp` run per bundled script (the built tool as a
+// subprocess, so process start and GiNaC set-up count, as in the build), and per kernel the op counts at
+// -O0/-O1/-O2 read from `cgagen --stats` ("total: A add, B mul, C div, D call"), reported as counters.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <regex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "bench_common.hpp"
+#include "summary.hpp"
+
+extern char** environ;
+
+namespace cga::bench {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs argv[0] with argv, stdout to `stdout_path` (or inherited when empty), stderr to /dev/null; returns
+// the exit status. Throws when the process cannot start or dies by a signal.
+int run_process(const std::vector<std::string>& argv, const std::string& stdout_path) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (!stdout_path.empty())
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", argv[0], std::strerror(rc)));
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) throw std::runtime_error("waitpid failed for " + argv[0]);
+  if (!WIFEXITED(status)) throw std::runtime_error(argv[0] + " died by a signal");
+  return WEXITSTATUS(status);
+}
+
+std::string read_file(const fs::path& p) {
+  std::string text;
+  if (FILE* f = std::fopen(p.c_str(), "rb")) {
+    std::array<char, 4096> buf;
+    std::size_t got;
+    while ((got = std::fread(buf.data(), 1, buf.size(), f)) > 0) text.append(buf.data(), got);
+    std::fclose(f);
+  }
+  return text;
+}
+
+// A scratch directory for the generated files, one per process.
+fs::path scratch_dir() {
+  static const fs::path dir = [] {
+    fs::path d = fs::temp_directory_path() / fmt::format("cga-bench-{}", static_cast<long>(getpid()));
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+struct OpCounts {
+  long add = 0, mul = 0, div = 0, call = 0;
+  long total() const { return add + mul + div + call; }
+};
+
+// The "total:" line of `cgagen --stats -O<level>`.
+OpCounts stats_at(const fs::path& script, int level) {
+  const fs::path out = scratch_dir() / (script.stem().string() + ".stats.txt");
+  const int rc = run_process({cgagen_path(), "--stats", fmt::format("-O{}", level), script.string()}, out.string());
+  if (rc != 0) throw std::runtime_error(fmt::format("cgagen --stats -O{} {} failed (exit {})", level, script.string(), rc));
+  const std::string text = read_file(out);
+  static const std::regex total(R"(total:\s*(\d+) add, (\d+) mul, (\d+) div, (\d+) call)");
+  std::smatch m;
+  if (!std::regex_search(text, m, total))
+    throw std::runtime_error("no 'total:' line in cgagen --stats output for " + script.string());
+  return {std::stol(m[1]), std::stol(m[2]), std::stol(m[3]), std::stol(m[4])};
+}
+
+void bm_generate(benchmark::State& state, const fs::path& script) {
+  if (cgagen_path().empty()) {
+    state.SkipWithError("this build has no cgagen tool (set CGAGEN=PATH)");
+    return;
+  }
+  std::array<OpCounts, 3> ops;
+  try {
+    for (int level = 0; level < 3; ++level) ops[level] = stats_at(script, level);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  const fs::path out = scratch_dir() / (script.stem().string() + ".hpp");
+  const std::vector<std::string> argv = {cgagen_path(), "--target", "cpp", "-O2", "-o", out.string(), script.string()};
+  int failures = 0;
+  for (auto _ : state) failures += run_process(argv, "") != 0;
+  if (failures) {
+    state.SkipWithError(fmt::format("cgagen -O2 failed on {}", script.filename().string()).c_str());
+    return;
+  }
+  for (int level = 0; level < 3; ++level) {
+    state.counters[fmt::format("ops_O{}", level)] = static_cast<double>(ops[level].total());
+  }
+  state.counters["add_O2"] = static_cast<double>(ops[2].add);
+  state.counters["mul_O2"] = static_cast<double>(ops[2].mul);
+  state.counters["div_O2"] = static_cast<double>(ops[2].div);
+  state.counters["call_O2"] = static_cast<double>(ops[2].call);
+  state.SetLabel(fmt::format("-O2 ops {:.0f}% of -O0", 100.0 * ops[2].total() / std::max(1L, ops[0].total())));
+}
+
+}  // namespace
+
+void register_generator_benchmarks() {
+  const std::string section = "Generator: cgagen -O2 per bundled script (wall time) and op counts";
+  std::vector<fs::path> scripts;
+  std::error_code ec;
+  if (!scripts_dir().empty())
+    for (const fs::directory_entry& e : fs::directory_iterator(scripts_dir(), ec))
+      if (e.path().extension() == ".clu") scripts.push_back(e.path());
+  std::sort(scripts.begin(), scripts.end());  // deterministic order
+  for (const fs::path& script : scripts) {
+    const std::string name = "generator/" + script.stem().string();
+    // A run takes tens to hundreds of ms: a few iterations are enough and keep the whole bench short.
+    benchmark::RegisterBenchmark(name.c_str(), bm_generate, script)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(5);
+    add_figure({name, section, script.filename().string(), Metric::ms_per_iter, "", "", std::nullopt,
+                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
+  }
+}
+
+}  // namespace cga::bench

@@ -1,0 +1,158 @@
+// Applying one motor to 1 M points (SoA floats), in ns/point:
+//   transform_point  the generated sandwich kernel M X ~M per point, then the division by the point weight
+//   motor_to_matrix  the generated motor -> 3x4 kernel once (hoisted), then a 3x4 affine map per point
+//   glm mat3x4       the baseline: the same transform as a GLM 3x4 matrix built from TRS, dot products per point
+// All three loops are compiled alike (this file at -O3 without errno/trapping math, see CMakeLists.txt, and
+// built twice: x86-64-v3 and the portable default, picked at run time), so only the per-point work differs.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "bench_common.hpp"
+#include "cga/runtime/motor.hpp"
+#include "cga/runtime/skinning_palettes.hpp"
+#include "summary.hpp"
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define CGA_BENCH_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define CGA_BENCH_CLONES
+#endif
+
+namespace cga::bench {
+
+namespace {
+
+constexpr std::size_t kPoints = 1u << 20;
+
+struct Points {
+  std::vector<float> x, y, z;
+  explicit Points(std::size_t n, std::uint32_t seed = 0) : x(n), y(n), z(n) {
+    if (seed == 0) return;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] = u(rng);
+      y[i] = u(rng);
+      z[i] = u(rng);
+    }
+  }
+};
+
+// A similarity with every motor blade group nonzero (rotation, translation, scale 1.25).
+Transform the_transform() {
+  Transform t;
+  t.translation = {0.3f, -1.2f, 2.5f};
+  t.rotation = glm::normalize(glm::quat(0.8f, 0.3f, -0.4f, 0.2f));
+  t.scale = 1.25f;
+  return t;
+}
+
+struct Io {
+  const float* __restrict px;
+  const float* __restrict py;
+  const float* __restrict pz;
+  float* __restrict ox;
+  float* __restrict oy;
+  float* __restrict oz;
+  std::size_t n;
+};
+
+CGA_BENCH_CLONES void apply_transform_point(const Motor& motor, const Io& io) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  float m[12];  // a local copy: the compiler may hoist the motor-only products, as it would for any caller
+  for (int e = 0; e < 12; ++e) m[e] = motor.c[e];
+  for (std::size_t i = 0; i < io.n; ++i) {
+    float p[4];
+    kernels::transform_point(m, io.px[i], io.py[i], io.pz[i], p);
+    const float inv = 1.0f / p[3];
+    io.ox[i] = p[0] * inv;
+    io.oy[i] = p[1] * inv;
+    io.oz[i] = p[2] * inv;
+  }
+#else
+  (void)motor, (void)io;
+#endif
+}
+
+// The row-major 3x4 map p' = R p + t applied to every point (the per-point work of the hoisted and the GLM
+// variants after their per-motor setup).
+CGA_BENCH_CLONES void apply_rows(const float* __restrict rows, const Io& io) {
+  float m[12];
+  for (int e = 0; e < 12; ++e) m[e] = rows[e];
+  for (std::size_t i = 0; i < io.n; ++i) {
+    const float x = io.px[i], y = io.py[i], z = io.pz[i];
+    io.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
+    io.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
+    io.oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
+  }
+}
+
+CGA_BENCH_CLONES void apply_glm(const glm::mat3x4& m, const Io& io) {
+  for (std::size_t i = 0; i < io.n; ++i) {
+    const glm::vec4 p(io.px[i], io.py[i], io.pz[i], 1.0f);
+    io.ox[i] = glm::dot(m[0], p);
+    io.oy[i] = glm::dot(m[1], p);
+    io.oz[i] = glm::dot(m[2], p);
+  }
+}
+
+enum class Variant { transform_point, motor_to_matrix, glm };
+
+void bm_apply(benchmark::State& state, Variant variant) {
+  if (variant != Variant::glm && !kHaveMotorKernels) {
+    state.SkipWithError("this build has no generated motor kernels");
+    return;
+  }
+  static const Points in(kPoints, 99);
+  Points out(kPoints);
+  const Io io{in.x.data(), in.y.data(), in.z.data(), out.x.data(), out.y.data(), out.z.data(), kPoints};
+  const Transform xf = the_transform();
+  // The motor's construction is outside the per-point work in every variant.
+  const Motor m = variant != Variant::glm ? motor_from_transform(xf) : Motor{};
+  for (auto _ : state) {
+    switch (variant) {
+      case Variant::transform_point: apply_transform_point(m, io); break;
+      case Variant::motor_to_matrix: {
+        const glm::mat3x4 rows = motor_matrix(m);  // once per motor, inside the timed loop
+        apply_rows(&rows[0][0], io);
+        break;
+      }
+      case Variant::glm: {
+        const glm::mat3x4 rows = to_skinning_matrix(xf);  // once per transform, inside the timed loop
+        apply_glm(rows, io);
+        break;
+      }
+    }
+    benchmark::DoNotOptimize(out.x.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kPoints));
+}
+
+}  // namespace
+
+void register_motor_apply_benchmarks() {
+  const std::string section = "One motor applied to 1 M points";
+  const std::string baseline = "motor_apply/glm_mat3x4";
+  struct V {
+    Variant v;
+    const char* name;
+    const char* label;
+    std::optional<Target> target;
+  };
+  const V variants[] = {
+      {Variant::transform_point, "motor_apply/transform_point", "generated transform_point per point", std::nullopt},
+      {Variant::motor_to_matrix, "motor_apply/motor_to_matrix_hoisted",
+       "generated motor_to_matrix once + 3x4 per point", Target{2.0, "<= 2 ns/point"}},
+      {Variant::glm, "motor_apply/glm_mat3x4", "GLM mat3x4 per point (baseline)", std::nullopt},
+  };
+  for (const V& v : variants) {
+    benchmark::RegisterBenchmark(v.name, bm_apply, v.v)->Unit(benchmark::kMicrosecond);
+    add_figure({v.name, section, v.label, Metric::ns_per_item, baseline, "glm mat3x4", v.target, {}});
+  }
+}
+
+}  // namespace cga::bench

@@ -1,0 +1,128 @@
+// One full pose of the 54-joint character BCN_Epileptic per interpolation mode, in µs: sample two clips,
+// cross-fade them, local-to-model down the hierarchy, and the skinning palette (model x inverse bind) of
+// every skinned mesh. The file has a single clip, so the two "clips" are two time ranges of it (t and
+// t + duration/2), which costs the same. Time advances by 1/60 s per iteration, so the key search sees
+// every part of the clip. The baseline is the GLM matrix mode (quaternion slerp + TRS matrices).
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "bench_common.hpp"
+#include "cga/runtime/jobs.hpp"
+#include "cga/runtime/loader.hpp"
+#include "summary.hpp"
+
+namespace cga::bench {
+
+namespace {
+
+constexpr float kCrossFade = 0.35f;  // weight of the second layer
+constexpr float kFrame = 1.0f / 60.0f;
+
+struct PoseScene {
+  Character character;
+  std::vector<InverseBind> inverse_binds;  // per skinned mesh
+  std::size_t palette_entries = 0;
+};
+
+const PoseScene& pose_scene() {
+  static const std::unique_ptr<PoseScene> scene = [] {
+    auto s = std::make_unique<PoseScene>();
+    s->character = load_character(models_dir() + "/" + kCharacter);
+    if (s->character.clips.empty()) throw std::runtime_error(std::string(kCharacter) + " has no clip");
+    for (const SkinnedMesh& mesh : s->character.meshes) {
+      s->inverse_binds.push_back(make_inverse_bind(mesh));
+      s->palette_entries += mesh.joint_remap.size();
+    }
+    return s;
+  }();
+  return *scene;
+}
+
+struct PaletteBuffers {
+  std::vector<Motor> motors;
+  std::vector<glm::mat3x4> matrices;
+  std::vector<glm::dualquat> dual_quats;
+  explicit PaletteBuffers(std::size_t n) : motors(n), matrices(n), dual_quats(n) {}
+};
+
+void bm_pose(benchmark::State& state, Interpolation mode) {
+  const PoseScene* scene = nullptr;
+  try {
+    scene = &pose_scene();
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  if (uses_motors(mode) && !kHaveMotorKernels) {
+    state.SkipWithError("this build has no generated motor kernels");
+    return;
+  }
+  const Character& ch = scene->character;
+  const Clip& clip_a = ch.clips[0];
+  const Clip& clip_b = ch.clips.size() > 1 ? ch.clips[1] : ch.clips[0];
+  const std::size_t joints = static_cast<std::size_t>(ch.skeleton.joint_count());
+  PoseBuffer a(joints), b(joints), blended(joints), model(joints);
+  std::vector<PaletteBuffers> palettes;
+  for (const SkinnedMesh& mesh : ch.meshes) palettes.emplace_back(mesh.joint_remap.size());
+
+  SamplingJob sample_a{&clip_a, 0.0f, mode, a.motors, a.transforms, a.dual_quats, a.scales};
+  SamplingJob sample_b{&clip_b, 0.0f, mode, b.motors, b.transforms, b.dual_quats, b.scales};
+  const BlendLayer layers[2] = {{1.0f - kCrossFade, a.motors, a.transforms, a.dual_quats, a.scales},
+                                {kCrossFade, b.motors, b.transforms, b.dual_quats, b.scales}};
+  const BlendingJob blend{mode, layers, blended.motors, blended.transforms, blended.dual_quats, blended.scales};
+  const LocalToModelJob to_model{&ch.skeleton,   mode,           blended.motors,  blended.transforms,
+                                 blended.dual_quats, blended.scales, model.motors, model.matrices,
+                                 model.dual_quats,   model.scales};
+  std::vector<SkinningPaletteJob> palette_jobs;
+  for (std::size_t m = 0; m < ch.meshes.size(); ++m)
+    palette_jobs.push_back({mode, ch.meshes[m].joint_remap, &scene->inverse_binds[m], model.motors,
+                            model.matrices, model.dual_quats, model.scales, palettes[m].motors,
+                            palettes[m].matrices, palettes[m].dual_quats});
+
+  const float duration_a = clip_a.duration > 0 ? clip_a.duration : 1.0f;
+  const float duration_b = clip_b.duration > 0 ? clip_b.duration : 1.0f;
+  float t = 0.0f;
+  bool ok = true;
+  for (auto _ : state) {
+    sample_a.time = std::fmod(t, duration_a);
+    sample_b.time = std::fmod(t + 0.5f * duration_b, duration_b);
+    ok &= sample_a.Run();
+    ok &= sample_b.Run();
+    ok &= blend.Run();
+    ok &= to_model.Run();
+    for (const SkinningPaletteJob& job : palette_jobs) ok &= job.Run();
+    benchmark::DoNotOptimize(palettes.front().motors.data());
+    benchmark::DoNotOptimize(palettes.front().matrices.data());
+    benchmark::ClobberMemory();
+    t += kFrame;
+    if (t > 1e4f) t = 0.0f;  // keep the float time precise over long runs
+  }
+  if (!ok) {
+    state.SkipWithError("a pose job refused its input (Run() returned false)");
+    return;
+  }
+  state.SetLabel(fmt::format("{} joints, {} palette entries", joints, scene->palette_entries));
+  state.counters["joints"] = static_cast<double>(joints);
+}
+
+}  // namespace
+
+void register_pose_benchmarks() {
+  const std::string section = "Pose of BCN_Epileptic (54 joints): sample 2 clips + cross-fade + hierarchy + palette";
+  const std::string baseline = "pose/glm-matrix";
+  for (Interpolation mode : kAllInterpolations) {
+    const std::string name = "pose/" + std::string(to_string(mode));
+    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode)->Unit(benchmark::kMicrosecond);
+    const bool ours = uses_motors(mode);
+    add_figure({name, section, std::string(to_string(mode)) + (ours ? "" : " (baseline)"), Metric::us_per_iter,
+                baseline, "glm-matrix", ours ? std::optional<Target>(Target{1.0, "<= 1.0 µs"}) : std::nullopt,
+                {}});
+  }
+}
+
+}  // namespace cga::bench

@@ -1,0 +1,254 @@
+// Skinning throughput (vertices/s) of the runtime's SkinningJob per method, positions only and with
+// normals: on a deterministic random mesh (1 M vertices, 64 bones, 4 influences) and on the real character
+// BCN_Epileptic. Two plain GLM loops (no blocking, no hand SIMD: what a straightforward engine loop does)
+// are measured beside them as references for the issue's "plain GLM LBS / DQS loop" numbers.
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <glm/gtx/dual_quaternion.hpp>
+
+#include "bench_common.hpp"
+#include "cga/runtime/loader.hpp"
+#include "cga/runtime/motor.hpp"
+#include "cga/runtime/skinning.hpp"
+#include "cga/runtime/skinning_palettes.hpp"
+#include "cga/runtime/skinning_test_meshes.hpp"
+#include "summary.hpp"
+
+namespace cga::bench {
+
+namespace {
+
+constexpr std::size_t kRandomVertices = 1u << 20;  // "1 M vertices"
+constexpr int kRandomBones = 64;
+constexpr std::uint32_t kMeshSeed = 20240601;
+constexpr std::uint32_t kPoseSeed = 7;
+
+// A mesh with its palettes in every method's representation (rigid bones: dual quaternions hold no scale).
+struct SkinScene {
+  std::vector<SkinnedMesh> meshes;
+  std::vector<MatrixPalette> matrices;
+  std::vector<DualQuatPalette> dual_quats;
+  std::vector<MotorPalette> motors;  // empty when this build has no generated kernels
+  std::size_t vertices = 0;
+};
+
+void add_palettes(SkinScene& scene, std::size_t palette_size, std::uint32_t seed) {
+  const auto pose = make_random_transforms(static_cast<int>(palette_size), seed, 1.0f, 0.0f);
+  MatrixPalette m;
+  DualQuatPalette d;
+  MotorPalette mo;
+  for (const Transform& x : pose) {
+    m.push_back(to_skinning_matrix(x));
+    d.push_back(to_dual_quat(x));
+    if (kHaveMotorKernels) mo.push_back(motor_from_transform(x));
+  }
+  scene.matrices.push_back(std::move(m));
+  scene.dual_quats.push_back(std::move(d));
+  scene.motors.push_back(std::move(mo));
+}
+
+const SkinScene& random_scene() {
+  static const SkinScene scene = [] {
+    SkinScene s;
+    s.meshes.push_back(make_random_skinned_mesh(kRandomVertices, kRandomBones, kMeshSeed));
+    s.vertices = kRandomVertices;
+    add_palettes(s, kRandomBones, kPoseSeed);
+    return s;
+  }();
+  return scene;
+}
+
+// The character's skinned meshes with a random palette per mesh (the palette's values do not change the
+// work per vertex; the pose benchmarks time real poses).
+const SkinScene& character_scene() {
+  static const std::unique_ptr<SkinScene> scene = [] {
+    auto s = std::make_unique<SkinScene>();
+    LoadOptions options;
+    options.animations = false;
+    const Character ch = load_character(models_dir() + "/" + kCharacter, options);
+    std::uint32_t seed = kPoseSeed;
+    for (const SkinnedMesh& mesh : ch.meshes) {
+      if (mesh.joint_remap.empty()) continue;
+      s->meshes.push_back(mesh);
+      s->vertices += mesh.vertex_count();
+      add_palettes(*s, mesh.joint_remap.size(), seed++);
+    }
+    if (s->meshes.empty()) throw std::runtime_error(std::string(kCharacter) + " has no skinned mesh");
+    return s;
+  }();
+  return *scene;
+}
+
+// One SkinningJob per mesh, outputs owned here.
+struct Jobs {
+  std::vector<SkinnedOutput> outputs;
+  std::vector<SkinningJob> jobs;
+};
+
+Jobs make_jobs(const SkinScene& scene, SkinningMethod method, bool normals) {
+  Jobs j;
+  j.outputs.resize(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    SkinningJob job = make_skinning_job(method, scene.meshes[m], j.outputs[m]);
+    if (!normals) {
+      job.in_nx = job.in_ny = job.in_nz = {};
+      job.out_nx = job.out_ny = job.out_nz = {};
+    }
+    job.matrices = scene.matrices[m];
+    job.dual_quats = scene.dual_quats[m];
+    job.motors = scene.motors[m];
+    j.jobs.push_back(job);
+  }
+  return j;
+}
+
+void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), SkinningMethod method, bool normals) {
+  const SkinScene* scene = nullptr;
+  try {
+    scene = &scene_fn();
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  if ((method == SkinningMethod::cga_points || method == SkinningMethod::cga_motors) &&
+      !cga_skinning_kernels_available()) {
+    state.SkipWithError("this build has no generated motor kernels");
+    return;
+  }
+  if (normals && !scene->meshes.front().has_normals()) {
+    state.SkipWithError("the mesh has no normals");
+    return;
+  }
+  const Jobs jobs = make_jobs(*scene, method, normals);
+  for (const SkinningJob& job : jobs.jobs)
+    if (const std::string error = job.ValidationError(); !error.empty()) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+  for (auto _ : state) {
+    bool ok = true;
+    for (const SkinningJob& job : jobs.jobs) ok &= job.Run();
+    benchmark::DoNotOptimize(ok);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(scene->vertices));
+}
+
+// The plain GLM loops: per vertex, blend and apply with GLM types, array-of-structs palette, no blocking.
+void plain_glm_lbs(const SkinnedMesh& mesh, const MatrixPalette& pal, bool normals, SkinnedOutput& out) {
+  const std::size_t n = mesh.vertex_count();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& j = mesh.joints[i];
+    const auto& w = mesh.weights[i];
+    const glm::mat3x4 m = pal[j[0]] * w[0] + pal[j[1]] * w[1] + pal[j[2]] * w[2] + pal[j[3]] * w[3];
+    const glm::vec4 p(mesh.px[i], mesh.py[i], mesh.pz[i], 1.0f);
+    out.px[i] = glm::dot(m[0], p);
+    out.py[i] = glm::dot(m[1], p);
+    out.pz[i] = glm::dot(m[2], p);
+    if (normals) {
+      const glm::vec3 nv(mesh.nx[i], mesh.ny[i], mesh.nz[i]);
+      const glm::vec3 r = glm::normalize(
+          glm::vec3(glm::dot(glm::vec3(m[0]), nv), glm::dot(glm::vec3(m[1]), nv), glm::dot(glm::vec3(m[2]), nv)));
+      out.nx[i] = r.x;
+      out.ny[i] = r.y;
+      out.nz[i] = r.z;
+    }
+  }
+}
+
+void plain_glm_dqs(const SkinnedMesh& mesh, const DualQuatPalette& pal, bool normals, SkinnedOutput& out) {
+  const std::size_t n = mesh.vertex_count();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& j = mesh.joints[i];
+    const auto& w = mesh.weights[i];
+    const glm::dualquat& q0 = pal[j[0]];
+    glm::quat real = q0.real * w[0];
+    glm::quat dual = q0.dual * w[0];
+    for (int k = 1; k < 4; ++k) {
+      const glm::dualquat& q = pal[j[k]];
+      const float wk = glm::dot(q0.real, q.real) < 0.0f ? -w[k] : w[k];
+      real = real + q.real * wk;
+      dual = dual + q.dual * wk;
+    }
+    const glm::dualquat b = glm::normalize(glm::dualquat(real, dual));
+    const glm::vec3 p = b * glm::vec3(mesh.px[i], mesh.py[i], mesh.pz[i]);
+    out.px[i] = p.x;
+    out.py[i] = p.y;
+    out.pz[i] = p.z;
+    if (normals) {
+      const glm::vec3 r = b.real * glm::vec3(mesh.nx[i], mesh.ny[i], mesh.nz[i]);
+      out.nx[i] = r.x;
+      out.ny[i] = r.y;
+      out.nz[i] = r.z;
+    }
+  }
+}
+
+enum class PlainLoop { lbs, dqs };
+
+void bm_plain_glm(benchmark::State& state, PlainLoop loop, bool normals) {
+  const SkinScene& scene = random_scene();
+  const SkinnedMesh& mesh = scene.meshes.front();
+  SkinnedOutput out;
+  out.resize_for(mesh);
+  for (auto _ : state) {
+    if (loop == PlainLoop::lbs)
+      plain_glm_lbs(mesh, scene.matrices.front(), normals, out);
+    else
+      plain_glm_dqs(mesh, scene.dual_quats.front(), normals, out);
+    benchmark::DoNotOptimize(out.px.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.vertex_count()));
+}
+
+// Issue-6 targets (positions / with normals) per method.
+std::optional<Target> target_for(SkinningMethod m, bool normals) {
+  if (m == SkinningMethod::cga_points)
+    return normals ? Target{235, ">= 235 M/s"} : Target{300, ">= 300 M/s"};
+  if (m == SkinningMethod::cga_motors)
+    return normals ? Target{120, ">= 120 M/s"} : Target{150, ">= 150 M/s"};
+  return std::nullopt;
+}
+
+}  // namespace
+
+void register_skinning_benchmarks() {
+  struct Scene {
+    const char* key;
+    const SkinScene& (*fn)();
+    const char* title;
+  };
+  const Scene scenes[] = {
+      {"random1M", random_scene, "1 M random vertices, 64 bones, 4 influences"},
+      {"BCN_Epileptic", character_scene, "BCN_Epileptic.X mesh (random rigid palette)"},
+  };
+  for (const Scene& sc : scenes)
+    for (bool normals : {false, true}) {
+      const std::string kind = normals ? "positions+normals" : "positions";
+      const std::string section = "Skinning, " + kind + ": " + sc.title;
+      const std::string prefix = std::string("skinning/") + sc.key + "/" + kind + "/";
+      const std::string baseline = prefix + "lbs";
+      for (SkinningMethod m : kAllSkinningMethods) {
+        const std::string name = prefix + std::string(to_string(m));
+        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals)
+            ->Unit(benchmark::kMillisecond);
+        add_figure({name, section, std::string(to_string(m)), Metric::mega_items_per_s, baseline, "lbs",
+                    sc.fn == random_scene ? target_for(m, normals) : std::nullopt, {}});
+      }
+      if (sc.fn != random_scene) continue;
+      for (PlainLoop loop : {PlainLoop::lbs, PlainLoop::dqs}) {
+        const std::string label = loop == PlainLoop::lbs ? "plain GLM lbs loop" : "plain GLM dqs loop";
+        const std::string name = prefix + (loop == PlainLoop::lbs ? "plain_glm_lbs" : "plain_glm_dqs");
+        benchmark::RegisterBenchmark(name.c_str(), bm_plain_glm, loop, normals)
+            ->Unit(benchmark::kMillisecond);
+        add_figure({name, section, label, Metric::mega_items_per_s, baseline, "lbs", std::nullopt, {}});
+      }
+    }
+}
+
+}  // namespace cga::bench
