@@ -5,4 +5,4 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake --preset default
 cmake --build --preset default
-exec ./build/examples/cga-demo "$@"
+exec ./build/examples/demo/cga-demo "$@"

@@ -1,0 +1,511 @@
+// cga-demo (README command 1): the whole runtime on a real character. Loads a skinned, animated file,
+// cross-fades two clips with every interpolation mode (timing one pose: sample two clips + blend + hierarchy +
+// palette), skins the meshes with every method on the CPU (vertices/s, and how far the methods are apart
+// relative to the character's size), twists the two-bone strip (the candy-wrapper test), and draws PNG
+// pictures of both. See docs/demo.md for what each number means.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "cga/runtime/jobs.hpp"
+#include "cga/runtime/loader.hpp"
+#include "cga/runtime/motor.hpp"
+#include "cga/runtime/skinning.hpp"
+#include "cga/runtime/skinning_palettes.hpp"
+#include "cga/runtime/skinning_test_meshes.hpp"
+#include "options.hpp"
+#include "raster.hpp"
+
+using namespace cga;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// Stage lines on stderr with the elapsed time, so that a slow step is never silent.
+class Progress {
+ public:
+  void stage(const std::string& what) {
+    std::fflush(stdout);  // keep the table and the stage lines in order on a terminal
+    fmt::print(stderr, "[{:5.1f} s] {}\n", seconds(), what);
+    std::fflush(stderr);
+  }
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+};
+
+// What the cross-fade plays: clip a over [a0, a1] fading into clip b over [b0, b1].
+struct Fade {
+  const Clip* a = nullptr;
+  const Clip* b = nullptr;
+  float a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+  std::string description;
+  // Times and the weight of b at step u in [0, 1].
+  float time_a(float u) const { return a0 + u * (a1 - a0); }
+  float time_b(float u) const { return b0 + u * (b1 - b0); }
+};
+
+// A clip that holds every joint at its rest transform (one key each), for files without animation.
+Clip rest_clip(const Skeleton& sk) {
+  Clip c;
+  c.name = "(rest pose)";
+  c.tracks.resize(sk.joint_count());
+  for (int j = 0; j < sk.joint_count(); ++j) {
+    const Transform& x = sk.rest_local[j];
+    c.tracks[j].translations.push_back({0.0f, x.translation});
+    c.tracks[j].rotations.push_back({0.0f, x.rotation, rotor_from_quat(x.rotation)});
+    c.tracks[j].scales.push_back({0.0f, x.scale});
+  }
+  build_joint_keys(c);
+  return c;
+}
+
+std::string clip_list(const Character& ch) {
+  std::string s;
+  for (const Clip& c : ch.clips) s += (s.empty() ? "'" : ", '") + c.name + "'";
+  return s.empty() ? "none" : s;
+}
+
+Fade choose_fade(const Character& ch, const std::vector<std::string>& names, const Clip* fallback) {
+  auto find = [&](const std::string& name) {
+    const Clip* c = ch.find_clip(name);
+    if (!c) throw LoadError(fmt::format("{}: no clip named '{}' (clips: {})", ch.path, name, clip_list(ch)));
+    return c;
+  };
+  Fade f;
+  if (names.size() == 2) {
+    f.a = find(names[0]), f.b = find(names[1]);
+  } else if (names.size() == 1) {
+    f.a = find(names[0]);
+    for (const Clip& c : ch.clips)
+      if (&c != f.a) f.b = f.b ? f.b : &c;
+  } else if (ch.clips.size() >= 2) {
+    f.a = &ch.clips[0], f.b = &ch.clips[1];
+  } else if (ch.clips.size() == 1) {
+    f.a = &ch.clips[0];
+  } else {
+    f.a = fallback;
+  }
+  if (f.b && f.b != f.a) {
+    f.a0 = 0, f.a1 = f.a->duration, f.b0 = 0, f.b1 = f.b->duration;
+    f.description = fmt::format("clip '{}' (0..{:.3g} s) fading into clip '{}' (0..{:.3g} s)", f.a->name,
+                                f.a->duration, f.b->name, f.b->duration);
+  } else {
+    // One clip: its first half fades into its second half.
+    f.b = f.a;
+    const float d = f.a->duration;
+    f.a0 = 0, f.a1 = 0.5f * d, f.b0 = 0.5f * d, f.b1 = d;
+    f.description = fmt::format("clip '{}': first half (0..{:.3g} s) fading into second half ({:.3g}..{:.3g} s)",
+                                f.a->name, 0.5f * d, 0.5f * d, d);
+  }
+  return f;
+}
+
+// One mode's pose pipeline with its buffers: two samples, the cross-fade, the hierarchy, a palette per mesh.
+struct PosePipeline {
+  Interpolation mode;
+  const Skeleton* skeleton;
+  const std::vector<SkinnedMesh>* meshes;
+  const std::vector<InverseBind>* inverse_binds;
+  PoseBuffer a, b, blended, model;
+  std::vector<MotorPalette> motor_palettes;
+  std::vector<MatrixPalette> matrix_palettes;
+  std::vector<DualQuatPalette> dq_palettes;
+
+  PosePipeline(Interpolation m, const Skeleton& sk, const std::vector<SkinnedMesh>& ms,
+               const std::vector<InverseBind>& ib)
+      : mode(m), skeleton(&sk), meshes(&ms), inverse_binds(&ib), a(sk.joint_count()), b(sk.joint_count()),
+        blended(sk.joint_count()), model(sk.joint_count()) {
+    for (const SkinnedMesh& mesh : ms) {
+      motor_palettes.emplace_back(mesh.joint_remap.size());
+      matrix_palettes.emplace_back(mesh.joint_remap.size());
+      dq_palettes.emplace_back(mesh.joint_remap.size());
+    }
+  }
+
+  static void sample(const Clip& clip, float t, Interpolation mode, PoseBuffer& out) {
+    SamplingJob s;
+    s.clip = &clip, s.time = t, s.mode = mode;
+    s.out_motors = out.motors, s.out_transforms = out.transforms, s.out_dual_quats = out.dual_quats,
+    s.out_scales = out.scales;
+    if (!s.Run()) throw std::runtime_error(fmt::format("sampling clip '{}' at {} s ({}) failed", clip.name, t, to_string(mode)));
+  }
+
+  // The model pose and the palettes at fade step u (weight u on clip b).
+  void run(const Fade& f, float u) {
+    sample(*f.a, f.time_a(u), mode, a);
+    sample(*f.b, f.time_b(u), mode, b);
+    const BlendLayer layers[2] = {
+        {1.0f - u, a.motors, a.transforms, a.dual_quats, a.scales},
+        {u, b.motors, b.transforms, b.dual_quats, b.scales}};
+    BlendingJob blend;
+    blend.mode = mode, blend.layers = layers;
+    blend.out_motors = blended.motors, blend.out_transforms = blended.transforms,
+    blend.out_dual_quats = blended.dual_quats, blend.out_scales = blended.scales;
+    if (!blend.Run()) throw std::runtime_error(fmt::format("cross-fade ({}) failed", to_string(mode)));
+    LocalToModelJob l2m;
+    l2m.skeleton = skeleton, l2m.mode = mode;
+    l2m.local_motors = blended.motors, l2m.local_transforms = blended.transforms,
+    l2m.local_dual_quats = blended.dual_quats, l2m.local_scales = blended.scales;
+    l2m.model_motors = model.motors, l2m.model_matrices = model.matrices, l2m.model_dual_quats = model.dual_quats,
+    l2m.model_scales = model.scales;
+    if (!l2m.Run()) throw std::runtime_error(fmt::format("hierarchy ({}) failed", to_string(mode)));
+    for (std::size_t m = 0; m < meshes->size(); ++m) {
+      SkinningPaletteJob p;
+      p.mode = mode, p.joint_remap = (*meshes)[m].joint_remap, p.inverse_bind = &(*inverse_binds)[m];
+      p.model_motors = model.motors, p.model_matrices = model.matrices, p.model_dual_quats = model.dual_quats,
+      p.model_scales = model.scales;
+      p.out_motors = motor_palettes[m], p.out_matrices = matrix_palettes[m], p.out_dual_quats = dq_palettes[m];
+      if (!p.Run())
+        throw std::runtime_error(fmt::format("palette of mesh '{}' ({}) failed", (*meshes)[m].name, to_string(mode)));
+    }
+  }
+
+  glm::vec3 joint_position(int j) const {
+    switch (mode) {
+      case Interpolation::glm_matrix: return glm::vec3(model.matrices[j][3]);
+      case Interpolation::glm_dualquat: return dual_quat_translation(model.dual_quats[j]);
+      default: return motor_transform_point(model.motors[j], glm::vec3(0.0f));
+    }
+  }
+};
+
+// Every method's palette for one mesh, all from the same motor palette, so that method deviations measure the
+// skinning methods and not the interpolation: lbs/cga-points get the motor's point-transform matrix, dqs the
+// rigid part of its transform (a dual quaternion has no scale: `scaled` counts the entries that lose one).
+struct MethodPalettes {
+  MotorPalette motors;
+  MatrixPalette matrices;
+  DualQuatPalette dual_quats;
+  int scaled = 0;
+};
+
+MethodPalettes palettes_from_motors(const MotorPalette& motors) {
+  MethodPalettes p;
+  p.motors = motors;
+  for (const Motor& m : motors) {
+    p.matrices.push_back(motor_matrix(m));
+    Transform x = motor_to_transform(m);
+    if (std::abs(x.scale - 1.0f) > 1e-4f) ++p.scaled;
+    x.scale = 1.0f;
+    p.dual_quats.push_back(to_dual_quat(x));
+  }
+  return p;
+}
+
+SkinningJob job_for(SkinningMethod method, const SkinnedMesh& mesh, const MethodPalettes& pal, SkinnedOutput& out) {
+  SkinningJob job = make_skinning_job(method, mesh, out);
+  job.motors = pal.motors, job.matrices = pal.matrices, job.dual_quats = pal.dual_quats;
+  return job;
+}
+
+void run_job(const SkinningJob& job, const std::string& what) {
+  if (!job.Run()) throw std::runtime_error(fmt::format("skinning {} failed: {}", what, job.ValidationError()));
+}
+
+float max_distance(const SkinnedOutput& x, const SkinnedOutput& y) {
+  float worst = 0.0f;
+  for (std::size_t i = 0; i < x.px.size(); ++i)
+    worst = std::max(worst, glm::length(glm::vec3(x.px[i] - y.px[i], x.py[i] - y.py[i], x.pz[i] - y.pz[i])));
+  return worst;
+}
+
+// Repeats `body` (one batch of work) until at least `min_seconds` have passed; returns seconds per batch.
+template <class F>
+double time_batches(F&& body, double min_seconds) {
+  body();  // warm caches and branch predictors
+  int batches = 0;
+  const auto start = Clock::now();
+  double elapsed = 0.0;
+  do {
+    body();
+    ++batches;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  } while (elapsed < min_seconds);
+  return elapsed / batches;
+}
+
+glm::vec3 method_color(SkinningMethod m) {
+  switch (m) {
+    case SkinningMethod::lbs: return {0.85f, 0.55f, 0.35f};
+    case SkinningMethod::dqs: return {0.45f, 0.65f, 0.85f};
+    case SkinningMethod::cga_points: return {0.85f, 0.75f, 0.35f};
+    case SkinningMethod::cga_motors: return {0.45f, 0.80f, 0.50f};
+  }
+  return {0.7f, 0.7f, 0.7f};
+}
+
+// All skinned vertices of all meshes of one method, concatenated (for framing and drawing).
+struct PosedCharacter {
+  std::vector<SkinnedOutput> meshes;
+};
+
+// Deviation between methods, each through its own pipeline (lbs <- GLM matrices, dqs <- GLM dual quaternions,
+// cga-points / cga-motors <- generated motor kernels), at key frames of the first clip, where every mode
+// reproduces the keys: what differs is only the representation and the skinning method.
+void key_frame_deviations(const Character& ch, const Fade& fade, const std::vector<SkinningMethod>& methods,
+                          const std::vector<InverseBind>& inverse_binds, float size, bool kernels) {
+  const Clip& clip = *fade.a;
+  std::vector<float> times;
+  for (const JointKeys& k : clip.keys)
+    if (k.size() > times.size()) times = k.times;
+  if (times.size() > 12) {  // at most 12 key frames, spread over the clip
+    std::vector<float> some;
+    for (int i = 0; i < 12; ++i) some.push_back(times[i * (times.size() - 1) / 11]);
+    times = some;
+  }
+  PosePipeline mat(Interpolation::glm_matrix, ch.skeleton, ch.meshes, inverse_binds);
+  PosePipeline dq(Interpolation::glm_dualquat, ch.skeleton, ch.meshes, inverse_binds);
+  std::optional<PosePipeline> mot;
+  if (kernels) mot.emplace(Interpolation::nlerp, ch.skeleton, ch.meshes, inverse_binds);
+  auto has = [&](SkinningMethod m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+  float points_vs_lbs = 0.0f, motors_vs_dqs = 0.0f;
+  for (float t : times) {
+    Fade at = fade;
+    at.b = at.a, at.a0 = at.a1 = at.b0 = at.b1 = t;
+    mat.run(at, 0.0f), dq.run(at, 0.0f);
+    if (mot) mot->run(at, 0.0f);
+    for (std::size_t m = 0; m < ch.meshes.size(); ++m) {
+      MethodPalettes pal;
+      pal.matrices = mat.matrix_palettes[m], pal.dual_quats = dq.dq_palettes[m];
+      if (mot) pal.motors = mot->motor_palettes[m];
+      std::map<SkinningMethod, SkinnedOutput> out;
+      for (SkinningMethod method : methods)
+        run_job(job_for(method, ch.meshes[m], pal, out[method]), std::string(to_string(method)));
+      if (has(SkinningMethod::cga_points) && has(SkinningMethod::lbs))
+        points_vs_lbs = std::max(points_vs_lbs, max_distance(out[SkinningMethod::cga_points], out[SkinningMethod::lbs]));
+      if (has(SkinningMethod::cga_motors) && has(SkinningMethod::dqs))
+        motors_vs_dqs = std::max(motors_vs_dqs, max_distance(out[SkinningMethod::cga_motors], out[SkinningMethod::dqs]));
+    }
+  }
+  fmt::print("  max vertex distance / size over {} key frames of '{}', each method through its own pipeline:\n",
+             times.size(), clip.name);
+  const bool approximated = std::any_of(ch.warnings.begin(), ch.warnings.end(), [](const std::string& w) {
+    return w.find("not a similarity") != std::string::npos || w.find("non-uniform") != std::string::npos;
+  });
+  if (approximated)
+    fmt::print("    (the loader approximated non-similarity transforms for motors and dual quaternions, see the "
+               "warnings; lbs uses the file's exact matrices, so the cga methods differ from it here)\n");
+  if (has(SkinningMethod::cga_points) && has(SkinningMethod::lbs))
+    fmt::print("    cga-points vs lbs  {:<10.3g} (the same maths: rounding only)\n", points_vs_lbs / size);
+  if (has(SkinningMethod::cga_motors) && has(SkinningMethod::dqs))
+    fmt::print("    cga-motors vs dqs  {:<10.3g} (the same for rigid bones; dqs drops any scale)\n", motors_vs_dqs / size);
+}
+
+int run(const demo::Options& opt) {
+  Progress progress;
+  const bool kernels = kHaveMotorKernels && cga_skinning_kernels_available();
+  std::vector<Interpolation> modes;
+  std::vector<SkinningMethod> methods;
+  for (Interpolation m : opt.modes)
+    if (kernels || !uses_motors(m)) modes.push_back(m);
+  for (SkinningMethod m : opt.methods)
+    if (kernels || m == SkinningMethod::lbs || m == SkinningMethod::dqs) methods.push_back(m);
+  if (!kernels)
+    fmt::print("note: this build has no generated CGA kernels; motor modes and cga methods are left out\n");
+  if (modes.empty()) throw std::runtime_error("none of the chosen interpolation modes can run in this build");
+
+  progress.stage("loading " + opt.model);
+  const Character ch = load_character(opt.model);
+  const Skeleton& sk = ch.skeleton;
+  if (sk.joint_count() == 0) throw LoadError(opt.model + ": no skeleton");
+  std::size_t vertices = 0;
+  for (const SkinnedMesh& m : ch.meshes) vertices += m.vertex_count();
+  const float size = character_size(ch);
+  if (!(size > 0.0f) || !std::isfinite(size))
+    throw LoadError(fmt::format("{}: the character has no extent (size {})", opt.model, size));
+  fmt::print("model     {}\n", opt.model);
+  fmt::print("skeleton  {} joints; {} skinned meshes, {} vertices; clips: {}; size {:.4g} units\n", sk.joint_count(),
+             ch.meshes.size(), vertices, clip_list(ch), size);
+  for (std::size_t i = 0; i < ch.warnings.size() && i < 3; ++i) fmt::print("warning   {}\n", ch.warnings[i]);
+  if (ch.warnings.size() > 3) fmt::print("warning   ... and {} more loader warnings\n", ch.warnings.size() - 3);
+
+  const Clip rest = rest_clip(sk);
+  if (ch.clips.empty()) fmt::print("note      the file has no animation; the demo poses the rest pose\n");
+  const Fade fade = choose_fade(ch, opt.clips, &rest);
+  fmt::print("fade      {}\n\n", fade.description);
+
+  std::vector<InverseBind> inverse_binds;
+  for (const SkinnedMesh& m : ch.meshes) inverse_binds.push_back(make_inverse_bind(m));
+
+  // ---- poses: time per pose and joint deviation from the GLM matrix baseline, per mode
+  progress.stage(fmt::format("posing {} frames of the cross-fade in {} modes", opt.frames, modes.size()));
+  const int frames = opt.frames;
+  auto step = [&](int f) { return float(f) / float(frames - 1); };
+  std::vector<std::vector<glm::vec3>> baseline(frames, std::vector<glm::vec3>(sk.joint_count()));
+  {
+    PosePipeline ref(Interpolation::glm_matrix, sk, ch.meshes, inverse_binds);
+    for (int f = 0; f < frames; ++f) {
+      ref.run(fade, step(f));
+      for (int j = 0; j < sk.joint_count(); ++j) baseline[f][j] = ref.joint_position(j);
+    }
+  }
+  fmt::print("pose: sample 2 clips + cross-fade + hierarchy ({} joints) + palettes ({} meshes), one core\n",
+             sk.joint_count(), ch.meshes.size());
+  fmt::print("  {:<13} {:>10}   {}\n", "mode", "us/pose", "max joint distance to glm-matrix / size");
+  for (Interpolation mode : modes) {
+    PosePipeline p(mode, sk, ch.meshes, inverse_binds);
+    float worst = 0.0f;
+    for (int f = 0; f < frames; ++f) {
+      p.run(fade, step(f));
+      for (int j = 0; j < sk.joint_count(); ++j) worst = std::max(worst, glm::length(p.joint_position(j) - baseline[f][j]));
+    }
+    const double per_batch = time_batches([&] { for (int f = 0; f < frames; ++f) p.run(fade, step(f)); }, 0.05);
+    fmt::print("  {:<13} {:>10.2f}   {:.3g}\n", to_string(mode), 1e6 * per_batch / frames, worst / size);
+  }
+  fmt::print("\n");
+
+  // ---- skinning: every method on the same pose (middle of the fade), speed and deviations
+  std::map<SkinningMethod, PosedCharacter> posed;
+  if (ch.meshes.empty()) {
+    fmt::print("skinning: the file has no skinned mesh, nothing to skin\n\n");
+  } else {
+    const Interpolation pose_mode = kernels ? Interpolation::screw : Interpolation::glm_matrix;
+    progress.stage(fmt::format("skinning {} vertices with {} methods", vertices, methods.size()));
+    PosePipeline p(pose_mode, sk, ch.meshes, inverse_binds);
+    std::vector<MethodPalettes> palettes;
+    int scaled = 0;
+    if (kernels) {
+      p.run(fade, 0.5f);
+      for (const MotorPalette& mp : p.motor_palettes) palettes.push_back(palettes_from_motors(mp));
+      for (const MethodPalettes& mp : palettes) scaled += mp.scaled;
+    } else {
+      PosePipeline dq(Interpolation::glm_dualquat, sk, ch.meshes, inverse_binds);
+      p.run(fade, 0.5f), dq.run(fade, 0.5f);
+      for (std::size_t m = 0; m < ch.meshes.size(); ++m)
+        palettes.push_back({{}, p.matrix_palettes[m], dq.dq_palettes[m], 0});
+    }
+    const bool normals = std::any_of(ch.meshes.begin(), ch.meshes.end(), [](const SkinnedMesh& m) { return m.has_normals(); });
+    fmt::print("skinning: {} vertices{}, pose = middle of the fade ({}), one core\n", vertices,
+               normals ? " with normals" : "", to_string(pose_mode));
+    fmt::print("  {:<11} {:>12}\n", "method", "Mvertices/s");
+    for (SkinningMethod method : methods) {
+      PosedCharacter& pc = posed[method];
+      pc.meshes.resize(ch.meshes.size());
+      std::vector<SkinningJob> jobs;
+      for (std::size_t m = 0; m < ch.meshes.size(); ++m)
+        jobs.push_back(job_for(method, ch.meshes[m], palettes[m], pc.meshes[m]));
+      const std::string name(to_string(method));
+      const double seconds = time_batches([&] { for (const SkinningJob& j : jobs) run_job(j, name); }, 0.1);
+      fmt::print("  {:<11} {:>12.1f}\n", name, 1e-6 * double(vertices) / seconds);
+    }
+    fmt::print("\n");
+    key_frame_deviations(ch, fade, methods, inverse_binds, size, kernels);
+    // On the blended pose itself: how much the method changes the skin (not an error; lbs loses volume).
+    if (posed.count(SkinningMethod::cga_motors) && posed.count(SkinningMethod::lbs)) {
+      float worst = 0.0f;
+      for (std::size_t m = 0; m < ch.meshes.size(); ++m)
+        worst = std::max(worst, max_distance(posed[SkinningMethod::cga_motors].meshes[m], posed[SkinningMethod::lbs].meshes[m]));
+      fmt::print("  mid-fade pose: cga-motors vs lbs {:.3g} of the size (what blending motors instead of points changes)\n",
+                 worst / size);
+    }
+    if (scaled)
+      fmt::print("  note: {} palette entries carry a scale; dqs skins their rigid part only\n", scaled);
+    fmt::print("\n");
+  }
+
+  // ---- the twist strip: joint 1 turned 180 degrees, the middle cross-section's radius per method
+  const TwistCylinder cyl = make_twist_cylinder();
+  const std::vector<Transform> twist = twist_cylinder_skinning_transforms(cyl.spec, std::numbers::pi_v<float>);
+  MethodPalettes twist_pal;
+  for (const Transform& x : twist) {
+    twist_pal.matrices.push_back(to_skinning_matrix(x));
+    twist_pal.dual_quats.push_back(to_dual_quat(x));
+    if (kernels) twist_pal.motors.push_back(motor_from_transform(x));
+  }
+  std::map<SkinningMethod, SkinnedOutput> twisted;
+  fmt::print("twist strip: joint 1 of a two-bone cylinder turned 180 degrees (candy-wrapper test)\n");
+  fmt::print("  {:<11} {:>28}\n", "method", "middle ring radius / rest");
+  for (SkinningMethod method : methods) {
+    SkinnedOutput& out = twisted[method];
+    run_job(job_for(method, cyl.mesh, twist_pal, out), std::string(to_string(method)) + " (twist strip)");
+    double radius = 0.0;
+    for (std::uint32_t v : cyl.middle_ring) radius += std::hypot(out.px[v], out.py[v]);
+    radius /= double(cyl.middle_ring.size());
+    fmt::print("  {:<11} {:>28.3f}\n", to_string(method), radius / cyl.spec.radius);
+  }
+  fmt::print("\n");
+
+  // ---- pictures (CPU rasterizer)
+  if (opt.pictures) {
+    progress.stage("drawing pictures into " + opt.out_dir);
+    std::error_code ec;
+    std::filesystem::create_directories(opt.out_dir, ec);
+    if (ec) throw std::runtime_error(fmt::format("cannot create folder {}: {}", opt.out_dir, ec.message()));
+    std::vector<std::string> written;
+    for (const auto& [method, pc] : posed) {
+      demo::Image img(480, 640);
+      std::vector<float> ax, ay, az;
+      for (const SkinnedOutput& o : pc.meshes)
+        ax.insert(ax.end(), o.px.begin(), o.px.end()), ay.insert(ay.end(), o.py.begin(), o.py.end()),
+            az.insert(az.end(), o.pz.begin(), o.pz.end());
+      const demo::View view = demo::frame_points(ax, ay, az, 0, 0, img.width, img.height);
+      for (std::size_t m = 0; m < ch.meshes.size(); ++m)
+        demo::draw_triangles(img, view, pc.meshes[m].px, pc.meshes[m].py, pc.meshes[m].pz, ch.meshes[m].indices,
+                             method_color(method));
+      written.push_back(fmt::format("{}/character-{}.png", opt.out_dir, to_string(method)));
+      demo::write_png(img, written.back());
+    }
+    if (!twisted.empty()) {
+      const int panel = 240;
+      demo::Image img(panel * int(twisted.size()), 2 * panel);
+      int k = 0;
+      for (const auto& [method, out] : twisted) {
+        // The same frame for every panel (the rest cylinder's), so radii compare by eye.
+        demo::View view = demo::frame_points(cyl.mesh.px, cyl.mesh.py, cyl.mesh.pz, k * panel, 0, panel, 2 * panel);
+        view.up = {0, 0, 1}, view.toward = {0, -1, 0};
+        view.center = {0.0f, 0.5f * cyl.spec.length};
+        view.scale = 0.8f * std::min(panel / (2.4f * cyl.spec.radius), 2.0f * panel / cyl.spec.length);
+        demo::draw_triangles(img, view, out.px, out.py, out.pz, cyl.mesh.indices, method_color(method));
+        ++k;
+      }
+      written.push_back(opt.out_dir + "/twist-strip.png");
+      demo::write_png(img, written.back());
+    }
+    fmt::print("pictures (CPU rasterizer):");
+    for (const std::string& w : written) fmt::print(" {}", w);
+    fmt::print("\n");
+    if (!twisted.empty()) {
+      fmt::print("  twist-strip.png panels, left to right:");
+      for (const auto& [method, out] : twisted) fmt::print(" {}", to_string(method));
+      fmt::print("\n");
+    }
+  }
+  progress.stage("done");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string default_model = CGA_DEMO_DEFAULT_MODEL;
+  demo::Options opt;
+  try {
+    opt = demo::parse_options(argc, argv, default_model);
+  } catch (const demo::UsageError& e) {
+    std::fprintf(stderr, "cga-demo: %s\nrun 'cga-demo --help' for the options\n", e.what());
+    return 2;
+  }
+  if (opt.help) {
+    std::fputs(demo::usage_text(default_model).c_str(), stdout);
+    return 0;
+  }
+  try {
+    return run(opt);
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "cga-demo: error: %s\n", e.what());
+    return 1;
+  }
+}
