@@ -1,1 +1,110 @@
-# cgagen_generate(): run the cgagen tool on CluScript files at build time. (Filled in by the generator work.)
+# cgagen_generate(): run the cgagen tool on CluScript files at build time.
+#
+#   cgagen_generate(<target>
+#                   SCRIPTS a.clu [b.clu ...]
+#                   OUTPUT_DIR <dir>
+#                   [TARGETS cpp glsl cuda]     # default: cpp
+#                   [OPT -O2]                   # default: -O2
+#                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
+#                   [RETURN OUT]                # glsl only: --return OUT
+#                   [TEMPLATES <dir>])          # default: the tool's built-in templates/
+#
+# For each script NAME.clu and each target it writes OUTPUT_DIR/NAME.hpp / NAME.glsl / NAME.cuh, plus
+# OUTPUT_DIR/NAME.stats (the --stats text), with dependencies on the script, the templates and the cgagen
+# tool. <target> is an INTERFACE library whose include directory is OUTPUT_DIR; linking it builds the files
+# first. Call it several times with the same <target> to give scripts different options (packing differs
+# per script); the files of every call are listed in the target's CGAGEN_OUTPUTS property.
+# The tool must be a target named `cgagen` (this project) or given as CGAGEN_EXECUTABLE.
+
+set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
+
+function(cgagen_generate target)
+  cmake_parse_arguments(CG "" "OUTPUT_DIR;OPT;RETURN;TEMPLATES" "SCRIPTS;TARGETS;PACK" ${ARGN})
+  if(CG_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
+  endif()
+  if(NOT CG_SCRIPTS OR NOT CG_OUTPUT_DIR)
+    message(FATAL_ERROR "cgagen_generate(${target}): SCRIPTS and OUTPUT_DIR are required")
+  endif()
+  if(NOT CG_TARGETS)
+    set(CG_TARGETS cpp)
+  endif()
+  if(NOT CG_OPT)
+    set(CG_OPT -O2)
+  endif()
+  if(CG_TEMPLATES)
+    set(_templates_dir ${CG_TEMPLATES})
+    set(_templates_arg --templates ${CG_TEMPLATES})
+  else()
+    get_filename_component(_templates_dir ${CGAGEN_DEFAULT_TEMPLATES} ABSOLUTE)
+    set(_templates_arg)
+  endif()
+  file(GLOB_RECURSE _templates CONFIGURE_DEPENDS ${_templates_dir}/*.in)
+  if(CGAGEN_EXECUTABLE)
+    set(_tool ${CGAGEN_EXECUTABLE})
+    set(_tool_dep ${CGAGEN_EXECUTABLE})
+  else()
+    set(_tool $<TARGET_FILE:cgagen>)
+    set(_tool_dep cgagen)
+  endif()
+  set(_glsl_args)
+  foreach(_p ${CG_PACK})
+    list(APPEND _glsl_args --pack ${_p})
+  endforeach()
+  if(CG_RETURN)
+    list(APPEND _glsl_args --return ${CG_RETURN})
+  endif()
+
+  file(MAKE_DIRECTORY ${CG_OUTPUT_DIR})
+  set(_outputs)
+  foreach(_script ${CG_SCRIPTS})
+    get_filename_component(_script ${_script} ABSOLUTE)
+    get_filename_component(_name ${_script} NAME_WE)
+    set(_stats_done OFF)
+    foreach(_t ${CG_TARGETS})
+      if(_t STREQUAL "cpp")
+        set(_ext .hpp)
+      elseif(_t STREQUAL "glsl")
+        set(_ext .glsl)
+      elseif(_t STREQUAL "cuda")
+        set(_ext .cuh)
+      else()
+        message(FATAL_ERROR "cgagen_generate(${target}): unknown target '${_t}' (cpp, glsl or cuda)")
+      endif()
+      set(_out ${CG_OUTPUT_DIR}/${_name}${_ext})
+      set(_args --target ${_t} ${CG_OPT} --name ${_name} ${_templates_arg})
+      if(_t STREQUAL "glsl")
+        list(APPEND _args ${_glsl_args})
+      endif()
+      set(_byproducts ${_out})
+      if(NOT _stats_done)
+        list(APPEND _args --stats-out ${CG_OUTPUT_DIR}/${_name}.stats)
+        list(APPEND _byproducts ${CG_OUTPUT_DIR}/${_name}.stats)
+        set(_stats_done ON)
+      endif()
+      add_custom_command(
+        OUTPUT ${_byproducts}
+        COMMAND ${_tool} ${_args} -o ${_out} ${_script}
+        DEPENDS ${_script} ${_templates} ${_tool_dep}
+        COMMENT "cgagen ${_name}${_ext}"
+        VERBATIM)
+      list(APPEND _outputs ${_byproducts})
+    endforeach()
+  endforeach()
+
+  get_property(_calls GLOBAL PROPERTY CGAGEN_CALLS_${target})
+  if(NOT _calls)
+    set(_calls 0)
+  endif()
+  math(EXPR _calls "${_calls} + 1")
+  set_property(GLOBAL PROPERTY CGAGEN_CALLS_${target} ${_calls})
+  add_custom_target(${target}_files_${_calls} ALL DEPENDS ${_outputs})
+  if(NOT TARGET ${target})
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE ${CG_OUTPUT_DIR})
+    target_compile_features(${target} INTERFACE cxx_std_17)
+  endif()
+  add_dependencies(${target} ${target}_files_${_calls})
+  set_property(TARGET ${target} APPEND PROPERTY CGAGEN_OUTPUTS ${_outputs})
+  set_property(TARGET ${target} APPEND PROPERTY CGAGEN_FILE_TARGETS ${target}_files_${_calls})
+endfunction()

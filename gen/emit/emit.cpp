@@ -1,0 +1,399 @@
+// The C++, GLSL and CUDA emitters (see emit.hpp). Expressions are printed by the rules of opt/lower.hpp.
+#include "emit/emit.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#ifndef CGAGEN_TEMPLATE_DIR
+#define CGAGEN_TEMPLATE_DIR "templates"
+#endif
+
+namespace cgagen::emit {
+
+using namespace GiNaC;
+using opt::CanonicalKeys;
+
+Target parse_target(const std::string& t) {
+  if (t == "cpp") return Target::Cpp;
+  if (t == "glsl") return Target::Glsl;
+  if (t == "cuda") return Target::Cuda;
+  throw std::invalid_argument("unknown target '" + t + "' (expected cpp, glsl or cuda)");
+}
+
+std::string file_extension(Target t) {
+  switch (t) {
+    case Target::Cpp: return ".hpp";
+    case Target::Glsl: return ".glsl";
+    case Target::Cuda: return ".cuh";
+  }
+  return "";
+}
+
+Pack parse_pack(const std::string& t) {
+  if (t == "mat3x4") return Pack::Mat3x4;
+  if (t == "vec4") return Pack::Vec4;
+  if (t == "vec3") return Pack::Vec3;
+  if (t == "float") return Pack::Float;
+  throw std::invalid_argument("unknown packing '" + t + "' (expected mat3x4, vec4, vec3 or float)");
+}
+
+std::string default_template_dir() { return CGAGEN_TEMPLATE_DIR; }
+
+std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values,
+                          const std::string& template_name) {
+  std::string out;
+  size_t pos = 0;
+  while (true) {
+    size_t open = text.find("{{", pos);
+    if (open == std::string::npos) break;
+    size_t close = text.find("}}", open + 2);
+    if (close == std::string::npos)
+      throw std::runtime_error("template " + template_name + ": unterminated placeholder at offset " +
+                               std::to_string(open));
+    std::string key = text.substr(open + 2, close - open - 2);
+    auto it = values.find(key);
+    if (it == values.end())
+      throw std::runtime_error("template " + template_name + ": unknown placeholder {{" + key + "}}");
+    out.append(text, pos, open - pos);
+    out += it->second;
+    pos = close + 2;
+  }
+  out.append(text, pos, std::string::npos);
+  return out;
+}
+
+namespace {
+
+// The exact decimal form of p/q when q = 2^a 5^b, else empty.
+std::string exact_decimal(const numeric& v) {
+  numeric p = abs(v.numer()), q = v.denom();
+  int twos = 0, fives = 0;
+  numeric r = q;
+  while (irem(r, 2).is_zero()) r = r / 2, ++twos;
+  while (irem(r, 5).is_zero()) r = r / 5, ++fives;
+  if (r != 1) return "";
+  int k = std::max(twos, fives);
+  numeric scaled = p * GiNaC::pow(numeric(10), numeric(k)) / q;  // an integer
+  std::ostringstream os;
+  os << scaled;
+  std::string digits = os.str();
+  if (k == 0) return digits + ".0";
+  while (static_cast<int>(digits.size()) <= k) digits = "0" + digits;
+  return digits.substr(0, digits.size() - k) + "." + digits.substr(digits.size() - k);
+}
+
+}  // namespace
+
+std::string literal(const numeric& v, Target target, bool single) {
+  std::string suffix = single && target != Target::Glsl ? "f" : "";
+  std::string sign = v.is_negative() ? "-" : "";
+  if (!v.is_rational()) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v.to_double());
+    std::string s = buf;
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return s + suffix;
+  }
+  std::string dec = exact_decimal(v);
+  if (!dec.empty() && dec.size() <= 24) return sign + dec + suffix;
+  numeric p = abs(v.numer()), q = v.denom();
+  std::ostringstream os;
+  os << sign << "(" << p << ".0" << suffix << " / " << q << ".0" << suffix << ")";
+  return os.str();
+}
+
+namespace {
+
+// Prints expressions in one target's syntax (one precision).
+class Printer {
+ public:
+  Printer(Target target, bool single, const opt::SymbolNames& code_names, CanonicalKeys& keys)
+      : target_(target), single_(single), code_(code_names), keys_(keys) {}
+
+  // prec: 0 = any context, 1 = operand of * or /, 2 = needs to be an atom
+  std::string print(const ex& e, int prec = 0) {
+    if (is_a<numeric>(e)) {
+      std::string s = literal(ex_to<numeric>(e), target_, single_);
+      return (prec >= 1 && ex_to<numeric>(e).is_negative()) ? "(" + s + ")" : s;
+    }
+    if (is_a<symbol>(e)) {
+      auto it = code_.find(e);
+      if (it == code_.end()) throw std::logic_error("cgagen emitter: unknown symbol " + ex_to<symbol>(e).get_name());
+      return it->second;
+    }
+    if (is_a<constant>(e)) return literal(numeric(ex_to<numeric>(e.evalf()).to_double()), target_, single_);
+    if (is_a<add>(e)) {
+      std::string s;
+      bool first = true;
+      for (const ex& t : opt::sum_terms(e, keys_)) {
+        bool neg = opt::is_negative_term(t, keys_);
+        ex a = neg ? ex(-t) : t;
+        if (first) s += neg ? "-" + print(a, 1) : print(a, 0);
+        else s += (neg ? " - " : " + ") + print(a, 1);
+        first = false;
+      }
+      return prec >= 1 ? "(" + s + ")" : s;
+    }
+    return print_product(e, prec);
+  }
+
+ private:
+  std::string print_product(const ex& e, int prec) {
+    opt::ProductParts p = opt::split_product(e, keys_);
+    std::vector<std::string> num;
+    numeric c = abs(p.coeff);
+    if (c != 1 || p.num.empty()) num.push_back(literal(c, target_, single_));
+    for (const auto& f : p.num) {
+      std::string a = atom(f.base);
+      for (int k = 0; k < f.exponent; ++k) num.push_back(a);
+    }
+    std::vector<std::string> den;
+    for (const auto& f : p.den) {
+      std::string a = atom(f.base);
+      for (int k = 0; k < f.exponent; ++k) den.push_back(a);
+    }
+    std::string s;
+    for (size_t i = 0; i < num.size(); ++i) s += (i ? " * " : "") + num[i];
+    if (!den.empty()) {
+      std::string d;
+      for (size_t i = 0; i < den.size(); ++i) d += (i ? " * " : "") + den[i];
+      s += " / " + (den.size() > 1 ? "(" + d + ")" : d);
+    }
+    bool compound = num.size() + den.size() > 1;
+    if (p.coeff.is_negative()) {
+      s = "-" + (den.empty() ? s : "(" + s + ")");
+      return prec >= 1 ? "(" + s + ")" : s;
+    }
+    return (compound && prec >= 2) || (!den.empty() && prec >= 1) ? "(" + s + ")" : s;
+  }
+
+  std::string atom(const ex& b) {
+    if (is_a<symbol>(b) || is_a<numeric>(b) || is_a<constant>(b)) return print(b, 2);
+    if (is_a<add>(b) || is_a<mul>(b)) return print(b, 2);
+    if (opt::is_sqrt(b)) return fn("sqrt") + "(" + print(b.op(0)) + ")";
+    if (is_a<power>(b)) return fn("pow") + "(" + print(b.op(0)) + ", " + print(b.op(1)) + ")";
+    if (is_a<function>(b)) {
+      std::string name = ex_to<function>(b).get_name();
+      std::string s = fn(name) + "(";
+      for (size_t i = 0; i < b.nops(); ++i) s += (i ? ", " : "") + print(b.op(i));
+      return s + ")";
+    }
+    throw std::logic_error("cgagen emitter: cannot print expression of this kind");
+  }
+
+  std::string fn(const std::string& name) const {
+    switch (target_) {
+      case Target::Cpp: return "std::" + name;
+      case Target::Cuda: return name == "abs" ? "fabs" : name;
+      case Target::Glsl: return name == "atan2" ? "atan" : name;
+    }
+    return name;
+  }
+
+  Target target_;
+  bool single_;
+  const opt::SymbolNames& code_;
+  CanonicalKeys& keys_;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read template " + path);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+std::string target_dir(Target t) {
+  switch (t) {
+    case Target::Cpp: return "cpp";
+    case Target::Glsl: return "glsl";
+    case Target::Cuda: return "cuda";
+  }
+  return "";
+}
+
+struct Param {
+  std::string name;
+  bool multivector;
+  size_t size;
+  Pack pack;
+};
+
+const char* pack_type(Pack p) {
+  switch (p) {
+    case Pack::Mat3x4: return "mat3x4";
+    case Pack::Vec4: return "vec4";
+    case Pack::Vec3: return "vec3";
+    case Pack::Float: return "float";
+    case Pack::Array: return "float";
+  }
+  return "float";
+}
+
+size_t pack_capacity(Pack p) {
+  switch (p) {
+    case Pack::Mat3x4: return 12;
+    case Pack::Vec4: return 4;
+    case Pack::Vec3: return 3;
+    case Pack::Float: return 1;
+    case Pack::Array: return SIZE_MAX;
+  }
+  return 0;
+}
+
+// Element k of a (possibly packed) parameter.
+std::string element(const std::string& name, size_t k, Pack p) {
+  switch (p) {
+    case Pack::Mat3x4: return name + "[" + std::to_string(k / 4) + "][" + std::to_string(k % 4) + "]";
+    case Pack::Float: return name;
+    default: return name + "[" + std::to_string(k) + "]";
+  }
+}
+
+std::string indent(const std::string& body) { return body; }
+
+}  // namespace
+
+std::string emit(const opt::Program& program, const EmitOptions& options) {
+  const Target target = options.target;
+  const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +
+                          target_dir(target);
+  const std::string file_tmpl_path = dir + "/file" + file_extension(target) + ".in";
+  const std::string fn_tmpl_path = dir + "/function.in";
+  const std::string file_tmpl = read_file(file_tmpl_path);
+  const std::string fn_tmpl = read_file(fn_tmpl_path);
+
+  if (target != Target::Glsl && (!options.pack.empty() || !options.return_output.empty()))
+    throw std::runtime_error("--pack and --return apply to the glsl target only");
+
+  // Packing per parameter.
+  auto pack_of = [&](const std::string& name, size_t size) {
+    auto it = options.pack.find(name);
+    Pack p = it == options.pack.end() ? Pack::Array : it->second;
+    if (p != Pack::Array && size > pack_capacity(p))
+      throw std::runtime_error("cannot pack '" + name + "' (" + std::to_string(size) + " blades) as " +
+                               pack_type(p));
+    return p;
+  };
+  for (const auto& [name, p] : options.pack) {
+    bool found = false;
+    for (const auto& in : program.inputs) found |= in.name == name;
+    for (const auto& o : program.outputs) found |= o.name == name;
+    if (!found) throw std::runtime_error("--pack names '" + name + "', which is neither an input nor an output");
+  }
+  if (!options.return_output.empty()) {
+    bool found = false;
+    for (const auto& o : program.outputs) found |= o.name == options.return_output;
+    if (!found) throw std::runtime_error("--return names '" + options.return_output + "', which is not an output");
+  }
+
+  opt::SymbolNames canon = opt::symbol_names(program);
+  CanonicalKeys keys(canon);
+
+  // Code names of the symbols.
+  opt::SymbolNames code;
+  for (const auto& in : program.inputs) {
+    if (!in.is_multivector) {
+      code[in.symbols.at(0)] = in.name;
+      continue;
+    }
+    Pack p = target == Target::Glsl ? pack_of(in.name, in.symbols.size()) : Pack::Array;
+    for (size_t k = 0; k < in.symbols.size(); ++k) code[in.symbols[k]] = element(in.name, k, p);
+  }
+  for (const auto& t : program.temps) code[t.sym] = t.name;
+
+  auto function_text = [&](bool single) {
+    std::string T = single ? "float" : "double";
+    if (target == Target::Glsl) T = "float";
+    Printer pr(target, single, code, keys);
+    std::string params;
+    auto add_param = [&](const std::string& s) { params += (params.empty() ? "" : ", ") + s; };
+    for (const auto& in : program.inputs) {
+      if (!in.is_multivector) {
+        add_param(T + " " + in.name);
+      } else if (target == Target::Glsl) {
+        Pack p = pack_of(in.name, in.symbols.size());
+        add_param(p == Pack::Array ? "in float " + in.name + "[" + std::to_string(in.symbols.size()) + "]"
+                                   : std::string("in ") + pack_type(p) + " " + in.name);
+      } else {
+        add_param("const " + T + " " + in.name + "[" + std::to_string(in.symbols.size()) + "]");
+      }
+    }
+    std::string return_type = "void";
+    std::string body;
+    std::string ret_line;
+    for (const auto& o : program.outputs) {
+      const size_t n = o.slots.size();
+      Pack p = target == Target::Glsl ? pack_of(o.name, n) : Pack::Array;
+      std::string decl = p == Pack::Array ? T + " " + o.name + "[" + std::to_string(n) + "]"
+                                          : std::string(pack_type(p)) + " " + o.name;
+      if (target == Target::Glsl && o.name == options.return_output) {
+        return_type = p == Pack::Array ? "float[" + std::to_string(n) + "]" : pack_type(p);
+        body += "  " + decl + ";\n";
+        ret_line = "  return " + o.name + ";\n";
+      } else {
+        add_param((target == Target::Glsl ? "out " : "") + decl);
+      }
+    }
+    for (const auto& t : program.temps)
+      body += "  " + std::string(target == Target::Glsl ? "float " : "const " + T + " ") + t.name + " = " +
+              pr.print(t.value) + ";\n";
+    for (const auto& o : program.outputs) {
+      const size_t n = o.slots.size();
+      Pack p = target == Target::Glsl ? pack_of(o.name, n) : Pack::Array;
+      for (size_t k = 0; k < n; ++k)
+        body += "  " + element(o.name, k, p) + " = " + pr.print(o.slots[k].value) + ";  // " +
+                algebra::blade_name(o.slots[k].blade) + "\n";
+      for (size_t k = n; p != Pack::Array && p != Pack::Float && k < pack_capacity(p); ++k)
+        body += "  " + element(o.name, k, p) + " = 0.0;  // (padding)\n";
+    }
+    body += ret_line;
+    if (!body.empty() && body.back() == '\n') body.pop_back();
+    return fill_template(fn_tmpl,
+                         {{"return_type", return_type}, {"name", program.name}, {"params", params},
+                          {"body", indent(body)}, {"type", T}},
+                         fn_tmpl_path);
+  };
+
+  std::string functions;
+  if (target == Target::Glsl) functions = function_text(true);
+  else functions = function_text(true) + "\n" + function_text(false);
+
+  std::string blade_lists;
+  for (const auto& o : program.outputs) {
+    std::string list;
+    for (size_t k = 0; k < o.slots.size(); ++k)
+      list += std::string(k ? ", " : "") + (target == Target::Glsl ? "" : "\"") +
+              algebra::blade_name(o.slots[k].blade) + (target == Target::Glsl ? "" : "\"");
+    if (target == Target::Glsl)
+      blade_lists += "// " + o.name + ": " + list + "\n";
+    else
+      blade_lists += "inline constexpr std::array<std::string_view, " + std::to_string(o.slots.size()) + "> " +
+                     program.name + "_" + o.name + "_blades = {" + list + "};\n";
+  }
+  std::string inputs_doc;
+  for (const auto& in : program.inputs) {
+    inputs_doc += "// input " + in.name;
+    if (in.is_multivector) {
+      inputs_doc += ":";
+      for (auto b : in.blades) inputs_doc += " " + algebra::blade_name(b);
+    }
+    inputs_doc += "\n";
+  }
+  if (!blade_lists.empty() && blade_lists.back() == '\n') blade_lists.pop_back();
+  if (!inputs_doc.empty() && inputs_doc.back() == '\n') inputs_doc.pop_back();
+  return fill_template(file_tmpl,
+                       {{"script", options.script_name},
+                        {"level", std::to_string(static_cast<int>(program.level))},
+                        {"name", program.name},
+                        {"inputs", inputs_doc},
+                        {"blade_lists", blade_lists},
+                        {"functions", functions}},
+                       file_tmpl_path);
+}
+
+}  // namespace cgagen::emit

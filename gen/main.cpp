@@ -1,0 +1,281 @@
+// cgagen: the command-line tool. CluScript file -> parse -> expand -> optimize -> emit (or --stats, --diff,
+// --eval, --dump-ast). Exit codes: 0 success, 1 error in the script (diagnostic on stderr), 2 bad usage.
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "emit/emit.hpp"
+#include "expand/expand.hpp"
+#include "front/diagnostics.hpp"
+#include "front/parser.hpp"
+#include "opt/program.hpp"
+#include "opt/report.hpp"
+
+namespace {
+
+using namespace cgagen;
+
+const char* kUsage = R"(usage: cgagen [options] SCRIPT
+
+Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code.
+
+options:
+  --target cpp|glsl|cuda  output language (default cpp)
+  -O0 | -O1 | -O2         optimization level (default -O2)
+  -o FILE                 write the output to FILE (default: standard output)
+  --name NAME             function name (default: the script's file stem)
+  --templates DIR         emitter templates (default: the installed templates/)
+  --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float
+  --return OUT            glsl: return output OUT instead of an out parameter
+  --stats                 print op counts instead of code
+  --stats-out FILE        write op counts to FILE besides the code
+  --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change
+  --dump-ast              print the parsed script
+  --eval NAME=VALUE ...   evaluate the optimized kernel; a multivector input as NAME=v1,v2,...
+                          (one value per declared blade); prints OUTPUT BLADE VALUE lines
+  --help                  this text
+)";
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Options {
+  emit::EmitOptions emit;
+  opt::Level level = opt::Level::O2;
+  std::string output;
+  std::string name;
+  std::string script;
+  bool stats = false;
+  std::string stats_out;
+  std::optional<std::pair<opt::Level, opt::Level>> diff;
+  bool dump_ast = false;
+  bool eval = false;
+  opt::InputValues eval_inputs;
+};
+
+double parse_number(const std::string& text, const std::string& what) {
+  try {
+    size_t used = 0;
+    double v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument("");
+    return v;
+  } catch (const std::exception&) {
+    throw UsageError("bad number '" + text + "' in " + what);
+  }
+}
+
+Options parse_args(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  auto value = [&](size_t& i, const std::string& flag) -> std::string {
+    if (i + 1 >= args.size()) throw UsageError(flag + " needs a value");
+    return args[++i];
+  };
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    try {
+      if (a == "--help" || a == "-h") {
+        std::cout << kUsage;
+        std::exit(0);
+      } else if (a == "--target") {
+        o.emit.target = emit::parse_target(value(i, a));
+      } else if (a == "-O0" || a == "-O1" || a == "-O2") {
+        o.level = opt::parse_level(a);
+      } else if (a == "-o") {
+        o.output = value(i, a);
+      } else if (a == "--name") {
+        o.name = value(i, a);
+      } else if (a == "--templates") {
+        o.emit.template_dir = value(i, a);
+      } else if (a == "--pack") {
+        std::string v = value(i, a);
+        auto eq = v.find('=');
+        if (eq == std::string::npos || eq == 0) throw UsageError("--pack expects NAME=KIND, got '" + v + "'");
+        o.emit.pack[v.substr(0, eq)] = emit::parse_pack(v.substr(eq + 1));
+      } else if (a == "--return") {
+        o.emit.return_output = value(i, a);
+      } else if (a == "--stats") {
+        o.stats = true;
+      } else if (a == "--stats-out") {
+        o.stats_out = value(i, a);
+      } else if (a == "--diff") {
+        opt::Level x = opt::parse_level(value(i, a));
+        opt::Level y = opt::parse_level(value(i, a));
+        o.diff = {x, y};
+      } else if (a == "--dump-ast") {
+        o.dump_ast = true;
+      } else if (a == "--eval") {
+        o.eval = true;
+        while (i + 1 < args.size() && args[i + 1].find('=') != std::string::npos && args[i + 1][0] != '-') {
+          std::string v = args[++i];
+          auto eq = v.find('=');
+          std::string name = v.substr(0, eq);
+          if (name.empty()) throw UsageError("--eval expects NAME=VALUE, got '" + v + "'");
+          std::vector<double> vals;
+          std::stringstream ss(v.substr(eq + 1));
+          std::string item;
+          while (std::getline(ss, item, ',')) vals.push_back(parse_number(item, v));
+          if (vals.empty()) throw UsageError("--eval: no value in '" + v + "'");
+          o.eval_inputs[name] = vals;
+        }
+      } else if (!a.empty() && a[0] == '-' && a != "-") {
+        throw UsageError("unknown option '" + a + "'");
+      } else {
+        if (!o.script.empty()) throw UsageError("more than one script given ('" + o.script + "' and '" + a + "')");
+        o.script = a;
+      }
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
+  if (o.script.empty()) throw UsageError("no script given");
+  int modes = o.stats + o.diff.has_value() + o.dump_ast + o.eval;
+  if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
+  return o;
+}
+
+// --dump-ast: an indented S-expression view of the script.
+const char* binary_name(front::BinaryOp op) {
+  switch (op) {
+    case front::BinaryOp::Add: return "+";
+    case front::BinaryOp::Sub: return "-";
+    case front::BinaryOp::Geo: return "*";
+    case front::BinaryOp::Div: return "/";
+    case front::BinaryOp::Inner: return ".";
+    case front::BinaryOp::Outer: return "^";
+  }
+  return "?";
+}
+
+std::string dump_expr(const front::ExprPtr& e) {
+  if (!e) return "<none>";
+  using K = front::Expr::Kind;
+  switch (e->kind) {
+    case K::Number: return e->text;
+    case K::Name: return e->text;
+    case K::MacroArg: return "_P(" + std::to_string(e->index) + ")";
+    case K::Unary: {
+      const char* op = e->unary_op == front::UnaryOp::Negate ? "neg" : e->unary_op == front::UnaryOp::Reverse ? "~" : "dual";
+      return std::string("(") + op + " " + dump_expr(e->args.at(0)) + ")";
+    }
+    case K::Binary:
+      return std::string("(") + binary_name(e->binary_op) + " " + dump_expr(e->args.at(0)) + " " +
+             dump_expr(e->args.at(1)) + ")";
+    case K::Call: {
+      std::string s = "(call " + e->text;
+      for (const auto& a : e->args) s += " " + dump_expr(a);
+      return s + ")";
+    }
+  }
+  return "?";
+}
+
+void dump_stmt(const front::Stmt& s, std::string& out, const std::string& indent) {
+  std::string where = std::to_string(s.loc.line) + ":" + std::to_string(s.loc.col);
+  switch (s.kind) {
+    case front::Stmt::Kind::Assign: {
+      const char* m = s.marker == front::Marker::Output ? "?" : s.marker == front::Marker::Visual ? ":"
+                      : s.marker == front::Marker::EvalOnly ? "!" : "";
+      out += indent + where + " assign " + m + s.name + " = " + dump_expr(s.value) + "\n";
+      break;
+    }
+    case front::Stmt::Kind::MacroDef:
+      out += indent + where + " macro " + s.name + "\n";
+      for (const auto& b : s.body) dump_stmt(*b, out, indent + "  ");
+      out += indent + "  result " + dump_expr(s.result) + "\n";
+      break;
+    case front::Stmt::Kind::Pragma: {
+      out += indent + where + " pragma";
+      for (const auto& w : s.words) out += " " + w;
+      out += "\n";
+      break;
+    }
+    case front::Stmt::Kind::ExprStmt:
+      out += indent + where + " expr " + dump_expr(s.value) + "\n";
+      break;
+  }
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  if (path.empty() || path == "-") {
+    std::cout << text;
+    std::cout.flush();
+    return;
+  }
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << text;
+  if (!out) throw std::runtime_error("error while writing " + path);
+}
+
+int run(const Options& o) {
+  front::SourceFile file = front::SourceFile::load(o.script);
+  try {
+    front::Script script = front::parse(file);
+    if (o.dump_ast) {
+      std::string out;
+      for (const auto& s : script.statements) dump_stmt(*s, out, "");
+      write_text(o.output, out);
+      return 0;
+    }
+    std::string name = o.name.empty() ? std::filesystem::path(o.script).stem().string() : o.name;
+    Kernel kernel = expand(script, name);
+    emit::EmitOptions eo = o.emit;
+    eo.script_name = std::filesystem::path(o.script).filename().string();
+    if (o.diff) {
+      opt::Program a = opt::optimize(kernel, o.diff->first);
+      opt::Program b = opt::optimize(kernel, o.diff->second);
+      std::string la = "-O" + std::to_string(static_cast<int>(a.level));
+      std::string lb = "-O" + std::to_string(static_cast<int>(b.level));
+      std::string d = opt::unified_diff(emit::emit(a, eo), emit::emit(b, eo), name + " " + la, name + " " + lb);
+      write_text(o.output, (d.empty() ? "(no difference in the code)\n" : d) + opt::stats_delta(a, b));
+      return 0;
+    }
+    opt::Program program = opt::optimize(kernel, o.level);
+    if (o.eval) {
+      try {
+        write_text(o.output, opt::format_eval(opt::evaluate(program, o.eval_inputs)));
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+      return 0;
+    }
+    if (o.stats) {
+      write_text(o.output, opt::format_stats(program));
+      return 0;
+    }
+    std::string code = emit::emit(program, eo);
+    if (!o.stats_out.empty()) write_text(o.stats_out, opt::format_stats(program));
+    write_text(o.output, code);
+    return 0;
+  } catch (const front::CompileError& e) {
+    std::cerr << front::format_diagnostic(file, e.loc(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    Options o = parse_args(argc, argv);
+    return run(o);
+  } catch (const UsageError& e) {
+    std::cerr << "cgagen: " << e.what() << "\n(run cgagen --help for the options)\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "cgagen: error: " << e.what() << "\n";
+    return 1;
+  } catch (...) {
+    std::cerr << "cgagen: error: unknown failure\n";
+    return 1;
+  }
+}

@@ -1,0 +1,730 @@
+// The optimizer levels -O0, -O1, -O2: Kernel -> Program (see program.hpp and docs/generator.md).
+#include <algorithm>
+#include <cmath>
+#include <cctype>
+#include <functional>
+#include <set>
+#include <stdexcept>
+
+#include "opt/program.hpp"
+
+namespace cgagen::opt {
+
+using namespace GiNaC;
+using ExSet = std::set<ex, ex_is_less>;
+using ExMap = std::map<ex, ex, ex_is_less>;
+
+Level parse_level(const std::string& text) {
+  if (text == "-O0" || text == "O0" || text == "0") return Level::O0;
+  if (text == "-O1" || text == "O1" || text == "1") return Level::O1;
+  if (text == "-O2" || text == "O2" || text == "2") return Level::O2;
+  throw std::invalid_argument("unknown optimization level '" + text + "' (expected -O0, -O1 or -O2)");
+}
+
+SymbolNames symbol_names(const Program& program) {
+  SymbolNames names;
+  for (const auto& in : program.inputs)
+    for (const auto& s : in.symbols) names[s] = s.get_name();
+  for (const auto& t : program.temps) names[t.sym] = t.name;
+  return names;
+}
+
+namespace {
+
+bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
+
+bool has_denominator(const ex& e) {
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (is_a<power>(*it) && is_a<numeric>(it->op(1)) && ex_to<numeric>(it->op(1)).is_negative()) return true;
+  return false;
+}
+
+void collect_symbols(const ex& e, ExSet& out) {
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (is_a<symbol>(*it)) out.insert(*it);
+}
+
+// A coefficient as numerator / denominator, both expanded polynomials (in symbols and function calls).
+struct Rat {
+  ex num, den = 1;
+  ex value() const { return den.is_equal(1) ? num : num / den; }
+};
+
+// Whether x (with denominators) is identically zero: cheap numeric probes first, then exact normal().
+bool is_zero_rational(const ex& x) {
+  ExSet syms;
+  collect_symbols(x, syms);
+  for (int probe = 0; probe < 2; ++probe) {
+    exmap at;
+    int i = 0;
+    for (const auto& s : syms) at[s] = numeric(3 + 2 * i++ + probe * 7, 11 + probe);
+    try {
+      ex v = x.subs(at, subs_options::no_pattern).evalf();
+      if (is_a<numeric>(v) && abs(ex_to<numeric>(v)) > numeric(1, 1000000)) return false;
+    } catch (const std::exception&) {
+      // a pole at the probe: decide exactly
+    }
+  }
+  return x.normal().is_zero();
+}
+
+Rat canonical(const ex& e) {
+  ex x = expand(e);
+  if (has_denominator(x) && is_zero_rational(x)) return {0, 1};
+  return {x, 1};
+}
+
+// Brings a small output coefficient with denominators over one common denominator when that makes it
+// shorter (u.u - 1 with u = x/n folds to 0 or to a plain expression).
+Rat combine_fractions(const Rat& r) {
+  if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return r;
+  ex nd = r.num.numer_denom();
+  ex n = expand(nd.op(0)), d = expand(nd.op(1));
+  auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
+  if (n.is_zero()) return {0, 1};
+  if (size(n) + size(d) >= size(r.num)) return r;
+  if (is_a<numeric>(d)) return {expand(n / d), 1};
+  return {n, d};
+}
+
+// An upper estimate of the number of terms of expand(e) when the symbols in `sizes` stand for sums of that
+// many terms (used to keep -O1 from expanding products of large values).
+double estimate_terms(const ex& e, const std::map<ex, double, ex_is_less>& sizes) {
+  if (is_a<symbol>(e)) {
+    auto it = sizes.find(e);
+    return it == sizes.end() ? 1 : it->second;
+  }
+  if (is_a<add>(e)) {
+    double n = 0;
+    for (size_t i = 0; i < e.nops(); ++i) n += estimate_terms(e.op(i), sizes);
+    return n;
+  }
+  if (is_a<mul>(e)) {
+    double n = 1;
+    for (size_t i = 0; i < e.nops(); ++i) n *= estimate_terms(e.op(i), sizes);
+    return n;
+  }
+  if (is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer())
+    return std::pow(estimate_terms(e.op(0), sizes), ex_to<numeric>(e.op(1)).to_double());
+  return 1;
+}
+
+// Above this estimated size a value is not substituted into its users but kept as a temporary.
+constexpr double kMaxInlineTerms = 4000;
+
+// Unique identifier generation, avoiding the inputs' names.
+class Namer {
+ public:
+  explicit Namer(const std::vector<KernelInput>& inputs) {
+    for (const auto& in : inputs) {
+      taken_.insert(in.name);
+      for (const auto& s : in.symbols) taken_.insert(s.get_name());
+    }
+  }
+  std::string fresh(std::string base) {
+    while (taken_.count(base)) base += "_";
+    taken_.insert(base);
+    return base;
+  }
+ private:
+  std::set<std::string> taken_;
+};
+
+std::string sanitize(const std::string& s) {
+  std::string r;
+  for (char c : s) r += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
+  return r;
+}
+
+// Whether the output's blades came from a pragma (then zero blades are kept as literal 0).
+bool pragma_blades(const Kernel& k, const KernelOutput& o) { return o.blades != k.values.at(o.value).blades; }
+
+int blade_pos(const KernelValue& v, algebra::BladeIndex b) {
+  auto it = std::find(v.blades.begin(), v.blades.end(), b);
+  return it == v.blades.end() ? -1 : static_cast<int>(it - v.blades.begin());
+}
+
+Program skeleton(const Kernel& k, Level level) {
+  Program p;
+  p.name = k.name;
+  p.level = level;
+  p.inputs = k.inputs;
+  return p;
+}
+
+// -O0: every value coefficient as a temporary, as written.
+Program optimize_o0(const Kernel& k) {
+  Program p = skeleton(k, Level::O0);
+  Namer namer(k.inputs);
+  std::map<std::string, int> seen;
+  for (const auto& v : k.values) {
+    int n = ++seen[v.name];
+    std::string prefix = n == 1 ? "v_" : "v" + std::to_string(n) + "_";
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      p.temps.push_back({namer.fresh(prefix + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                         v.symbols[i], v.coeffs[i]});
+  }
+  for (const auto& o : k.outputs) {
+    ProgramOutput po{o.name, {}};
+    const auto& v = k.values.at(o.value);
+    for (auto b : o.blades) {
+      int i = blade_pos(v, b);
+      po.slots.push_back({b, i < 0 ? ex(0) : ex(v.symbols[i])});
+    }
+    p.outputs.push_back(std::move(po));
+  }
+  return p;
+}
+
+// Values substituted into each other, only for the coefficients the outputs need. A value coefficient
+// whose expansion would be too large keeps its earlier values as temporaries ("materialized").
+struct Substituted {
+  ExSet needed;                        // value symbols the outputs need (transitively)
+  std::map<ex, Rat, ex_is_less> full;  // value symbol -> coefficient over inputs and materialized values
+  std::vector<ex> materialized;        // value symbols kept as temporaries, in kernel order
+};
+
+Substituted substitute(const Kernel& k) {
+  Substituted s;
+  for (const auto& o : k.outputs)
+    for (const auto& sym : k.values.at(o.value).symbols) s.needed.insert(sym);
+  for (auto v = k.values.rbegin(); v != k.values.rend(); ++v)
+    for (size_t i = 0; i < v->blades.size(); ++i)
+      if (s.needed.count(v->symbols[i])) collect_symbols(v->coeffs[i], s.needed);
+  exmap subst;
+  std::map<ex, double, ex_is_less> sizes;
+  ExSet materialized;
+  for (const auto& v : k.values)
+    for (size_t i = 0; i < v.blades.size(); ++i) {
+      const ex& sym = v.symbols[i];
+      if (!s.needed.count(sym)) continue;
+      Rat r;
+      if (estimate_terms(v.coeffs[i], sizes) <= kMaxInlineTerms) {
+        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+      } else {
+        ExSet used;
+        collect_symbols(v.coeffs[i], used);
+        for (const auto& u : used)
+          if (s.full.count(u) && !materialized.count(u)) {
+            materialized.insert(u);
+            subst.erase(u);
+            sizes.erase(u);
+          }
+        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+      }
+      subst[sym] = r.value();
+      sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
+      s.full[sym] = r;
+    }
+  for (const auto& v : k.values)
+    for (const auto& sym : v.symbols)
+      if (materialized.count(sym)) s.materialized.push_back(sym);
+  return s;
+}
+
+// The materialized values as temporaries (named after the script's values).
+std::vector<Temp> materialized_temps(const Kernel& k, const Substituted& s) {
+  std::vector<Temp> temps;
+  Namer namer(k.inputs);
+  for (const auto& v : k.values)
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      if (std::find_if(s.materialized.begin(), s.materialized.end(),
+                       [&](const ex& m) { return m.is_equal(v.symbols[i]); }) != s.materialized.end())
+        temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])), v.symbols[i],
+                         s.full.at(v.symbols[i]).value()});
+  return temps;
+}
+
+// The output slots at -O1: each needed blade's substituted coefficient; identically-zero blades dropped
+// unless a pragma asked for them.
+struct SlotPlan {
+  std::string output;
+  algebra::BladeIndex blade;
+  Rat value;       // over inputs
+  ex value_sym;    // the value coefficient's symbol, or 0 for a blade the value lacks
+};
+
+std::vector<std::vector<SlotPlan>> plan_slots(const Kernel& k, const Substituted& s) {
+  std::vector<std::vector<SlotPlan>> plans;
+  for (const auto& o : k.outputs) {
+    const auto& v = k.values.at(o.value);
+    bool keep_zeros = pragma_blades(k, o);
+    std::vector<SlotPlan> slots;
+    for (auto b : o.blades) {
+      int i = blade_pos(v, b);
+      SlotPlan sp{o.name, b, {0, 1}, ex(0)};
+      if (i >= 0) {
+        sp.value = combine_fractions(s.full.at(v.symbols[i]));
+        sp.value_sym = v.symbols[i];
+      }
+      if (sp.value.num.is_zero()) {
+        sp.value_sym = 0;
+        if (!keep_zeros) continue;
+      }
+      slots.push_back(sp);
+    }
+    if (slots.empty() && !o.blades.empty()) slots.push_back({o.name, o.blades.front(), {0, 1}, ex(0)});
+    plans.push_back(std::move(slots));
+  }
+  return plans;
+}
+
+Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+  Program p = skeleton(k, Level::O1);
+  p.temps = materialized_temps(k, s);
+  for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
+    ProgramOutput po{k.outputs[oi].name, {}};
+    for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, sp.value.value()});
+    p.outputs.push_back(std::move(po));
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// -O2: common subexpressions.
+
+class Cse {
+ public:
+  Cse(const std::vector<KernelInput>& inputs, const std::vector<Temp>& temps) : namer_(inputs), keys_(names_) {
+    for (const auto& in : inputs)
+      for (const auto& s : in.symbols) names_[s] = s.get_name();
+    for (const auto& t : temps) {
+      names_[t.sym] = namer_.fresh(t.name);
+      in_temps_.push_back(t);
+    }
+  }
+
+  // Runs every pass; roots are the output slot expressions (in order).
+  void run(std::vector<ex>& roots) {
+    pair_products(roots);
+    topo_sort();
+    shared_subtrees(roots);
+    fold_negations(roots);
+    inline_single_use(roots);
+  }
+
+  std::vector<Temp> temps() const { return in_temps_; }
+
+ private:
+  // Orders the temporaries so that each comes after those it uses (stable otherwise).
+  void topo_sort() {
+    std::map<ex, size_t, ex_is_less> index;
+    for (size_t i = 0; i < in_temps_.size(); ++i) index[in_temps_[i].sym] = i;
+    std::vector<int> state(in_temps_.size(), 0);
+    std::vector<Temp> out;
+    std::function<void(size_t)> visit = [&](size_t i) {
+      if (state[i] == 2) return;
+      if (state[i] == 1) throw std::logic_error("cgagen optimizer: cyclic temporaries");
+      state[i] = 1;
+      ExSet syms;
+      collect_symbols(in_temps_[i].value, syms);
+      std::vector<size_t> deps;
+      for (const auto& s : syms)
+        if (auto it = index.find(s); it != index.end()) deps.push_back(it->second);
+      std::sort(deps.begin(), deps.end());
+      for (size_t d : deps) visit(d);
+      state[i] = 2;
+      out.push_back(in_temps_[i]);
+    };
+    for (size_t i = 0; i < in_temps_.size(); ++i) visit(i);
+    in_temps_ = std::move(out);
+  }
+
+  Temp make_temp(const ex& value) {
+    symbol s("t" + std::to_string(counter_++));
+    std::string name = namer_.fresh(s.get_name());
+    names_[s] = name;
+    return Temp{name, s, value};
+  }
+
+  // Factors of a product core, powers with small integer exponents spelled out.
+  static bool core_atoms(const ex& m, std::vector<ex>& atoms) {
+    atoms.clear();
+    for (size_t i = 0; i < m.nops(); ++i) {
+      const ex& f = m.op(i);
+      if (is_a<numeric>(f)) continue;
+      if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_pos_integer() &&
+          ex_to<numeric>(f.op(1)).to_int() <= 8) {
+        for (int k = 0; k < ex_to<numeric>(f.op(1)).to_int(); ++k) atoms.push_back(f.op(0));
+      } else {
+        atoms.push_back(f);
+      }
+    }
+    return atoms.size() >= 2;
+  }
+
+  static ex core_of(const ex& m) {
+    ex c = 1;
+    for (size_t i = 0; i < m.nops(); ++i)
+      if (!is_a<numeric>(m.op(i))) c *= m.op(i);
+    return c;
+  }
+
+  void gather_muls(const ex& e, ExSet& visited, std::vector<ex>& order) {
+    if (is_atomic(e) || !visited.insert(e).second) return;
+    for (const ex& c : ordered_children(e, keys_)) gather_muls(c, visited, order);
+    if (is_a<mul>(e)) {
+      ex core = core_of(e);
+      if (is_a<mul>(core) && !cores_.count(core)) {
+        std::vector<ex> atoms;
+        if (core_atoms(core, atoms)) {
+          cores_[core] = atoms;
+          order.push_back(core);
+        }
+      }
+    }
+  }
+
+  // Greedy extraction of the factor pair shared by most products (repeatedly).
+  void pair_products(std::vector<ex>& roots) {
+    ExSet visited;
+    std::vector<ex> order;
+    for (const auto& t : in_temps_) gather_muls(t.value, visited, order);
+    for (const auto& r : roots) gather_muls(r, visited, order);
+    if (order.empty()) return;
+    std::vector<Temp> pair_temps;
+    std::vector<std::pair<ex, ex>> pair_atoms;
+    for (int iter = 0; iter < 100000; ++iter) {
+      std::map<std::pair<std::string, std::string>, int> count;
+      std::map<std::pair<std::string, std::string>, std::pair<ex, ex>> atoms_of;
+      for (const auto& core : order) {
+        const auto& atoms = cores_[core];
+        std::set<std::pair<std::string, std::string>> here;
+        for (size_t i = 0; i < atoms.size(); ++i)
+          for (size_t j = i + 1; j < atoms.size(); ++j) {
+            std::string a = keys_.magnitude(atoms[i]) + "|" + keys_.key(atoms[i]);
+            std::string b = keys_.magnitude(atoms[j]) + "|" + keys_.key(atoms[j]);
+            bool swap = b < a;
+            auto pk = swap ? std::make_pair(b, a) : std::make_pair(a, b);
+            if (here.insert(pk).second) {
+              ++count[pk];
+              if (!atoms_of.count(pk)) atoms_of[pk] = swap ? std::make_pair(atoms[j], atoms[i]) : std::make_pair(atoms[i], atoms[j]);
+            }
+          }
+      }
+      const std::pair<std::string, std::string>* best = nullptr;
+      int best_count = 1;
+      for (const auto& [pk, c] : count)
+        if (c > best_count) best_count = c, best = &pk;
+      if (!best) break;
+      auto [a, b] = atoms_of[*best];
+      Temp t = make_temp(a * b);
+      pair_temps.push_back(t);
+      pair_atoms.push_back({a, b});
+      for (const auto& core : order) {
+        auto& atoms = cores_[core];
+        while (true) {
+          auto ia = std::find_if(atoms.begin(), atoms.end(), [&](const ex& x) { return x.is_equal(a); });
+          if (ia == atoms.end()) break;
+          auto ib = std::find_if(atoms.begin(), atoms.end(),
+                                 [&](const ex& x) { return &x != &*ia && x.is_equal(b); });
+          if (ib == atoms.end()) break;
+          auto first = std::max(ia, ib), second = std::min(ia, ib);
+          atoms.erase(first);
+          atoms.erase(second);
+          atoms.push_back(t.sym);
+        }
+      }
+    }
+    if (pair_temps.empty()) return;
+    ExMap memo;
+    // A pair's own product may be one of the rewritten cores (then it would refer to itself): build it
+    // from its two atoms.
+    for (size_t i = 0; i < pair_temps.size(); ++i)
+      pair_temps[i].value = rebuild_products(pair_atoms[i].first, memo) * rebuild_products(pair_atoms[i].second, memo);
+    for (auto& t : in_temps_) t.value = rebuild_products(t.value, memo);
+    for (auto& r : roots) r = rebuild_products(r, memo);
+    // Pair temporaries only involve input atoms and earlier pairs; the atoms may reference input temps, so
+    // they go after those.
+    in_temps_.insert(in_temps_.end(), pair_temps.begin(), pair_temps.end());
+  }
+
+  ex rebuild_products(const ex& e, ExMap& memo) {
+    if (is_atomic(e)) return e;
+    auto it = memo.find(e);
+    if (it != memo.end()) return it->second;
+    ex r;
+    if (is_a<mul>(e)) {
+      ex core = core_of(e);
+      auto c = cores_.find(core);
+      numeric coeff = 1;
+      for (size_t i = 0; i < e.nops(); ++i)
+        if (is_a<numeric>(e.op(i))) coeff *= ex_to<numeric>(e.op(i));
+      if (c != cores_.end()) {
+        ex prod = 1;
+        for (const auto& a : c->second) prod *= rebuild_products(a, memo);
+        r = coeff * prod;
+      } else {
+        r = rebuild_children(e, memo);
+      }
+    } else {
+      r = rebuild_children(e, memo);
+    }
+    memo[e] = r;
+    return r;
+  }
+
+  ex rebuild_children(const ex& e, ExMap& memo) {
+    struct F : map_function {
+      Cse* self;
+      ExMap* memo;
+      ex operator()(const ex& x) override { return self->rebuild_products(x, *memo); }
+    } f;
+    f.self = this;
+    f.memo = &memo;
+    return e.map(f);
+  }
+
+  // Hash-consed subtrees used at least twice become temporaries.
+  static ex node_of(const ex& e) {
+    if (is_a<mul>(e)) {
+      for (size_t i = 0; i < e.nops(); ++i)
+        if (is_a<numeric>(e.op(i))) return core_of(e);
+    }
+    return e;
+  }
+
+  void count_uses(const ex& e, std::map<ex, int, ex_is_less>& uses) {
+    if (is_atomic(e)) return;
+    ex n = node_of(e);
+    if (is_atomic(n)) return;
+    if (++uses[n] > 1) return;
+    for (const ex& c : ordered_children(n, keys_)) {
+      count_uses(c, uses);
+      // An integer power prints its base several times.
+      if (is_a<power>(n) && !is_atomic(c) && is_a<numeric>(n.op(1)) && ex_to<numeric>(n.op(1)).is_integer() &&
+          abs(ex_to<numeric>(n.op(1))) >= 2 && c.is_equal(n.op(0)))
+        count_uses(c, uses);
+    }
+  }
+
+  ex share(const ex& e, const std::map<ex, int, ex_is_less>& uses, ExMap& memo, std::vector<Temp>& out) {
+    if (is_atomic(e)) return e;
+    auto it = memo.find(e);
+    if (it != memo.end()) return it->second;
+    ex n = node_of(e);
+    ex r;
+    if (!n.is_equal(e)) {
+      r = (e / n) * share(n, uses, memo, out);  // e / n is the numeric coefficient
+    } else {
+      for (const ex& c : ordered_children(e, keys_)) share(c, uses, memo, out);
+      struct F : map_function {
+        Cse* self;
+        const std::map<ex, int, ex_is_less>* uses;
+        ExMap* memo;
+        std::vector<Temp>* out;
+        ex operator()(const ex& x) override { return self->share(x, *uses, *memo, *out); }
+      } f;
+      f.self = this, f.uses = &uses, f.memo = &memo, f.out = &out;
+      r = e.map(f);
+      auto u = uses.find(e);
+      if (u != uses.end() && u->second >= 2 && count_ops(r, keys_).total() > 0) {
+        Temp t = make_temp(r);
+        out.push_back(t);
+        r = t.sym;
+      }
+    }
+    memo[e] = r;
+    return r;
+  }
+
+  void shared_subtrees(std::vector<ex>& roots) {
+    std::map<ex, int, ex_is_less> uses;
+    for (const auto& t : in_temps_) count_uses(t.value, uses);
+    for (const auto& r : roots) count_uses(r, uses);
+    ExMap memo;
+    std::vector<Temp> out;
+    for (auto t : in_temps_) {
+      t.value = share(t.value, uses, memo, out);
+      out.push_back(t);
+    }
+    for (auto& r : roots) r = share(r, uses, memo, out);
+    in_temps_ = std::move(out);
+  }
+
+  // A temporary whose value prints with a leading minus is stored negated; its users subtract instead.
+  void fold_negations(std::vector<ex>& roots) {
+    exmap flip;
+    for (auto& t : in_temps_) {
+      if (!flip.empty()) t.value = t.value.subs(flip, subs_options::no_pattern);
+      if (is_negative_term(t.value, keys_)) {
+        t.value = -t.value;
+        flip[t.sym] = -t.sym;
+      }
+    }
+    if (!flip.empty())
+      for (auto& r : roots) r = r.subs(flip, subs_options::no_pattern);
+  }
+
+  // Temporaries used once are put back into their user; unused ones are dropped.
+  void inline_single_use(std::vector<ex>& roots) {
+    for (size_t i = in_temps_.size(); i-- > 0;) {
+      const Temp t = in_temps_[i];
+      int uses = 0;
+      auto count_in = [&](const ex& e) {
+        for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+          if (is_a<symbol>(*it) && it->is_equal(t.sym)) ++uses;
+      };
+      for (size_t j = i + 1; j < in_temps_.size(); ++j) count_in(in_temps_[j].value);
+      for (const auto& r : roots) count_in(r);
+      if (uses >= 2) continue;
+      if (uses == 1) {
+        exmap m{{t.sym, t.value}};
+        for (size_t j = i + 1; j < in_temps_.size(); ++j)
+          if (in_temps_[j].value.has(t.sym)) {
+            ex v = in_temps_[j].value.subs(m, subs_options::no_pattern);
+            // GiNaC may re-simplify on substitution; keep the temporary when that would cost more.
+            if (count_ops(v, keys_).weighted() >
+                count_ops(in_temps_[j].value, keys_).weighted() + count_ops(t.value, keys_).weighted())
+              goto keep;
+            in_temps_[j].value = v;
+          }
+        for (auto& r : roots)
+          if (r.has(t.sym)) r = r.subs(m, subs_options::no_pattern);
+      }
+      in_temps_.erase(in_temps_.begin() + static_cast<long>(i));
+    keep:;
+    }
+  }
+
+  Namer namer_;
+  SymbolNames names_;
+  CanonicalKeys keys_;
+  std::vector<Temp> in_temps_;
+  std::map<ex, std::vector<ex>, ex_is_less> cores_;
+  int counter_ = 0;
+};
+
+Program finish_o2(const Kernel& k, std::vector<Temp> in_temps, std::vector<ex> roots,
+                  const std::vector<std::vector<SlotPlan>>& plans) {
+  Cse cse(k.inputs, in_temps);
+  cse.run(roots);
+  Program p = skeleton(k, Level::O2);
+  p.temps = cse.temps();
+  size_t ri = 0;
+  for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
+    ProgramOutput po{k.outputs[oi].name, {}};
+    for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, roots.at(ri++)});
+    p.outputs.push_back(std::move(po));
+  }
+  // Number the temporaries in evaluation order.
+  Namer namer(k.inputs);
+  for (size_t i = 0; i < p.temps.size(); ++i) p.temps[i].name = namer.fresh("t" + std::to_string(i));
+  return p;
+}
+
+long program_cost(const Program& p) { return program_stats(p).total.weighted(); }
+
+Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+  std::vector<Program> variants;
+  auto roots_with = [&](auto&& f) {
+    std::vector<ex> roots;
+    for (const auto& slots : plans)
+      for (const auto& sp : slots) roots.push_back(f(sp));
+    return roots;
+  };
+  // 1. The expanded -O1 forms.
+  const std::vector<Temp> kept = materialized_temps(k, s);
+  variants.push_back(finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
+  // 2. Collected in the scalar inputs, then in each multivector input's coefficients.
+  std::vector<lst> groups;
+  lst scalars;
+  for (const auto& in : k.inputs)
+    if (!in.is_multivector) scalars.append(in.symbols.at(0));
+  if (scalars.nops() > 0) groups.push_back(scalars);
+  for (const auto& in : k.inputs)
+    if (in.is_multivector) {
+      lst g;
+      for (const auto& sym : in.symbols) g.append(sym);
+      groups.push_back(g);
+    }
+  for (const auto& g : groups) {
+    std::vector<ex> roots;
+    try {
+      roots = roots_with([&](const SlotPlan& sp) {
+        ex n = collect(sp.value.num, g);
+        return sp.value.den.is_equal(1) ? n : n / collect(sp.value.den, g);
+      });
+    } catch (const std::exception&) {
+      continue;  // GiNaC cannot collect in a symbol under a non-integer power (sqrt(x)); skip this form
+    }
+    variants.push_back(finish_o2(k, kept, roots, plans));
+  }
+  // 3. The script's own statements (each value expanded over earlier values), which keeps products like
+  //    (M X) ~M factored.
+  {
+    std::vector<Temp> temps;
+    Namer namer(k.inputs);
+    for (const auto& v : k.values)
+      for (size_t i = 0; i < v.blades.size(); ++i)
+        if (s.needed.count(v.symbols[i]))
+          temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                           v.symbols[i], canonical(v.coeffs[i]).value()});
+    variants.push_back(finish_o2(k, temps, roots_with([](const SlotPlan& sp) { return sp.value_sym; }), plans));
+  }
+  size_t best = 0;
+  long best_cost = program_cost(variants[0]);
+  for (size_t i = 1; i < variants.size(); ++i) {
+    long c = program_cost(variants[i]);
+    if (c < best_cost) best = i, best_cost = c;
+  }
+  return variants[best];
+}
+
+}  // namespace
+
+Program optimize(const Kernel& kernel, Level level) {
+  if (level == Level::O0) return optimize_o0(kernel);
+  Substituted s = substitute(kernel);
+  auto plans = plan_slots(kernel, s);
+  if (level == Level::O1) return optimize_o1(kernel, s, plans);
+  return optimize_o2(kernel, s, plans);
+}
+
+ProgramStats program_stats(const Program& p) {
+  SymbolNames names = symbol_names(p);
+  CanonicalKeys keys(names);
+  ProgramStats st;
+  st.temp_count = p.temps.size();
+  std::map<ex, size_t, ex_is_less> index;
+  std::vector<OpCounts> temp_ops;
+  std::vector<ExSet> deps;  // each temp's transitive temp dependencies
+  for (size_t i = 0; i < p.temps.size(); ++i) {
+    index[p.temps[i].sym] = i;
+    temp_ops.push_back(count_ops(p.temps[i].value, keys));
+    st.temps += temp_ops.back();
+  }
+  auto temp_deps = [&](const ex& e) {
+    std::set<size_t> out, todo;
+    ExSet syms;
+    collect_symbols(e, syms);
+    for (const auto& s : syms)
+      if (index.count(s)) todo.insert(index[s]);
+    while (!todo.empty()) {
+      size_t i = *todo.begin();
+      todo.erase(todo.begin());
+      if (!out.insert(i).second) continue;
+      ExSet s2;
+      collect_symbols(p.temps[i].value, s2);
+      for (const auto& s : s2)
+        if (index.count(s) && !out.count(index[s])) todo.insert(index[s]);
+    }
+    return out;
+  };
+  st.total = st.temps;
+  for (const auto& o : p.outputs) {
+    OpCounts own;
+    std::set<size_t> used;
+    for (const auto& slot : o.slots) {
+      own += count_ops(slot.value, keys);
+      auto d = temp_deps(slot.value);
+      used.insert(d.begin(), d.end());
+    }
+    st.total += own;
+    for (size_t i : used) own += temp_ops[i];
+    st.outputs.push_back({o.name, own});
+  }
+  return st;
+}
+
+}  // namespace cgagen::opt

@@ -1,0 +1,221 @@
+// --stats text, double-precision evaluation, line diffs (see report.hpp).
+#include "opt/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace cgagen::opt {
+
+using namespace GiNaC;
+
+std::string format_counts(const OpCounts& c) {
+  return std::to_string(c.add) + " add, " + std::to_string(c.mul) + " mul, " + std::to_string(c.div) + " div, " +
+         std::to_string(c.call) + " call";
+}
+
+std::string format_stats(const Program& p) {
+  ProgramStats st = program_stats(p);
+  std::string s = "kernel " + p.name + " at -O" + std::to_string(static_cast<int>(p.level)) + "\n";
+  for (const auto& o : st.outputs) s += "output " + o.name + ": " + format_counts(o.ops) + "\n";
+  s += "temporaries (" + std::to_string(st.temp_count) + "): " + format_counts(st.temps) + "\n";
+  s += "total: " + format_counts(st.total) + "\n";
+  return s;
+}
+
+namespace {
+
+class Evaluator {
+ public:
+  explicit Evaluator(std::map<ex, double, ex_is_less> env) : env_(std::move(env)) {}
+  void bind(const ex& sym, double v) { env_[sym] = v; }
+
+  double eval(const ex& e) {
+    if (is_a<numeric>(e)) {
+      const numeric& n = ex_to<numeric>(e);
+      if (!n.is_real()) throw std::runtime_error("complex constant in a kernel expression");
+      return n.to_double();
+    }
+    if (is_a<symbol>(e)) {
+      auto it = env_.find(e);
+      if (it == env_.end()) throw std::logic_error("evaluate: unbound symbol " + ex_to<symbol>(e).get_name());
+      return it->second;
+    }
+    if (is_a<constant>(e)) return ex_to<numeric>(e.evalf()).to_double();
+    if (is_a<add>(e)) {
+      double s = 0;
+      for (size_t i = 0; i < e.nops(); ++i) s += eval(e.op(i));
+      return s;
+    }
+    if (is_a<mul>(e)) {
+      double num = 1, den = 1;
+      for (size_t i = 0; i < e.nops(); ++i) {
+        const ex& f = e.op(i);
+        if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative())
+          den *= eval(pow(f.op(0), -f.op(1)));
+        else
+          num *= eval(f);
+      }
+      return num / den;
+    }
+    if (is_a<power>(e)) {
+      double b = eval(e.op(0));
+      if (is_a<numeric>(e.op(1))) {
+        const numeric& n = ex_to<numeric>(e.op(1));
+        if (n.is_integer()) {
+          int k = n.to_int();
+          double r = 1;
+          for (int i = 0; i < std::abs(k); ++i) r *= b;
+          return k < 0 ? 1 / r : r;
+        }
+        if (n == numeric(1, 2)) return std::sqrt(b);
+        if (n == numeric(-1, 2)) return 1 / std::sqrt(b);
+      }
+      return std::pow(b, eval(e.op(1)));
+    }
+    if (is_a<function>(e)) {
+      std::string f = ex_to<function>(e).get_name();
+      std::vector<double> a;
+      for (size_t i = 0; i < e.nops(); ++i) a.push_back(eval(e.op(i)));
+      if (f == "sin") return std::sin(a.at(0));
+      if (f == "cos") return std::cos(a.at(0));
+      if (f == "tan") return std::tan(a.at(0));
+      if (f == "asin") return std::asin(a.at(0));
+      if (f == "acos") return std::acos(a.at(0));
+      if (f == "atan") return std::atan(a.at(0));
+      if (f == "atan2") return std::atan2(a.at(0), a.at(1));
+      if (f == "exp") return std::exp(a.at(0));
+      if (f == "log") return std::log(a.at(0));
+      if (f == "abs") return std::abs(a.at(0));
+      if (f == "sinh") return std::sinh(a.at(0));
+      if (f == "cosh") return std::cosh(a.at(0));
+      if (f == "tanh") return std::tanh(a.at(0));
+      throw std::runtime_error("evaluate: unsupported function " + f);
+    }
+    throw std::runtime_error("evaluate: unsupported expression");
+  }
+
+ private:
+  std::map<ex, double, ex_is_less> env_;
+};
+
+}  // namespace
+
+std::vector<EvalLine> evaluate(const Program& p, const InputValues& inputs) {
+  Evaluator ev({});
+  for (const auto& [name, vals] : inputs) {
+    bool known = false;
+    for (const auto& in : p.inputs) known |= in.name == name;
+    if (!known) throw std::invalid_argument("--eval: '" + name + "' is not an input of " + p.name);
+  }
+  for (const auto& in : p.inputs) {
+    auto it = inputs.find(in.name);
+    if (it == inputs.end()) throw std::invalid_argument("--eval: no value for input '" + in.name + "'");
+    if (it->second.size() != in.symbols.size())
+      throw std::invalid_argument("--eval: input '" + in.name + "' needs " + std::to_string(in.symbols.size()) +
+                                  " value(s), got " + std::to_string(it->second.size()));
+    for (size_t k = 0; k < in.symbols.size(); ++k) ev.bind(in.symbols[k], it->second[k]);
+  }
+  for (const auto& t : p.temps) ev.bind(t.sym, ev.eval(t.value));
+  std::vector<EvalLine> out;
+  for (const auto& o : p.outputs)
+    for (const auto& s : o.slots) out.push_back({o.name, s.blade, ev.eval(s.value)});
+  return out;
+}
+
+std::string format_eval(const std::vector<EvalLine>& lines) {
+  std::string s;
+  char buf[64];
+  for (const auto& l : lines) {
+    std::snprintf(buf, sizeof buf, "%.17g", l.value);
+    s += l.output + " " + algebra::blade_name(l.blade) + " " + buf + "\n";
+  }
+  return s;
+}
+
+namespace {
+
+std::vector<std::string> split_lines(const std::string& s) {
+  std::vector<std::string> lines;
+  std::istringstream in(s);
+  std::string l;
+  while (std::getline(in, l)) lines.push_back(l);
+  return lines;
+}
+
+}  // namespace
+
+std::string unified_diff(const std::string& a, const std::string& b, const std::string& name_a,
+                         const std::string& name_b) {
+  if (a == b) return "";
+  auto A = split_lines(a), B = split_lines(b);
+  const size_t n = A.size(), m = B.size();
+  // LCS table from the end: lcs[i][j] = LCS length of A[i..], B[j..].
+  std::vector<std::vector<int>> lcs(n + 1, std::vector<int>(m + 1, 0));
+  for (size_t i = n; i-- > 0;)
+    for (size_t j = m; j-- > 0;)
+      lcs[i][j] = A[i] == B[j] ? lcs[i + 1][j + 1] + 1 : std::max(lcs[i + 1][j], lcs[i][j + 1]);
+  struct Op {
+    char kind;  // ' ', '-', '+'
+    size_t ia, ib;
+  };
+  std::vector<Op> ops;
+  size_t i = 0, j = 0;
+  while (i < n || j < m) {
+    if (i < n && j < m && A[i] == B[j]) ops.push_back({' ', i++, j++});
+    else if (j < m && (i == n || lcs[i][j + 1] >= lcs[i + 1][j])) ops.push_back({'+', i, j++});
+    else ops.push_back({'-', i++, j});
+  }
+  std::string out = "--- " + name_a + "\n+++ " + name_b + "\n";
+  const size_t ctx = 3;
+  size_t k = 0;
+  while (k < ops.size()) {
+    if (ops[k].kind == ' ') {
+      ++k;
+      continue;
+    }
+    size_t start = k >= ctx ? k - ctx : 0;
+    size_t end = k;
+    // Extend the hunk while changes are within 2*ctx of each other.
+    size_t last_change = k;
+    for (size_t q = k; q < ops.size(); ++q) {
+      if (ops[q].kind != ' ') last_change = q;
+      else if (q - last_change > 2 * ctx) break;
+      end = q;
+    }
+    end = std::min(ops.size() - 1, last_change + ctx);
+    size_t a0 = ops[start].ia, b0 = ops[start].ib, na = 0, nb = 0;
+    for (size_t q = start; q <= end; ++q) {
+      if (ops[q].kind != '+') ++na;
+      if (ops[q].kind != '-') ++nb;
+    }
+    out += "@@ -" + std::to_string(a0 + 1) + "," + std::to_string(na) + " +" + std::to_string(b0 + 1) + "," +
+           std::to_string(nb) + " @@\n";
+    for (size_t q = start; q <= end; ++q)
+      out += std::string(1, ops[q].kind) + (ops[q].kind == '+' ? B[ops[q].ib] : A[ops[q].ia]) + "\n";
+    k = end + 1;
+  }
+  return out;
+}
+
+std::string stats_delta(const Program& a, const Program& b) {
+  ProgramStats sa = program_stats(a), sb = program_stats(b);
+  auto delta = [](const OpCounts& x, const OpCounts& y) {
+    auto d = [](long u, long v) {
+      long dd = v - u;
+      return std::to_string(u) + " -> " + std::to_string(v) + " (" + (dd > 0 ? "+" : "") + std::to_string(dd) + ")";
+    };
+    return "add " + d(x.add, y.add) + ", mul " + d(x.mul, y.mul) + ", div " + d(x.div, y.div) + ", call " +
+           d(x.call, y.call);
+  };
+  std::string la = "-O" + std::to_string(static_cast<int>(a.level)), lb = "-O" + std::to_string(static_cast<int>(b.level));
+  std::string s = "op counts " + la + " -> " + lb + ":\n";
+  for (size_t i = 0; i < sa.outputs.size() && i < sb.outputs.size(); ++i)
+    s += "  output " + sa.outputs[i].name + ": " + delta(sa.outputs[i].ops, sb.outputs[i].ops) + "\n";
+  s += "  temporaries: " + std::to_string(sa.temp_count) + " -> " + std::to_string(sb.temp_count) + "\n";
+  s += "  total: " + delta(sa.total, sb.total) + "\n";
+  return s;
+}
+
+}  // namespace cgagen::opt

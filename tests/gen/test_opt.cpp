@@ -1,0 +1,141 @@
+// Optimizer tests: every level computes the same values, op counts decrease with the level, the op counter
+// follows the printing rules, and emission is deterministic.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "../kernels/hand_kernels.hpp"
+#include "emit/emit.hpp"
+#include "opt/program.hpp"
+#include "opt/report.hpp"
+
+using namespace cgagen;
+using opt::Level;
+
+namespace {
+
+opt::InputValues random_inputs(const Kernel& k, std::mt19937& rng) {
+  std::uniform_real_distribution<double> d(-2.0, 2.0);
+  opt::InputValues v;
+  for (const auto& in : k.inputs)
+    for (size_t i = 0; i < in.symbols.size(); ++i) v[in.name].push_back(d(rng));
+  return v;
+}
+
+std::map<std::string, double> values(const opt::Program& p, const opt::InputValues& in) {
+  std::map<std::string, double> m;
+  for (const auto& l : opt::evaluate(p, in)) m[l.output + " " + algebra::blade_name(l.blade)] = l.value;
+  return m;
+}
+
+GiNaC::symbol sym(const std::string& n) { return GiNaC::symbol(n); }
+
+}  // namespace
+
+TEST_CASE("all levels compute the same values", "[opt]") {
+  for (auto make : {cga_test::transform_point_kernel, cga_test::normalize_kernel}) {
+    Kernel k = make();
+    auto p0 = opt::optimize(k, Level::O0), p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 50; ++trial) {
+      auto in = random_inputs(k, rng);
+      auto v0 = values(p0, in), v1 = values(p1, in), v2 = values(p2, in);
+      for (const auto& [key, val] : v1) {
+        INFO(k.name << " " << key);
+        REQUIRE(v0.count(key));
+        REQUIRE(v2.count(key));
+        CHECK(v0[key] == Approx(val).margin(1e-9).epsilon(1e-10));
+        CHECK(v2[key] == Approx(val).margin(1e-9).epsilon(1e-10));
+      }
+    }
+  }
+}
+
+TEST_CASE("-O2 costs no more than -O1 and -O0", "[opt]") {
+  for (auto make : {cga_test::transform_point_kernel, cga_test::normalize_kernel}) {
+    Kernel k = make();
+    auto s0 = opt::program_stats(opt::optimize(k, Level::O0)).total;
+    auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
+    auto s2 = opt::program_stats(opt::optimize(k, Level::O2)).total;
+    INFO(k.name << ": O0 " << opt::format_counts(s0) << " | O1 " << opt::format_counts(s1) << " | O2 "
+                << opt::format_counts(s2));
+    CHECK(s2.weighted() <= s1.weighted());
+    CHECK(s2.weighted() <= s0.weighted());
+  }
+}
+
+TEST_CASE("-O2 shares the point transform's products", "[opt]") {
+  // The fully expanded sandwich needs well over 100 multiplications (facts file: 184); sharing must cut it.
+  auto k = cga_test::transform_point_kernel();
+  auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
+  auto s2 = opt::program_stats(opt::optimize(k, Level::O2)).total;
+  CHECK(s1.mul > 150);
+  CHECK(s2.mul < s1.mul * 2 / 3);
+}
+
+TEST_CASE("-O1 drops dead values and zero blades, keeps pragma'd blades as 0", "[opt]") {
+  auto k = cga_test::normalize_kernel();
+  auto p0 = opt::optimize(k, Level::O0);
+  auto p1 = opt::optimize(k, Level::O1);
+  CHECK(p0.temps.size() == 5);  // n, u (2 blades), dead, s: kept at -O0
+  CHECK(p1.temps.empty());
+  REQUIRE(p1.outputs.size() == 2);
+  CHECK(p1.outputs[0].slots.size() == 2);
+  REQUIRE(p1.outputs[1].slots.size() == 2);  // pragma: 1, e1
+  CHECK(p1.outputs[1].slots[1].value.is_zero());
+  // u.u - 1 folds away exactly: s = atan2(y, x).
+  GiNaC::ex s = p1.outputs[1].slots[0].value;
+  CHECK(GiNaC::is_a<GiNaC::function>(s));
+  // The dead sin(x) is gone from every level above 0.
+  // -O1 computes the sqrt once per use, -O2 once.
+  CHECK(opt::program_stats(p1).total.call == 3);
+  CHECK(opt::program_stats(opt::optimize(k, Level::O2)).total.call == 2);
+}
+
+TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
+  auto k = cga_test::normalize_kernel();
+  auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
+  auto s2 = opt::program_stats(opt::optimize(k, Level::O2)).total;
+  CHECK(s1.div == 2);  // x/n and y/n
+  CHECK(s2.div == 1);
+}
+
+TEST_CASE("op counter follows the printing rules", "[opt]") {
+  auto x = sym("x"), y = sym("y"), z = sym("z"), w = sym("w");
+  opt::SymbolNames names{{x, "x"}, {y, "y"}, {z, "z"}, {w, "w"}};
+  opt::CanonicalKeys keys(names);
+  using GiNaC::ex;
+  auto c = [&](const ex& e) { return opt::count_ops(e, keys); };
+  CHECK(c(x * y + 2 * z - w / x) == opt::OpCounts{2, 2, 1, 0});
+  CHECK(c(GiNaC::pow(x, 3)) == opt::OpCounts{0, 2, 0, 0});
+  CHECK(c(-x) == opt::OpCounts{0, 0, 0, 0});
+  CHECK(c(GiNaC::sqrt(x * x + y * y)) == opt::OpCounts{1, 2, 0, 1});
+  CHECK(c(x / (y * z)) == opt::OpCounts{0, 1, 1, 0});
+  CHECK(c(GiNaC::sin(x) + GiNaC::numeric(1, 2) * y) == opt::OpCounts{1, 1, 0, 1});
+}
+
+TEST_CASE("optimizing and emitting twice gives byte-identical text", "[opt]") {
+  for (auto target : {emit::Target::Cpp, emit::Target::Glsl}) {
+    emit::EmitOptions eo;
+    eo.target = target;
+    eo.script_name = "hand";
+    // Separate kernels (fresh symbols, different GiNaC serials) must still print the same.
+    std::string a = emit::emit(opt::optimize(cga_test::transform_point_kernel(), Level::O2), eo);
+    std::string b = emit::emit(opt::optimize(cga_test::transform_point_kernel(), Level::O2), eo);
+    CHECK(a == b);
+    std::string c = emit::emit(opt::optimize(cga_test::normalize_kernel(), Level::O2), eo);
+    std::string d = emit::emit(opt::optimize(cga_test::normalize_kernel(), Level::O2), eo);
+    CHECK(c == d);
+  }
+}
+
+TEST_CASE("--diff text names the levels and the op change", "[opt]") {
+  auto k = cga_test::normalize_kernel();
+  auto p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
+  emit::EmitOptions eo;
+  std::string d = opt::unified_diff(emit::emit(p1, eo), emit::emit(p2, eo), "a -O1", "b -O2");
+  CHECK(d.rfind("--- a -O1\n+++ b -O2\n@@ ", 0) == 0);
+  std::string delta = opt::stats_delta(p1, p2);
+  CHECK(delta.find("div 2 -> 1 (-1)") != std::string::npos);
+  CHECK(opt::unified_diff("a\nb\n", "a\nb\n", "x", "y").empty());
+}
