@@ -1,0 +1,113 @@
+// The cgagen command line: exit codes and messages, determinism across processes, --stats/--diff/--eval.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  std::string cmd = std::string(CGAGEN_EXE) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) throw std::runtime_error("popen failed");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string script(const std::string& name) { return std::string(CGA_SOURCE_DIR) + "/runtime/scripts/" + name; }
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  std::string path = std::string(CGA_BINARY_DIR) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("usage errors exit 2 with a message", "[cli]") {
+  auto r = run("");
+  CHECK(r.code == 2);
+  CHECK(r.out.find("no script given") != std::string::npos);
+  r = run("--frobnicate " + script("motor_mul.clu"));
+  CHECK(r.code == 2);
+  CHECK(r.out.find("unknown option '--frobnicate'") != std::string::npos);
+  r = run("--target fortran " + script("motor_mul.clu"));
+  CHECK(r.code == 2);
+  CHECK(r.out.find("unknown target 'fortran'") != std::string::npos);
+  r = run("-O7 " + script("motor_mul.clu"));
+  CHECK(r.code == 2);
+  r = run("--eval A=1,2 " + script("motor_reverse.clu"));
+  CHECK(r.code == 2);
+  CHECK(r.out.find("needs 12 value(s), got 2") != std::string::npos);
+}
+
+TEST_CASE("--help exits 0 and lists the options", "[cli]") {
+  auto r = run("--help");
+  CHECK(r.code == 0);
+  for (const char* opt : {"--target", "-O2", "--pack", "--return", "--stats", "--diff", "--eval", "--dump-ast"})
+    CHECK(r.out.find(opt) != std::string::npos);
+}
+
+TEST_CASE("script errors exit 1 with file:line:col and a caret", "[cli]") {
+  std::string path = write_temp("cli_bad.clu", "a = 1;\n?b = (a + ;\n");
+  auto r = run(path);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("cli_bad.clu:2:") != std::string::npos);
+  CHECK(r.out.find("error:") != std::string::npos);
+  CHECK(r.out.find("^") != std::string::npos);
+  r = run(std::string(CGA_BINARY_DIR) + "/no_such_script.clu");
+  CHECK(r.code == 1);
+  CHECK(r.out.find("cgagen: error: cannot read") != std::string::npos);
+}
+
+TEST_CASE("bad --pack and --return are reported, not crashed on", "[cli]") {
+  auto r = run("--target glsl --pack M=mat3x4 --pack P=vec3 " + script("transform_point.clu"));
+  CHECK(r.code == 1);
+  CHECK(r.out.find("cannot pack 'P' (4 blades) as vec3") != std::string::npos);
+  r = run("--target glsl --return Q " + script("transform_point.clu"));
+  CHECK(r.code == 1);
+  CHECK(r.out.find("not an output") != std::string::npos);
+}
+
+TEST_CASE("two processes emit byte-identical code", "[cli]") {
+  for (const char* level : {"-O0", "-O1", "-O2"}) {
+    for (const char* target : {"cpp", "glsl", "cuda"}) {
+      std::string args = std::string("--target ") + target + " " + level + " " + script("motor_to_matrix.clu");
+      auto a = run(args), b = run(args);
+      REQUIRE(a.code == 0);
+      CHECK(a.out == b.out);
+    }
+  }
+}
+
+TEST_CASE("--stats, --diff and --eval print their reports", "[cli]") {
+  auto r = run("--stats " + script("transform_point.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out.rfind("kernel transform_point at -O2\noutput P: ", 0) == 0);
+  CHECK(r.out.find("\ntotal: ") != std::string::npos);
+  r = run("--diff -O1 -O2 " + script("transform_point.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out.find("--- transform_point -O1") != std::string::npos);
+  CHECK(r.out.find("op counts -O1 -> -O2:") != std::string::npos);
+  // M = 1 (identity motor): the point comes back unchanged with weight 1.
+  r = run("--eval M=1,0,0,0,0,0,0,0,0,0,0,0 x=0.5 y=-2 z=3 " + script("transform_point.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out == "P e1 0.5\nP e2 -2\nP e3 3\nP e0 1\n");
+}
+
+TEST_CASE("--dump-ast prints the statements", "[cli]") {
+  auto r = run("--dump-ast " + script("motor_mul.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out.find("assign ?C = (* A B)") != std::string::npos);
+}
