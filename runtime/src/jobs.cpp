@@ -72,6 +72,9 @@ bool SamplingJob::Validate() const {
   if (!clip) return false;
   const std::size_t n = clip->keys.size();
   if (!mode_outputs_fit(mode, n, out_motors, out_transforms, out_dual_quats, out_scales)) return false;
+  // A joint without keys (a clip never passed through build_joint_keys) has nothing to sample.
+  for (const JointKeys& k : clip->keys)
+    if (k.size() == 0 || k.transforms.size() != k.size() || k.dual_quats.size() != k.size()) return false;
   if (uses_motors(mode))
     for (const JointKeys& k : clip->keys)
       if (k.motors.size() != k.size() || k.rigid.size() != k.size()) return false;  // built without kernels

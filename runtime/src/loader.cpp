@@ -218,6 +218,7 @@ Character load_character(const std::string& path, const LoadOptions& options) {
           for (int i = 0; i < 3; ++i) mesh.indices.push_back(am->mFaces[f].mIndices[i]);
 
       std::vector<std::vector<std::pair<float, std::uint16_t>>> influences(nv);
+      int bad_weights = 0, bad_vertex_ids = 0;
       for (unsigned b = 0; b < am->mNumBones; ++b) {
         const aiBone* bone = am->mBones[b];
         mesh.joint_remap.push_back(ch.skeleton.find(bone->mName.C_Str()));
@@ -230,7 +231,13 @@ Character load_character(const std::string& path, const LoadOptions& options) {
                                               mesh.name, bone->mName.C_Str()));
         for (unsigned w = 0; w < bone->mNumWeights; ++w) {
           const aiVertexWeight& vw = bone->mWeights[w];
-          if (vw.mVertexId < nv && vw.mWeight > 0.0f) influences[vw.mVertexId].push_back({vw.mWeight, std::uint16_t(b)});
+          if (vw.mVertexId >= nv) {
+            ++bad_vertex_ids;
+          } else if (vw.mWeight > 0.0f && std::isfinite(vw.mWeight)) {
+            influences[vw.mVertexId].push_back({vw.mWeight, std::uint16_t(b)});
+          } else if (vw.mWeight != 0.0f) {
+            ++bad_weights;  // negative, NaN or infinite: dropped, the vertex's other weights renormalized
+          }
         }
       }
       mesh.joints.assign(nv, {0, 0, 0, 0});
@@ -252,6 +259,12 @@ Character load_character(const std::string& path, const LoadOptions& options) {
           mesh.weights[v][k] = inf[k].first / sum;
         }
       }
+      if (bad_weights)
+        warn.add("influences", fmt::format("mesh '{}': dropped {} negative or not finite bone weights; renormalized "
+                                           "the vertices' other weights", mesh.name, bad_weights));
+      if (bad_vertex_ids)
+        warn.add("influences", fmt::format("mesh '{}': dropped {} bone weights of vertices that do not exist",
+                                           mesh.name, bad_vertex_ids));
       if (over4)
         warn.add("influences", fmt::format("mesh '{}': {} vertices had more than 4 influences; kept the 4 "
                                            "largest and renormalized", mesh.name, over4));

@@ -154,7 +154,16 @@ std::string data_error(const SkinningJob& job) {
                            job.joints[i][k], to_string(job.method), palette);
       if (!std::isfinite(job.weights[i][k]))
         return fmt::format("vertex {} influence {}: weight {} is not finite", i, k, job.weights[i][k]);
+      if (job.weights[i][k] < 0.0f)
+        return fmt::format("vertex {} influence {}: weight {} is negative", i, k, job.weights[i][k]);
     }
+  // lbs and cga-points scale a vertex by its weight sum: an unnormalized vertex would be silently misplaced.
+  for (std::size_t i = 0; i < job.vertex_count(); ++i) {
+    const auto& w = job.weights[i];
+    const float sum = w[0] + w[1] + w[2] + w[3];
+    if (!(std::abs(sum - 1.0f) <= kWeightSumTolerance))
+      return fmt::format("vertex {}: weights sum to {}, not 1 (renormalize them)", i, sum);
+  }
   return {};
 }
 

@@ -48,6 +48,9 @@ bool cga_skinning_kernels_available();
 // motors -> 3x4 matrices with the generated kernel), on Run()'s stack (64 KiB), since Run() never allocates.
 inline constexpr std::size_t kMaxConvertedPalette = 1024;
 
+// How far a vertex's weight sum may be from 1 for Validate() (float rounding of four normalized weights).
+inline constexpr float kWeightSumTolerance = 1e-3f;
+
 // Skins vertices [0, vertex count) from rest (mesh space) to posed. Every span is non-owning. The palette of
 // the chosen method must hold an entry for every joint index used; the others may be empty.
 struct SkinningJob {
@@ -71,7 +74,8 @@ struct SkinningJob {
   std::span<float> out_px, out_py, out_pz;
   std::span<float> out_nx, out_ny, out_nz;
 
-  // Checks sizes, the palette against every joint index and that every weight is finite.
+  // Checks sizes, the palette against every joint index and that every weight is finite and >= 0 with each
+  // vertex's weights summing to 1 within kWeightSumTolerance (Run() itself checks only indices and finiteness).
   bool Validate() const { return ValidationError().empty(); }
   // Empty when valid, otherwise why not (the first problem found, with the vertex/joint it concerns).
   std::string ValidationError() const;
