@@ -52,7 +52,7 @@ TEST_CASE("usage errors exit 2 with a message", "[cli]") {
   CHECK(r.out.find("needs 12 value(s), got 2") != std::string::npos);
 }
 
-TEST_CASE("--help exits 0 and lists the options", "[cli]") {
+TEST_CASE("help exits 0 and lists the options", "[cli]") {
   auto r = run("--help");
   CHECK(r.code == 0);
   for (const char* opt : {"--target", "-O2", "--pack", "--return", "--stats", "--diff", "--eval", "--dump-ast"})
@@ -91,7 +91,7 @@ TEST_CASE("two processes emit byte-identical code", "[cli]") {
   }
 }
 
-TEST_CASE("--stats, --diff and --eval print their reports", "[cli]") {
+TEST_CASE("stats, diff and eval print their reports", "[cli]") {
   auto r = run("--stats " + script("transform_point.clu"));
   CHECK(r.code == 0);
   CHECK(r.out.rfind("kernel transform_point at -O2\noutput P: ", 0) == 0);
@@ -106,7 +106,7 @@ TEST_CASE("--stats, --diff and --eval print their reports", "[cli]") {
   CHECK(r.out == "P e1 0.5\nP e2 -2\nP e3 3\nP e0 1\n");
 }
 
-TEST_CASE("--dump-ast prints the statements", "[cli]") {
+TEST_CASE("dump-ast prints the statements", "[cli]") {
   auto r = run("--dump-ast " + script("motor_mul.clu"));
   CHECK(r.code == 0);
   CHECK(r.out.find("assign ?C = (* A B)") != std::string::npos);

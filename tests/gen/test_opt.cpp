@@ -51,7 +51,7 @@ TEST_CASE("all levels compute the same values", "[opt]") {
   }
 }
 
-TEST_CASE("-O2 costs no more than -O1 and -O0", "[opt]") {
+TEST_CASE("O2 costs no more than -O1 and -O0", "[opt]") {
   for (auto make : {cga_test::transform_point_kernel, cga_test::normalize_kernel}) {
     Kernel k = make();
     auto s0 = opt::program_stats(opt::optimize(k, Level::O0)).total;
@@ -64,7 +64,7 @@ TEST_CASE("-O2 costs no more than -O1 and -O0", "[opt]") {
   }
 }
 
-TEST_CASE("-O2 shares the point transform's products", "[opt]") {
+TEST_CASE("O2 shares the point transform's products", "[opt]") {
   // The fully expanded sandwich needs well over 100 multiplications (facts file: 184); sharing must cut it.
   auto k = cga_test::transform_point_kernel();
   auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
@@ -73,7 +73,7 @@ TEST_CASE("-O2 shares the point transform's products", "[opt]") {
   CHECK(s2.mul < s1.mul * 2 / 3);
 }
 
-TEST_CASE("-O1 drops dead values and zero blades, keeps pragma'd blades as 0", "[opt]") {
+TEST_CASE("O1 drops dead values and zero blades, keeps pragma'd blades as 0", "[opt]") {
   auto k = cga_test::normalize_kernel();
   auto p0 = opt::optimize(k, Level::O0);
   auto p1 = opt::optimize(k, Level::O1);
@@ -129,7 +129,7 @@ TEST_CASE("optimizing and emitting twice gives byte-identical text", "[opt]") {
   }
 }
 
-TEST_CASE("--diff text names the levels and the op change", "[opt]") {
+TEST_CASE("diff text names the levels and the op change", "[opt]") {
   auto k = cga_test::normalize_kernel();
   auto p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
   emit::EmitOptions eo;
