@@ -266,7 +266,9 @@ class Expander {
 
   void finish_outputs() {
     for (const auto& [name, p] : output_pragmas_) {
-      bool marked = std::any_of(marks_.begin(), marks_.end(), [&](const Mark& m) { return m.name == name; });
+      const std::string& pragma_name = name;  // clang 14 cannot capture a structured binding
+      bool marked =
+          std::any_of(marks_.begin(), marks_.end(), [&](const Mark& m) { return m.name == pragma_name; });
       if (!marked) throw CompileError(p.loc, "'#pragma output' names '" + name + "', which is not an output");
     }
     if (marks_.empty()) throw CompileError({1, 1}, "script has no outputs (mark one with ?name)");
