@@ -3,6 +3,7 @@
 // every skinned mesh. The file has a single clip, so the two "clips" are two time ranges of it (t and
 // t + duration/2), which costs the same. Time advances by 1/60 s per iteration, so the key search sees
 // every part of the clip. The baseline is the GLM matrix mode (quaternion slerp + TRS matrices).
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>

@@ -136,6 +136,7 @@ void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), Skinni
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(scene->vertices));
+  state.SetLabel(std::to_string(scene->vertices) + " vertices");
 }
 
 // The plain GLM loops: per vertex, blend and apply with GLM types, array-of-structs palette, no blocking.

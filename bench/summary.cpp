@@ -94,8 +94,8 @@ Row make_row(const Figure& f, const Results& results) {
   if (!f.baseline.empty() && f.baseline != f.benchmark) {
     auto b = results.find(f.baseline);
     if (b != results.end() && !b->second.error_occurred) {
-      Figure bf = f;  // the baseline is read with the same metric
-      if (auto bv = value_of(bf, b->second); bv && *bv > 0)
+      // The baseline is read with this figure's metric.
+      if (auto bv = value_of(f, b->second); bv && *bv > 0)
         row.speedup = higher_is_better(f.metric) ? *row.value / *bv : *bv / *row.value;
     }
   }

@@ -39,8 +39,9 @@ compiler_version=$("$compiler" --version | head -1)
 {
   echo "## cga-bench results"
   echo
-  echo "Machine: $model, $cores cores (run pinned to one core${CPU:+: cpu $CPU}); load average before/while"
-  echo "running: $load. Compiler: $compiler_version, $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt")."
+  echo "Machine: $model, $cores cores (run pinned to one core${CPU:+: cpu $CPU}); load average (1/5/15 min)"
+  echo "at the end of the run: $load (above ~1 the figures are disturbed by other work)."
+  echo "Compiler: $compiler_version, $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt")."
   echo "Date: $(date -u +%Y-%m-%d). Reproduce: \`scripts/bench.sh\`."
   cat "$table"
 } | tee "$BUILD_DIR/bench.md"
