@@ -7,6 +7,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 cmake -S fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build-fuzz --target fuzz_script
+export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
 corpus=build-fuzz/corpus
 mkdir -p "$corpus"
 for f in runtime/scripts/*.clu tests/gen/scripts/*.clu; do [ -f "$f" ] && cp "$f" "$corpus/"; done
