@@ -1,16 +1,18 @@
 // Skinning throughput (vertices/s) of the runtime's SkinningJob per method, positions only and with
 // normals: on a deterministic random mesh (1 M vertices, 64 bones, 4 influences) and on the real character
-// BCN_Epileptic. Two plain GLM loops (no blocking, no hand SIMD: what a straightforward engine loop does)
-// are measured beside them as references for the "plain GLM LBS / DQS loop" numbers.
+// BCN_Epileptic in a pose of its clip. Two plain GLM loops (no blocking, no hand SIMD: what a straightforward
+// engine loop does) are measured beside them as references for the "plain GLM LBS / DQS loop" numbers.
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 #include <glm/gtx/dual_quaternion.hpp>
 
 #include "bench_common.hpp"
+#include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
@@ -62,26 +64,73 @@ const SkinScene& random_scene() {
   return scene;
 }
 
-// The character's skinned meshes with a random palette per mesh (the palette's values do not change the
-// work per vertex; the pose benchmarks time real poses).
-const SkinScene& character_scene() {
-  static const std::unique_ptr<SkinScene> scene = [] {
-    auto s = std::make_unique<SkinScene>();
-    LoadOptions options;
-    options.animations = false;
-    const Character ch = load_character(models_dir() + "/" + kCharacter, options);
-    std::uint32_t seed = kPoseSeed;
+// The palettes of every skinned mesh of `ch` in its first clip's pose at `time`, computed by the runtime's
+// jobs (paper motors, GLM matrices, rigid dual quaternions). False when a job refuses its input.
+bool add_pose_palettes(const Character& ch, float time, SkinScene& scene) {
+  const Clip& clip = ch.clips.front();
+  const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
+  scene.matrices.assign(scene.meshes.size(), {});
+  scene.dual_quats.assign(scene.meshes.size(), {});
+  scene.motors.assign(scene.meshes.size(), {});
+  for (Interpolation mode : {Interpolation::paper, Interpolation::glm_matrix, Interpolation::glm_dualquat}) {
+    PoseBuffer local(n), model(n);
+    if (!SamplingJob{&clip, time, mode, local.motors, local.transforms, local.dual_quats, local.scales}.Run())
+      return false;
+    if (!LocalToModelJob{&ch.skeleton,  mode,          local.motors,      local.transforms, local.dual_quats,
+                         local.scales,  model.motors,  model.matrices,    model.dual_quats, model.scales}
+             .Run())
+      return false;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      const SkinnedMesh& mesh = scene.meshes[m];
+      const InverseBind ib = make_inverse_bind(mesh);
+      const std::size_t k = mesh.joint_remap.size();
+      scene.motors[m].resize(mode == Interpolation::paper ? k : scene.motors[m].size());
+      scene.matrices[m].resize(mode == Interpolation::glm_matrix ? k : scene.matrices[m].size());
+      scene.dual_quats[m].resize(mode == Interpolation::glm_dualquat ? k : scene.dual_quats[m].size());
+      const SkinningPaletteJob job{mode,           mesh.joint_remap, &ib,
+                                   model.motors,   model.matrices,   model.dual_quats,
+                                   model.scales,   scene.motors[m],  scene.matrices[m],
+                                   scene.dual_quats[m]};
+      if (!job.Run()) return false;
+    }
+  }
+  return true;
+}
+
+// The character's skinned meshes, posed at a third of its first clip by the runtime's jobs; a random rigid
+// palette when the file has no clip or this build has no motor kernels (said in the benchmark's label).
+struct CharacterScene {
+  SkinScene scene;
+  std::string palette;  // how the palette was made
+};
+
+const CharacterScene& character_scene_data() {
+  static const std::unique_ptr<CharacterScene> data = [] {
+    auto d = std::make_unique<CharacterScene>();
+    const Character ch = load_character(models_dir() + "/" + kCharacter);
     for (const SkinnedMesh& mesh : ch.meshes) {
       if (mesh.joint_remap.empty()) continue;
-      s->meshes.push_back(mesh);
-      s->vertices += mesh.vertex_count();
-      add_palettes(*s, mesh.joint_remap.size(), seed++);
+      d->scene.meshes.push_back(mesh);
+      d->scene.vertices += mesh.vertex_count();
     }
-    if (s->meshes.empty()) throw std::runtime_error(std::string(kCharacter) + " has no skinned mesh");
-    return s;
+    if (d->scene.meshes.empty()) throw std::runtime_error(std::string(kCharacter) + " has no skinned mesh");
+    const float time = ch.clips.empty() ? 0.0f : ch.clips.front().duration / 3.0f;
+    if (kHaveMotorKernels && !ch.clips.empty() && add_pose_palettes(ch, time, d->scene)) {
+      d->palette = fmt::format("clip '{}' at t = {:.2f} s", ch.clips.front().name, time);
+    } else {
+      d->scene.matrices.clear();
+      d->scene.dual_quats.clear();
+      d->scene.motors.clear();
+      std::uint32_t seed = kPoseSeed;
+      for (const SkinnedMesh& mesh : d->scene.meshes) add_palettes(d->scene, mesh.joint_remap.size(), seed++);
+      d->palette = "random rigid palette";
+    }
+    return d;
   }();
-  return *scene;
+  return *data;
 }
+
+const SkinScene& character_scene() { return character_scene_data().scene; }
 
 // One SkinningJob per mesh, outputs owned here.
 struct Jobs {
@@ -136,7 +185,9 @@ void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), Skinni
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(scene->vertices));
-  state.SetLabel(std::to_string(scene->vertices) + " vertices");
+  std::string label = std::to_string(scene->vertices) + " vertices";
+  if (scene_fn == character_scene) label += ", " + character_scene_data().palette;
+  state.SetLabel(label);
 }
 
 // The plain GLM loops: per vertex, blend and apply with GLM types, array-of-structs palette, no blocking.
@@ -226,7 +277,7 @@ void register_skinning_benchmarks() {
   };
   const Scene scenes[] = {
       {"random1M", random_scene, "1 M random vertices, 64 bones, 4 influences"},
-      {"BCN_Epileptic", character_scene, "BCN_Epileptic.X mesh (random rigid palette)"},
+      {"BCN_Epileptic", character_scene, "BCN_Epileptic.X meshes, posed by the runtime's jobs"},
   };
   for (const Scene& sc : scenes)
     for (bool normals : {false, true}) {

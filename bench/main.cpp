@@ -1,12 +1,16 @@
 // cga-bench: Google Benchmark's runner plus a summary table (each figure with its ratio to the in-project
-// GLM baseline of the same run and the issue-6 target). Extra flag: --cga_markdown=FILE writes the summary
-// as Markdown. Every other flag is Google Benchmark's (--benchmark_filter=REGEX, --benchmark_min_time=S, ...).
+// GLM baseline of the same run and the issue-6 target). Extra flags: --cga_markdown=FILE writes the summary
+// as Markdown; --cga_fail_on_skip makes the exit status 1 when a benchmark was skipped with an error (missing
+// kernels, model or tool; a job refusing its input), which the smoke test uses. Every other flag is Google
+// Benchmark's (--benchmark_filter=REGEX, --benchmark_min_time=S, ...).
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <benchmark/benchmark.h>
 
@@ -42,15 +46,23 @@ int main(int argc, char** argv) {
   using namespace cga::bench;
   // Take our own flag out before Google Benchmark sees the arguments.
   std::string markdown_path;
+  bool fail_on_skip = false;
+  // Google Benchmark applies --benchmark_color only to the reporter it makes itself: decide it here.
+  bool color = isatty(STDOUT_FILENO) != 0;
   std::vector<char*> args;
   constexpr const char* kMarkdownFlag = "--cga_markdown=";
   for (int i = 0; i < argc; ++i) {
     if (std::strncmp(argv[i], kMarkdownFlag, std::strlen(kMarkdownFlag)) == 0) {
       markdown_path = argv[i] + std::strlen(kMarkdownFlag);
+    } else if (std::strcmp(argv[i], "--cga_fail_on_skip") == 0) {
+      fail_on_skip = true;
     } else {
+      for (const char* off : {"--benchmark_color=false", "--benchmark_color=no", "--benchmark_color=0"})
+        if (std::strcmp(argv[i], off) == 0) color = false;
       if (std::strcmp(argv[i], "--help") == 0)
         std::cout << "cga-bench: CGA skinning, motor, pose and generator benchmarks.\n"
                      "  --cga_markdown=FILE   also write the summary table as Markdown to FILE\n"
+                     "  --cga_fail_on_skip    exit with status 1 when a benchmark was skipped with an error\n"
                      "Google Benchmark's flags follow.\n\n";
       args.push_back(argv[i]);
     }
@@ -66,7 +78,8 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&n, args.data());
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
 
-  CapturingReporter reporter;
+  CapturingReporter reporter(color ? benchmark::ConsoleReporter::OO_Defaults
+                                   : benchmark::ConsoleReporter::OO_Tabular);
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
 
@@ -79,6 +92,10 @@ int main(int argc, char** argv) {
       std::cerr << "cga-bench: cannot write " << markdown_path << "\n";
       return 1;
     }
+  }
+  if (fail_on_skip && !reporter.errors().empty()) {
+    for (const std::string& e : reporter.errors()) std::cerr << "cga-bench: skipped " << e << "\n";
+    return 1;
   }
   return 0;
 }

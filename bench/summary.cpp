@@ -128,6 +128,7 @@ void CapturingReporter::ReportRuns(const std::vector<Run>& runs) {
   for (const Run& r : runs) {
     // The registered name, without the "/real_time" or "/iterations:N" suffixes Google Benchmark appends.
     const std::string name = r.run_name.function_name;
+    if (r.error_occurred && r.run_type == Run::RT_Iteration) errors_.push_back(name + ": " + r.error_message);
     if (r.run_type == Run::RT_Iteration) {
       // With repetitions the median aggregate (below) replaces the single runs.
       if (!results_.count(name) || results_[name].run_type == Run::RT_Iteration) results_[name] = r;

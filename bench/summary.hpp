@@ -45,11 +45,15 @@ void add_figure(Figure figure);
 // A console reporter that also keeps every run's result by benchmark name (the median when repeated).
 class CapturingReporter : public benchmark::ConsoleReporter {
  public:
+  explicit CapturingReporter(OutputOptions options) : ConsoleReporter(options) {}
   void ReportRuns(const std::vector<Run>& runs) override;
   const std::map<std::string, Run>& results() const { return results_; }
+  // "name: message" of every run skipped with an error, in the order they ran.
+  const std::vector<std::string>& errors() const { return errors_; }
 
  private:
   std::map<std::string, Run> results_;
+  std::vector<std::string> errors_;
 };
 
 // The summary as Markdown (a table per section). Figures whose benchmark did not run (filtered out or
