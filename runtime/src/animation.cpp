@@ -100,6 +100,78 @@ void build_joint_keys(Clip& clip) {
       }
     }
   }
+  build_clip_intervals(clip);
+}
+
+std::size_t ClipIntervals::find(float t) const {
+  const auto it = std::upper_bound(times.begin(), times.end(), t);
+  return it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin()) - 1;
+}
+
+void build_clip_intervals(Clip& clip) {
+  ClipIntervals& iv = clip.intervals;
+  iv = ClipIntervals{};
+  for (const JointKeys& k : clip.keys) {
+    if (k.size() == 0) throw std::invalid_argument(fmt::format("clip '{}': a joint has no keys", clip.name));
+    iv.times.insert(iv.times.end(), k.times.begin(), k.times.end());
+  }
+  std::sort(iv.times.begin(), iv.times.end());
+  iv.times.erase(std::unique(iv.times.begin(), iv.times.end()), iv.times.end());
+  if (iv.times.empty()) return;  // no joints
+  iv.joints = clip.keys.size();
+  iv.stride = (iv.joints + ClipIntervals::kLanes - 1) / ClipIntervals::kLanes * ClipIntervals::kLanes;
+  const std::size_t n_iv = iv.times.size(), w = iv.stride;
+  iv.key.assign(n_iv * w, 0);
+  iv.t0.assign(n_iv * w, 0.0f);
+  iv.inv_span.assign(n_iv * w, 0.0f);
+  iv.scale0.assign(n_iv * w, 1.0f);
+  iv.scale1.assign(n_iv * w, 1.0f);
+  const bool motors = kHaveMotorKernels && std::all_of(clip.keys.begin(), clip.keys.end(), [](const JointKeys& k) {
+    return k.motors.size() == k.size() && k.rigid.size() == k.size();
+  });
+  if (motors) {
+    const Motor one = Motor::identity();
+    const RigidMotor one_rigid = rigid_blades(one);
+    iv.rigid0.resize(n_iv * ClipIntervals::kRigid * w);
+    iv.rigid1.resize(n_iv * ClipIntervals::kRigid * w);
+    iv.motor0.resize(n_iv * ClipIntervals::kMotor * w);
+    iv.motor_delta.assign(n_iv * ClipIntervals::kMotor * w, 0.0f);
+    for (std::size_t u = 0; u < n_iv; ++u)
+      for (std::size_t j = 0; j < w; ++j) {  // padding lanes: the identity
+        for (std::size_t c = 0; c < ClipIntervals::kRigid; ++c)
+          iv.rigid0[(u * ClipIntervals::kRigid + c) * w + j] = iv.rigid1[(u * ClipIntervals::kRigid + c) * w + j] =
+              one_rigid[c];
+        for (std::size_t c = 0; c < ClipIntervals::kMotor; ++c) iv.motor0[(u * ClipIntervals::kMotor + c) * w + j] = one.c[c];
+      }
+  }
+  for (std::size_t j = 0; j < iv.joints; ++j) {
+    const JointKeys& k = clip.keys[j];
+    for (std::size_t u = 0; u < n_iv; ++u) {
+      const float t = iv.times[u];
+      // The joint's key at or before the interval's start (its first key when it starts later).
+      const auto it = std::upper_bound(k.times.begin(), k.times.end(), t);
+      const std::size_t i = it == k.times.begin() ? 0 : static_cast<std::size_t>(it - k.times.begin()) - 1;
+      const bool moving = t >= k.times[i] && i + 1 < k.size();
+      const std::size_t i1 = moving ? i + 1 : i;
+      const std::size_t s = u * w + j;
+      iv.key[s] = static_cast<std::uint32_t>(i);
+      iv.t0[s] = k.times[i];
+      iv.inv_span[s] = moving ? 1.0f / (k.times[i + 1] - k.times[i]) : 0.0f;
+      iv.scale0[s] = k.transforms[i].scale;
+      iv.scale1[s] = k.transforms[i1].scale;
+      if (!motors) continue;
+      for (std::size_t c = 0; c < ClipIntervals::kRigid; ++c) {
+        iv.rigid0[(u * ClipIntervals::kRigid + c) * w + j] = k.rigid[i][c];
+        iv.rigid1[(u * ClipIntervals::kRigid + c) * w + j] = k.rigid[i1][c];
+      }
+      // nlerp's antipodal sign fix depends on the pair only, so it is applied here once.
+      const float sign = motor_rotor_dot(k.motors[i], k.motors[i1]) < 0.0f ? -1.0f : 1.0f;
+      for (std::size_t c = 0; c < ClipIntervals::kMotor; ++c) {
+        iv.motor0[(u * ClipIntervals::kMotor + c) * w + j] = k.motors[i].c[c];
+        iv.motor_delta[(u * ClipIntervals::kMotor + c) * w + j] = sign * k.motors[i1].c[c] - k.motors[i].c[c];
+      }
+    }
+  }
 }
 
 }  // namespace cga

@@ -1,13 +1,114 @@
 // Sampling, blending, local-to-model and skinning-palette jobs (see jobs.hpp). Run() loops are flat over
-// joints with the mode switch outside, and never allocate.
+// joints with the mode switch outside, and never allocate. The motor loops are the hot part of a pose: they
+// live in the kernels below, each compiled twice (x86-64-v3 with AVX2/FMA, and the baseline ISA; the loader
+// picks at startup) with the generated kernels flattened in, so GCC vectorizes them across joints where the
+// data is structure of arrays (sampling, paper blending) and schedules them tightly where it is not.
 #include "cga/runtime/jobs.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define CGA_JOBS_CLONES __attribute__((target_clones("arch=x86-64-v3", "default"), flatten))
+#else
+#define CGA_JOBS_CLONES __attribute__((flatten))
+#endif
+
 namespace cga {
 
 namespace {
+
+// ------------------------------------------------------------------------------------------- hot kernels
+// Every loop below says with `ivdep` that its streams do not overlap (distinct job buffers): without it GCC
+// gives up on the aliasing of the float pointers.
+
+constexpr std::size_t kR = ClipIntervals::kRigid, kM = ClipIntervals::kMotor;
+
+// The paper's lerp of every joint (generated motor_lerp_paper), reading one interval's SoA keys.
+CGA_JOBS_CLONES void sample_paper(std::size_t n, std::size_t w, float t, const float* __restrict t0,
+                                  const float* __restrict inv, const float* __restrict r0,
+                                  const float* __restrict r1, const float* __restrict s0,
+                                  const float* __restrict s1, float* __restrict out) {
+#if CGA_RUNTIME_HAVE_KERNELS
+#pragma GCC ivdep
+  for (std::size_t j = 0; j < n; ++j) {
+    const float a = (t - t0[j]) * inv[j];
+    float x[kR], y[kR], m[kM];
+    for (std::size_t c = 0; c < kR; ++c) x[c] = r0[c * w + j], y[c] = r1[c * w + j];
+    kernels::motor_lerp_paper(x, y, s0[j], s1[j], a, m);
+    for (std::size_t c = 0; c < kM; ++c) out[j * kM + c] = m[c];
+  }
+#else
+  (void)n, (void)w, (void)t, (void)t0, (void)inv, (void)r0, (void)r1, (void)s0, (void)s1, (void)out;
+#endif
+}
+
+// nlerp of every joint: key i plus alpha times the (sign-matched) difference, normalized.
+CGA_JOBS_CLONES void sample_nlerp(std::size_t n, std::size_t w, float t, const float* __restrict t0,
+                                  const float* __restrict inv, const float* __restrict m0,
+                                  const float* __restrict md, float* __restrict out) {
+#pragma GCC ivdep
+  for (std::size_t j = 0; j < n; ++j) {
+    const float a = (t - t0[j]) * inv[j];
+    float m[kM];
+    for (std::size_t c = 0; c < kM; ++c) m[c] = m0[c * w + j] + a * md[c * w + j];
+    motor_normalize_fast(m, out + j * kM);
+  }
+}
+
+// out = sum of w_l * in_l over the flat coefficient arrays (the paper's weighted sum).
+CGA_JOBS_CLONES void scale_into(std::size_t count, float w, const float* __restrict in, float* __restrict out) {
+#pragma GCC ivdep
+  for (std::size_t x = 0; x < count; ++x) out[x] = w * in[x];
+}
+CGA_JOBS_CLONES void add_scaled(std::size_t count, float w, const float* __restrict in, float* __restrict out) {
+#pragma GCC ivdep
+  for (std::size_t x = 0; x < count; ++x) out[x] += w * in[x];
+}
+// nlerp's accumulation: each motor's sign matched to the reference layer's.
+CGA_JOBS_CLONES void add_signed(std::size_t n, float w, const Motor* __restrict ref, const Motor* __restrict in,
+                                Motor* __restrict out) {
+  for (std::size_t j = 0; j < n; ++j) {
+    const float s = motor_rotor_dot(ref[j], in[j]) < 0.0f ? -w : w;
+    for (std::size_t c = 0; c < kM; ++c) out[j].c[c] += s * in[j].c[c];
+  }
+}
+CGA_JOBS_CLONES void normalize_all(std::size_t n, Motor* __restrict m) {
+  for (std::size_t j = 0; j < n; ++j) motor_normalize_fast(m[j].c.data(), m[j].c.data());
+}
+
+bool all_rigid(std::span<const Motor> m, std::size_t n) {
+  bool rigid = true;
+  for (std::size_t j = 0; j < n; ++j) rigid &= motor_is_rigid(m[j]);
+  return rigid;
+}
+
+// model[j] = model[parent] * local[j], parents first; rigid: every motor has b = 0 (8-blade product).
+CGA_JOBS_CLONES void local_to_model_rigid(std::size_t n, const int* __restrict parents,
+                                          const Motor* __restrict local, Motor* __restrict model) {
+  for (std::size_t j = 0; j < n; ++j) {
+    if (parents[j] < 0)
+      model[j] = local[j];
+    else
+      motor_mul_rigid(model[parents[j]], local[j], model[j]);
+  }
+}
+CGA_JOBS_CLONES void local_to_model_general(std::size_t n, const int* __restrict parents,
+                                            const Motor* __restrict local, Motor* __restrict model) {
+  for (std::size_t j = 0; j < n; ++j) model[j] = parents[j] < 0 ? local[j] : motor_mul(model[parents[j]], local[j]);
+}
+
+// palette[k] = model[remap[k]] * inverse_bind[k].
+CGA_JOBS_CLONES void palette_rigid(std::size_t n, const int* __restrict remap, const Motor* __restrict model,
+                                   const Motor* __restrict ib, Motor* __restrict out) {
+  for (std::size_t k = 0; k < n; ++k) motor_mul_rigid(model[remap[k]], ib[k], out[k]);
+}
+CGA_JOBS_CLONES void palette_general(std::size_t n, const int* __restrict remap, const Motor* __restrict model,
+                                     const Motor* __restrict ib, Motor* __restrict out) {
+  for (std::size_t k = 0; k < n; ++k) out[k] = motor_mul(model[remap[k]], ib[k]);
+}
+
+// ------------------------------------------------------------------------------------------------ checks
 
 template <class Span>
 bool fits(const Span& s, std::size_t n) {
@@ -26,27 +127,7 @@ bool mode_outputs_fit(Interpolation mode, std::size_t n, std::span<Motor> m, std
   return false;
 }
 
-// Key index i and fraction a with times[i] <= t < times[i+1]; a == 0 means "exactly key i".
-inline void locate(const std::vector<float>& times, float t, std::size_t& i, float& a) {
-  const std::size_t n = times.size();
-  if (n == 1 || t <= times[0]) {
-    i = 0, a = 0.0f;
-    return;
-  }
-  if (t >= times[n - 1]) {
-    i = n - 1, a = 0.0f;
-    return;
-  }
-  i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
-  a = (t - times[i]) / (times[i + 1] - times[i]);
-}
-
-inline Motor lerp_signed(const Motor& x, const Motor& y, float a) {
-  const float b = motor_rotor_dot(x, y) < 0.0f ? -a : a;
-  Motor out;
-  for (int c = 0; c < 12; ++c) out.c[c] = (1.0f - a) * x.c[c] + b * y.c[c];
-  return out;
-}
+static_assert(sizeof(Motor) == 12 * sizeof(float), "the jobs treat Motor arrays as flat float arrays");
 
 inline glm::dualquat normalized(const glm::dualquat& q) {
   const float n = glm::length(q.real);
@@ -72,49 +153,53 @@ bool SamplingJob::Validate() const {
   if (!clip) return false;
   const std::size_t n = clip->keys.size();
   if (!mode_outputs_fit(mode, n, out_motors, out_transforms, out_dual_quats, out_scales)) return false;
-  // A joint without keys (a clip never passed through build_joint_keys) has nothing to sample.
+  if (!std::isfinite(time)) return false;
+  if (n == 0) return true;
+  // The sampler reads clip->intervals, built by build_joint_keys; a clip whose keys were never built (or
+  // a joint without keys) has none that match.
+  const ClipIntervals& iv = clip->intervals;
+  if (iv.joints != n || iv.times.empty()) return false;
+  if (uses_motors(mode)) return iv.has_motors();
+  // The baselines read the per-joint keys at the intervals' key indices.
   for (const JointKeys& k : clip->keys)
     if (k.size() == 0 || k.transforms.size() != k.size() || k.dual_quats.size() != k.size()) return false;
-  if (uses_motors(mode))
-    for (const JointKeys& k : clip->keys)
-      if (k.motors.size() != k.size() || k.rigid.size() != k.size()) return false;  // built without kernels
-  return std::isfinite(time);
+  return true;
 }
 
 bool SamplingJob::Run() const {
   if (!Validate()) return false;
-  const float t = std::clamp(time, 0.0f, clip->duration);
   const std::size_t n = clip->keys.size();
-  std::size_t i;
-  float a;
+  if (n == 0) return true;
+  const ClipIntervals& iv = clip->intervals;
+  const std::size_t w = iv.stride;
+  // Before the first key of every joint the first key holds, which interval 0 gives for t = times[0].
+  const float t = std::max(std::clamp(time, 0.0f, clip->duration), iv.times.front());
+  const std::size_t u = iv.find(t);
+  const float* t0 = iv.t0.data() + u * w;
+  const float* inv = iv.inv_span.data() + u * w;
+  const std::uint32_t* key = iv.key.data() + u * w;
   switch (mode) {
     case Interpolation::paper:
-      for (std::size_t j = 0; j < n; ++j) {
-        const JointKeys& k = clip->keys[j];
-        locate(k.times, t, i, a);
-        out_motors[j] = a == 0.0f ? k.motors[i]
-                                  : motor_lerp_paper(k.rigid[i], k.rigid[i + 1], k.transforms[i].scale,
-                                                     k.transforms[i + 1].scale, a);
-      }
+      sample_paper(n, w, t, t0, inv, iv.rigid0.data() + u * kR * w, iv.rigid1.data() + u * kR * w,
+                   iv.scale0.data() + u * w, iv.scale1.data() + u * w, out_motors.data()->c.data());
       break;
     case Interpolation::nlerp:
-      for (std::size_t j = 0; j < n; ++j) {
-        const JointKeys& k = clip->keys[j];
-        locate(k.times, t, i, a);
-        out_motors[j] = a == 0.0f ? k.motors[i] : motor_normalize(lerp_signed(k.motors[i], k.motors[i + 1], a));
-      }
+      sample_nlerp(n, w, t, t0, inv, iv.motor0.data() + u * kM * w, iv.motor_delta.data() + u * kM * w,
+                   out_motors.data()->c.data());
       break;
     case Interpolation::screw:
       for (std::size_t j = 0; j < n; ++j) {
         const JointKeys& k = clip->keys[j];
-        locate(k.times, t, i, a);
+        const std::size_t i = key[j];
+        const float a = (t - t0[j]) * inv[j];
         out_motors[j] = a == 0.0f ? k.motors[i] : motor_screw(k.transforms[i], k.transforms[i + 1], a);
       }
       break;
     case Interpolation::glm_matrix:
       for (std::size_t j = 0; j < n; ++j) {
         const JointKeys& k = clip->keys[j];
-        locate(k.times, t, i, a);
+        const std::size_t i = key[j];
+        const float a = (t - t0[j]) * inv[j];
         if (a == 0.0f) {
           out_transforms[j] = k.transforms[i];
           continue;
@@ -129,7 +214,8 @@ bool SamplingJob::Run() const {
     case Interpolation::glm_dualquat:
       for (std::size_t j = 0; j < n; ++j) {
         const JointKeys& k = clip->keys[j];
-        locate(k.times, t, i, a);
+        const std::size_t i = key[j];
+        const float a = (t - t0[j]) * inv[j];
         if (a == 0.0f) {
           out_dual_quats[j] = k.dual_quats[i];
           out_scales[j] = k.transforms[i].scale;
@@ -189,18 +275,17 @@ bool BlendingJob::Run() const {
   switch (mode) {
     case Interpolation::paper:
     case Interpolation::nlerp: {
-      const bool fix = mode == Interpolation::nlerp;
-      for (std::size_t j = 0; j < out_motors.size(); ++j) {
-        Motor acc;
-        acc.c.fill(0.0f);
-        const Motor& ref = layers[first].motors[j];
-        for (const BlendLayer& l : layers) {
-          if (l.weight <= 0.0f) continue;
-          const float w = l.weight * inv * (fix && motor_rotor_dot(ref, l.motors[j]) < 0.0f ? -1.0f : 1.0f);
-          for (int c = 0; c < 12; ++c) acc.c[c] += w * l.motors[j].c[c];
-        }
-        out_motors[j] = fix ? motor_normalize(acc) : acc;
+      const std::size_t n = out_motors.size();
+      float* out = out_motors.data()->c.data();
+      scale_into(n * kM, layers[first].weight * inv, layers[first].motors.data()->c.data(), out);
+      for (std::size_t l = first + 1; l < layers.size(); ++l) {
+        if (layers[l].weight <= 0.0f) continue;
+        if (mode == Interpolation::paper)
+          add_scaled(n * kM, layers[l].weight * inv, layers[l].motors.data()->c.data(), out);
+        else
+          add_signed(n, layers[l].weight * inv, layers[first].motors.data(), layers[l].motors.data(), out_motors.data());
       }
+      if (mode == Interpolation::nlerp) normalize_all(n, out_motors.data());
       break;
     }
     case Interpolation::screw:
@@ -279,8 +364,11 @@ bool LocalToModelJob::Run() const {
     case Interpolation::paper:
     case Interpolation::nlerp:
     case Interpolation::screw:
-      for (std::size_t j = 0; j < n; ++j)
-        model_motors[j] = parents[j] < 0 ? local_motors[j] : motor_mul(model_motors[parents[j]], local_motors[j]);
+      // Roots copy their local motor, so rigid locals make every model motor rigid.
+      if (all_rigid(local_motors, n))
+        local_to_model_rigid(n, parents, local_motors.data(), model_motors.data());
+      else
+        local_to_model_general(n, parents, local_motors.data(), model_motors.data());
       break;
     case Interpolation::glm_matrix:
       for (std::size_t j = 0; j < n; ++j) {
@@ -361,8 +449,10 @@ bool SkinningPaletteJob::Run() const {
     case Interpolation::paper:
     case Interpolation::nlerp:
     case Interpolation::screw:
-      for (std::size_t k = 0; k < n; ++k)
-        out_motors[k] = motor_mul(model_motors[joint_remap[k]], inverse_bind->motors[k]);
+      if (all_rigid(model_motors, model_motors.size()) && all_rigid(inverse_bind->motors, n))
+        palette_rigid(n, joint_remap.data(), model_motors.data(), inverse_bind->motors.data(), out_motors.data());
+      else
+        palette_general(n, joint_remap.data(), model_motors.data(), inverse_bind->motors.data(), out_motors.data());
       break;
     case Interpolation::glm_matrix:
       for (std::size_t k = 0; k < n; ++k)

@@ -71,16 +71,45 @@ struct JointKeys {
   std::size_t size() const { return times.size(); }
 };
 
+// The sampler's view of a clip's keys, built once by build_joint_keys: the union of all joints' key times
+// cuts the clip into intervals inside which no joint has a key, so one binary search per sample finds, for
+// every joint at once, its pair of keys (i, i+1). Per interval the pairs of all joints are stored as
+// structure of arrays (joint index fastest, `stride` = joints rounded up to kLanes, padding lanes hold the
+// identity), so the sampling loops read contiguous memory and vectorize across joints. It trades memory for
+// speed: about (2 + 18 + 24) floats + one index per joint per interval (16 MB for a 31-joint, 2752-frame BVH).
+struct ClipIntervals {
+  static constexpr std::size_t kLanes = 16;  // one AVX-512 register of floats
+  static constexpr std::size_t kRigid = 8, kMotor = 12;
+  std::vector<float> times;       // interval u covers [times[u], times[u+1]) (the last one: the last key on)
+  std::size_t joints = 0;
+  std::size_t stride = 0;
+  std::vector<std::uint32_t> key;  // [u*stride + j]: joint j's key i
+  // alpha = (t - t0) * inv_span, in [0, 1); inv_span = 0 where the joint holds a key (before its first key,
+  // after its last one, or a joint with one key).
+  std::vector<float> t0, inv_span;             // [u*stride + j]
+  std::vector<float> rigid0, rigid1;           // [(u*kRigid + c)*stride + j]: T*R of keys i and i+1
+  std::vector<float> scale0, scale1;           // [u*stride + j]
+  std::vector<float> motor0, motor_delta;      // [(u*kMotor + c)*stride + j]: T*R*D of key i, and the
+                                               // sign-matched T*R*D of key i+1 minus it (nlerp)
+  // Interval of time t (clamped to the first/last one).
+  std::size_t find(float t) const;
+  bool has_motors() const { return !rigid0.empty(); }
+};
+
 struct Clip {
   std::string name;
   float duration = 0.0f;  // seconds
   float ticks_per_second = 0.0f;
   std::vector<JointTrack> tracks;  // one per skeleton joint
   std::vector<JointKeys> keys;     // one per skeleton joint, built from tracks by build_joint_keys
+  ClipIntervals intervals;         // the sampler's copy of `keys`, built with them
 };
 
 // Fills clip.keys from clip.tracks: the union of each joint's key times, each component interpolated at the
-// times it has no key of its own (lerp; slerp for rotations), and the motor forms (generated kernels).
+// times it has no key of its own (lerp; slerp for rotations), and the motor forms (generated kernels); then
+// clip.intervals from clip.keys.
 void build_joint_keys(Clip& clip);
+// Rebuilds clip.intervals from clip.keys (after editing keys by hand).
+void build_clip_intervals(Clip& clip);
 
 }  // namespace cga

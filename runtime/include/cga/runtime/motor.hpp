@@ -12,14 +12,16 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 #include "cga/runtime/types.hpp"
 
 #if __has_include(<motor_from_trs.hpp>) && __has_include(<motor_mul.hpp>) && __has_include(<motor_reverse.hpp>) && \
     __has_include(<motor_lerp_paper.hpp>) && __has_include(<transform_point.hpp>) &&                             \
-    __has_include(<motor_to_matrix.hpp>)
+    __has_include(<motor_to_matrix.hpp>) && __has_include(<motor_mul_rigid.hpp>)
 #include <motor_from_trs.hpp>
+#include <motor_mul_rigid.hpp>
 #include <motor_lerp_paper.hpp>
 #include <motor_mul.hpp>
 #include <motor_reverse.hpp>
@@ -159,6 +161,60 @@ Transform motor_to_transform(const Motor& m);
 
 // nlerp's normalization: the exact motor of motor_to_transform(m).
 inline Motor motor_normalize(const Motor& m) { return motor_from_transform(motor_to_transform(m)); }
+
+// The same projection straight on the coefficients, in float and without branches, so that loops over
+// joints vectorize (the jobs use it). With g = a + b, h = a - b and e the einf blades (header comment),
+// motor_from_transform(motor_to_transform(m)) works out to
+//   a' = g/|g|,  b' = k' a' with k' = (|g| - |h|)/(|g| + |h|),  c' = 2 P e / (|g| + |h|),
+// where P removes from e its component along n = (-g3, g2, -g1, g0)/|g|, the normal of the 3-space that
+// the einf blades of an exact motor T*R*D span (the columns of L(g) in motor_to_transform). For b = 0
+// (no scale) g = h bit for bit, so b' = 0 exactly. No rotor part gives non-finite coefficients.
+// in and out may alias.
+inline void motor_normalize_fast(const float* in, float* out) {
+  const float g0 = in[0] + in[7], g1 = in[1] + in[9], g2 = in[2] + in[10], g3 = in[4] + in[11];
+  const float h0 = in[0] - in[7], h1 = in[1] - in[9], h2 = in[2] - in[10], h3 = in[4] - in[11];
+  const float gg = g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3;
+  const float hh = h0 * h0 + h1 * h1 + h2 * h2 + h3 * h3;
+  const float ng = std::sqrt(gg), nh = std::sqrt(hh);
+  const float inv_g = 1.0f / ng, inv_sum = 1.0f / (ng + nh);
+  const float k = (ng - nh) * inv_sum;
+  const float e0 = in[3], e1 = in[5], e2 = in[6], e3 = in[8];
+  // (n . e) n with n unnormalized: divide by |g|^2 once.
+  const float ne = (-g3 * e0 + g2 * e1 - g1 * e2 + g0 * e3) * (inv_g * inv_g);
+  const float ce = 2.0f * inv_sum;
+  const float a0 = g0 * inv_g, a1 = g1 * inv_g, a2 = g2 * inv_g, a3 = g3 * inv_g;
+  out[0] = a0, out[1] = a1, out[2] = a2, out[4] = a3;
+  out[7] = k * a0, out[9] = k * a1, out[10] = k * a2, out[11] = k * a3;
+  out[3] = ce * (e0 + ne * g3);
+  out[5] = ce * (e1 - ne * g2);
+  out[6] = ce * (e2 + ne * g1);
+  out[8] = ce * (e3 - ne * g0);
+}
+inline Motor motor_normalize_fast(const Motor& m) {
+  Motor out;
+  motor_normalize_fast(m.c.data(), out.c.data());
+  return out;
+}
+
+// A motor without dilation: its einf^e0-times blades (the b group) are exactly zero. The jobs then use the
+// 8-blade product motor_mul_rigid.
+inline bool motor_is_rigid(const Motor& m) {
+  return m.c[7] == 0.0f && m.c[9] == 0.0f && m.c[10] == 0.0f && m.c[11] == 0.0f;
+}
+
+// C = A*B for rigid motors (generated motor_mul_rigid on the 8 rigid blades; the b group of C is zero).
+inline void motor_mul_rigid(const Motor& a, const Motor& b, Motor& out) {
+#if CGA_RUNTIME_HAVE_KERNELS
+  const float x[8] = {a.c[0], a.c[1], a.c[2], a.c[3], a.c[4], a.c[5], a.c[6], a.c[8]};
+  const float y[8] = {b.c[0], b.c[1], b.c[2], b.c[3], b.c[4], b.c[5], b.c[6], b.c[8]};
+  float z[8];
+  kernels::motor_mul_rigid(x, y, z);
+  out.c = {z[0], z[1], z[2], z[3], z[4], z[5], z[6], 0.0f, z[7], 0.0f, 0.0f, 0.0f};
+#else
+  (void)a, (void)b, (void)out;
+  detail::no_kernels("motor_mul_rigid");
+#endif
+}
 
 // Screw-linear interpolation between two similarities: the rigid parts by the motor logarithm/exponential
 // (constant-speed helix about the screw axis of the relative motion ~M1*M2, shortest way), the scale
