@@ -90,7 +90,7 @@ CGA_JOBS_CLONES void local_to_model_rigid(std::size_t n, const int* __restrict p
     if (parents[j] < 0)
       model[j] = local[j];
     else
-      motor_mul_rigid(model[parents[j]], local[j], model[j]);
+      motor_mul_rigid_simd(model[parents[j]], local[j], model[j]);
   }
 }
 CGA_JOBS_CLONES void local_to_model_general(std::size_t n, const int* __restrict parents,
@@ -98,14 +98,16 @@ CGA_JOBS_CLONES void local_to_model_general(std::size_t n, const int* __restrict
   for (std::size_t j = 0; j < n; ++j) model[j] = parents[j] < 0 ? local[j] : motor_mul(model[parents[j]], local[j]);
 }
 
-// palette[k] = model[remap[k]] * inverse_bind[k].
-CGA_JOBS_CLONES void palette_rigid(std::size_t n, const int* __restrict remap, const Motor* __restrict model,
-                                   const Motor* __restrict ib, Motor* __restrict out) {
-  for (std::size_t k = 0; k < n; ++k) motor_mul_rigid(model[remap[k]], ib[k], out[k]);
-}
-CGA_JOBS_CLONES void palette_general(std::size_t n, const int* __restrict remap, const Motor* __restrict model,
-                                     const Motor* __restrict ib, Motor* __restrict out) {
-  for (std::size_t k = 0; k < n; ++k) out[k] = motor_mul(model[remap[k]], ib[k]);
+// palette[k] = model[remap[k]] * inverse_bind[k], by the 8-blade product where both factors are rigid.
+CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const Motor* __restrict model,
+                             const Motor* __restrict ib, Motor* __restrict out) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const Motor& m = model[remap[k]];
+    if (motor_is_rigid(m) && motor_is_rigid(ib[k]))
+      motor_mul_rigid_simd(m, ib[k], out[k]);
+    else
+      out[k] = motor_mul(m, ib[k]);
+  }
 }
 
 // ------------------------------------------------------------------------------------------------ checks
@@ -399,6 +401,10 @@ bool LocalToModelJob::Run() const {
 
 // --------------------------------------------------------------------------------------- skinning palette
 
+namespace {
+constexpr float kRigidScaleTolerance = 8.0f * 1.1920929e-7f;  // 8 float ulps at 1
+}  // namespace
+
 InverseBind make_inverse_bind(const SkinnedMesh& mesh) {
   InverseBind ib;
   const std::size_t n = mesh.joint_remap.size();
@@ -411,7 +417,13 @@ InverseBind make_inverse_bind(const SkinnedMesh& mesh) {
   }
   if constexpr (kHaveMotorKernels) {
     ib.motors.resize(n);
-    for (std::size_t k = 0; k < n; ++k) ib.motors[k] = motor_from_transform(mesh.inverse_bind[k]);
+    for (std::size_t k = 0; k < n; ++k) {
+      // A scale within float rounding of 1 (what decomposing a rigid offset matrix leaves) is taken as 1,
+      // so that rigid characters get exactly rigid inverse binds and the palette its 8-blade product.
+      Transform x = mesh.inverse_bind[k];
+      if (std::abs(x.scale - 1.0f) <= kRigidScaleTolerance) x.scale = 1.0f;
+      ib.motors[k] = motor_from_transform(x);
+    }
   }
   return ib;
 }
@@ -449,10 +461,7 @@ bool SkinningPaletteJob::Run() const {
     case Interpolation::paper:
     case Interpolation::nlerp:
     case Interpolation::screw:
-      if (all_rigid(model_motors, model_motors.size()) && all_rigid(inverse_bind->motors, n))
-        palette_rigid(n, joint_remap.data(), model_motors.data(), inverse_bind->motors.data(), out_motors.data());
-      else
-        palette_general(n, joint_remap.data(), model_motors.data(), inverse_bind->motors.data(), out_motors.data());
+      palette(n, joint_remap.data(), model_motors.data(), inverse_bind->motors.data(), out_motors.data());
       break;
     case Interpolation::glm_matrix:
       for (std::size_t k = 0; k < n; ++k)

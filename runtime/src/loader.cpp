@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <deque>
 #include <unordered_map>
 
 #include <assimp/Importer.hpp>
@@ -171,12 +172,13 @@ Character load_character(const std::string& path, const LoadOptions& options) {
   const aiNode* root = scene->mRootNode;
   if (!wanted.count(root->mName.C_Str()) && root->mTransformation.IsIdentity()) keep.erase(root);
 
-  // Parents first: depth-first pre-order over the kept nodes.
+  // Parents first, in breadth-first order over the scene (as ozz orders its skeletons): consecutive joints
+  // are then mostly siblings or cousins, whose local-to-model products do not wait for each other.
   std::unordered_map<const aiNode*, int> index;
-  std::vector<std::pair<const aiNode*, int>> todo{{root, -1}};
+  std::deque<std::pair<const aiNode*, int>> todo{{root, -1}};
   while (!todo.empty()) {
-    auto [n, parent] = todo.back();
-    todo.pop_back();
+    auto [n, parent] = todo.front();
+    todo.pop_front();
     int self = parent;
     if (keep.count(n)) {
       self = ch.skeleton.joint_count();
@@ -190,7 +192,7 @@ Character load_character(const std::string& path, const LoadOptions& options) {
                                                "scale, shear or mirror); using the nearest uniform scale",
                                                n->mName.C_Str()));
     }
-    for (unsigned i = n->mNumChildren; i-- > 0;) todo.push_back({n->mChildren[i], self});
+    for (unsigned i = 0; i < n->mNumChildren; ++i) todo.push_back({n->mChildren[i], self});
   }
   if (ch.skeleton.joint_count() == 0) throw LoadError(fmt::format("{}: no skeleton", path));
   if (ch.skeleton.joint_count() > 65535) throw LoadError(fmt::format("{}: too many joints", path));
