@@ -24,19 +24,77 @@ namespace {
 
 constexpr std::size_t kR = ClipIntervals::kRigid, kM = ClipIntervals::kMotor;
 
-// The paper's lerp of every joint (generated motor_lerp_paper), reading one interval's SoA keys.
+// Blocks of kB joints as structure of arrays: block[c][lane] is coefficient c of joint j0 + lane. The motor
+// math runs on blocks in loops over lanes that GCC vectorizes; the job buffers stay arrays of Motor (the
+// API), converted with 4x4 transposes instead of 12 scattered stores per joint.
+constexpr std::size_t kB = 8;
+using Block = float[kM][kB];
+
+#if defined(__GNUC__)
+inline void transpose4(detail::v4f& r0, detail::v4f& r1, detail::v4f& r2, detail::v4f& r3) {
+  const detail::v4f t0 = __builtin_shufflevector(r0, r1, 0, 4, 1, 5), t1 = __builtin_shufflevector(r2, r3, 0, 4, 1, 5);
+  const detail::v4f t2 = __builtin_shufflevector(r0, r1, 2, 6, 3, 7), t3 = __builtin_shufflevector(r2, r3, 2, 6, 3, 7);
+  r0 = __builtin_shufflevector(t0, t1, 0, 1, 4, 5), r1 = __builtin_shufflevector(t0, t1, 2, 3, 6, 7);
+  r2 = __builtin_shufflevector(t2, t3, 0, 1, 4, 5), r3 = __builtin_shufflevector(t2, t3, 2, 3, 6, 7);
+}
+#endif
+
+// Joints m[0..count) into a block; lanes past count hold the identity.
+inline void load_block(const Motor* __restrict m, std::size_t count, Block& b) {
+#if defined(__GNUC__)
+  if (count == kB) {
+    for (std::size_t g = 0; g < kB; g += 4)
+      for (std::size_t q = 0; q < kM; q += 4) {
+        detail::v4f r0 = detail::load4(&m[g].c[q]), r1 = detail::load4(&m[g + 1].c[q]);
+        detail::v4f r2 = detail::load4(&m[g + 2].c[q]), r3 = detail::load4(&m[g + 3].c[q]);
+        transpose4(r0, r1, r2, r3);
+        detail::store4(&b[q][g], r0), detail::store4(&b[q + 1][g], r1);
+        detail::store4(&b[q + 2][g], r2), detail::store4(&b[q + 3][g], r3);
+      }
+    return;
+  }
+#endif
+  const Motor one;
+  for (std::size_t l = 0; l < kB; ++l)
+    for (std::size_t c = 0; c < kM; ++c) b[c][l] = l < count ? m[l].c[c] : one.c[c];
+}
+// The first count lanes of a block into m[0..count).
+inline void store_block(const Block& b, std::size_t count, Motor* __restrict m) {
+#if defined(__GNUC__)
+  if (count == kB) {
+    for (std::size_t g = 0; g < kB; g += 4)
+      for (std::size_t q = 0; q < kM; q += 4) {
+        detail::v4f r0 = detail::load4(&b[q][g]), r1 = detail::load4(&b[q + 1][g]);
+        detail::v4f r2 = detail::load4(&b[q + 2][g]), r3 = detail::load4(&b[q + 3][g]);
+        transpose4(r0, r1, r2, r3);
+        detail::store4(&m[g].c[q], r0), detail::store4(&m[g + 1].c[q], r1);
+        detail::store4(&m[g + 2].c[q], r2), detail::store4(&m[g + 3].c[q], r3);
+      }
+    return;
+  }
+#endif
+  for (std::size_t l = 0; l < count; ++l)
+    for (std::size_t c = 0; c < kM; ++c) m[l].c[c] = b[c][l];
+}
+
+// The paper's lerp of every joint (generated motor_lerp_paper), reading one interval's SoA keys (stride w,
+// a multiple of kB, so whole blocks are always readable).
 CGA_JOBS_CLONES void sample_paper(std::size_t n, std::size_t w, float t, const float* __restrict t0,
                                   const float* __restrict inv, const float* __restrict r0,
                                   const float* __restrict r1, const float* __restrict s0,
-                                  const float* __restrict s1, float* __restrict out) {
+                                  const float* __restrict s1, Motor* __restrict out) {
 #if CGA_RUNTIME_HAVE_KERNELS
-#pragma GCC ivdep
-  for (std::size_t j = 0; j < n; ++j) {
-    const float a = (t - t0[j]) * inv[j];
-    float x[kR], y[kR], m[kM];
-    for (std::size_t c = 0; c < kR; ++c) x[c] = r0[c * w + j], y[c] = r1[c * w + j];
-    kernels::motor_lerp_paper(x, y, s0[j], s1[j], a, m);
-    for (std::size_t c = 0; c < kM; ++c) out[j * kM + c] = m[c];
+  for (std::size_t j0 = 0; j0 < n; j0 += kB) {
+    Block res;
+    for (std::size_t l = 0; l < kB; ++l) {
+      const std::size_t j = j0 + l;
+      const float a = (t - t0[j]) * inv[j];
+      float x[kR], y[kR], m[kM];
+      for (std::size_t c = 0; c < kR; ++c) x[c] = r0[c * w + j], y[c] = r1[c * w + j];
+      kernels::motor_lerp_paper(x, y, s0[j], s1[j], a, m);
+      for (std::size_t c = 0; c < kM; ++c) res[c][l] = m[c];
+    }
+    store_block(res, std::min(kB, n - j0), out + j0);
   }
 #else
   (void)n, (void)w, (void)t, (void)t0, (void)inv, (void)r0, (void)r1, (void)s0, (void)s1, (void)out;
@@ -46,13 +104,50 @@ CGA_JOBS_CLONES void sample_paper(std::size_t n, std::size_t w, float t, const f
 // nlerp of every joint: key i plus alpha times the (sign-matched) difference, normalized.
 CGA_JOBS_CLONES void sample_nlerp(std::size_t n, std::size_t w, float t, const float* __restrict t0,
                                   const float* __restrict inv, const float* __restrict m0,
-                                  const float* __restrict md, float* __restrict out) {
-#pragma GCC ivdep
-  for (std::size_t j = 0; j < n; ++j) {
-    const float a = (t - t0[j]) * inv[j];
-    float m[kM];
-    for (std::size_t c = 0; c < kM; ++c) m[c] = m0[c * w + j] + a * md[c * w + j];
-    motor_normalize_fast(m, out + j * kM);
+                                  const float* __restrict md, Motor* __restrict out) {
+  for (std::size_t j0 = 0; j0 < n; j0 += kB) {
+    Block res;
+    for (std::size_t l = 0; l < kB; ++l) {
+      const std::size_t j = j0 + l;
+      const float a = (t - t0[j]) * inv[j];
+      float m[kM], y[kM];
+      for (std::size_t c = 0; c < kM; ++c) m[c] = m0[c * w + j] + a * md[c * w + j];
+      motor_normalize_fast(m, y);
+      for (std::size_t c = 0; c < kM; ++c) res[c][l] = y[c];
+    }
+    store_block(res, std::min(kB, n - j0), out + j0);
+  }
+}
+
+// nlerp's blend: the weighted sum with each motor's sign matched to the reference layer's, normalized.
+CGA_JOBS_CLONES void blend_nlerp(std::size_t n, std::span<const BlendLayer> layers, std::size_t first, float inv,
+                                 Motor* __restrict out) {
+  for (std::size_t j0 = 0; j0 < n; j0 += kB) {
+    const std::size_t count = std::min(kB, n - j0);
+    Block ref, x, acc;
+    load_block(layers[first].motors.data() + j0, count, ref);
+    const float w0 = layers[first].weight * inv;
+    for (std::size_t c = 0; c < kM; ++c)
+      for (std::size_t l = 0; l < kB; ++l) acc[c][l] = w0 * ref[c][l];
+    for (std::size_t k = first + 1; k < layers.size(); ++k) {
+      if (layers[k].weight <= 0.0f) continue;
+      load_block(layers[k].motors.data() + j0, count, x);
+      const float w = layers[k].weight * inv;
+      for (std::size_t l = 0; l < kB; ++l) {
+        const float dot = (ref[0][l] + ref[7][l]) * (x[0][l] + x[7][l]) + (ref[1][l] + ref[9][l]) * (x[1][l] + x[9][l]) +
+                          (ref[2][l] + ref[10][l]) * (x[2][l] + x[10][l]) + (ref[4][l] + ref[11][l]) * (x[4][l] + x[11][l]);
+        const float s = dot < 0.0f ? -w : w;
+        for (std::size_t c = 0; c < kM; ++c) acc[c][l] += s * x[c][l];
+      }
+    }
+    Block res;
+    for (std::size_t l = 0; l < kB; ++l) {
+      float m[kM], y[kM];
+      for (std::size_t c = 0; c < kM; ++c) m[c] = acc[c][l];
+      motor_normalize_fast(m, y);
+      for (std::size_t c = 0; c < kM; ++c) res[c][l] = y[c];
+    }
+    store_block(res, count, out + j0);
   }
 }
 
@@ -65,18 +160,6 @@ CGA_JOBS_CLONES void add_scaled(std::size_t count, float w, const float* __restr
 #pragma GCC ivdep
   for (std::size_t x = 0; x < count; ++x) out[x] += w * in[x];
 }
-// nlerp's accumulation: each motor's sign matched to the reference layer's.
-CGA_JOBS_CLONES void add_signed(std::size_t n, float w, const Motor* __restrict ref, const Motor* __restrict in,
-                                Motor* __restrict out) {
-  for (std::size_t j = 0; j < n; ++j) {
-    const float s = motor_rotor_dot(ref[j], in[j]) < 0.0f ? -w : w;
-    for (std::size_t c = 0; c < kM; ++c) out[j].c[c] += s * in[j].c[c];
-  }
-}
-CGA_JOBS_CLONES void normalize_all(std::size_t n, Motor* __restrict m) {
-  for (std::size_t j = 0; j < n; ++j) motor_normalize_fast(m[j].c.data(), m[j].c.data());
-}
-
 bool all_rigid(std::span<const Motor> m, std::size_t n) {
   bool rigid = true;
   for (std::size_t j = 0; j < n; ++j) rigid &= motor_is_rigid(m[j]);
@@ -183,11 +266,11 @@ bool SamplingJob::Run() const {
   switch (mode) {
     case Interpolation::paper:
       sample_paper(n, w, t, t0, inv, iv.rigid0.data() + u * kR * w, iv.rigid1.data() + u * kR * w,
-                   iv.scale0.data() + u * w, iv.scale1.data() + u * w, out_motors.data()->c.data());
+                   iv.scale0.data() + u * w, iv.scale1.data() + u * w, out_motors.data());
       break;
     case Interpolation::nlerp:
       sample_nlerp(n, w, t, t0, inv, iv.motor0.data() + u * kM * w, iv.motor_delta.data() + u * kM * w,
-                   out_motors.data()->c.data());
+                   out_motors.data());
       break;
     case Interpolation::screw:
       for (std::size_t j = 0; j < n; ++j) {
@@ -275,21 +358,17 @@ bool BlendingJob::Run() const {
   while (layers[first].weight <= 0.0f) ++first;
 
   switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp: {
+    case Interpolation::paper: {
       const std::size_t n = out_motors.size();
       float* out = out_motors.data()->c.data();
       scale_into(n * kM, layers[first].weight * inv, layers[first].motors.data()->c.data(), out);
-      for (std::size_t l = first + 1; l < layers.size(); ++l) {
-        if (layers[l].weight <= 0.0f) continue;
-        if (mode == Interpolation::paper)
-          add_scaled(n * kM, layers[l].weight * inv, layers[l].motors.data()->c.data(), out);
-        else
-          add_signed(n, layers[l].weight * inv, layers[first].motors.data(), layers[l].motors.data(), out_motors.data());
-      }
-      if (mode == Interpolation::nlerp) normalize_all(n, out_motors.data());
+      for (std::size_t l = first + 1; l < layers.size(); ++l)
+        if (layers[l].weight > 0.0f) add_scaled(n * kM, layers[l].weight * inv, layers[l].motors.data()->c.data(), out);
       break;
     }
+    case Interpolation::nlerp:
+      blend_nlerp(out_motors.size(), layers, first, inv, out_motors.data());
+      break;
     case Interpolation::screw:
       for (std::size_t j = 0; j < out_motors.size(); ++j) {
         Transform acc = motor_to_transform(layers[first].motors[j]);
