@@ -4,6 +4,8 @@
 // these scale-free characters too.
 #include <catch2/catch.hpp>
 
+#include <random>
+
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 
@@ -93,6 +95,64 @@ TEST_CASE("motor palette equals matrix palette on every key frame") {
         CHECK(worst <= tol);
         CHECK(worst_dq <= tol);
       }
+    }
+  }
+}
+
+TEST_CASE("hierarchy and palette: rigid fast paths and mixed scaled joints equal chains of motor_mul") {
+  // Four joints (0 <- 1 <- 2, 0 <- 3) with a scale on joint 2 only in the second round: the jobs then take the
+  // 12-blade product for that branch and the rigid one elsewhere; both must equal plain motor_mul chains.
+  Skeleton sk;
+  sk.names = {"root", "a", "b", "c"};
+  sk.parents = {-1, 0, 1, 0};
+  sk.rest_local.resize(4);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (bool scaled : {false, true}) {
+    INFO("scaled " << scaled);
+    std::vector<Motor> local(4), model(4), palette(3), want_model(4);
+    for (int j = 0; j < 4; ++j) {
+      Transform x;
+      x.translation = glm::vec3(u(rng), u(rng), u(rng));
+      x.rotation = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+      x.scale = scaled && j == 2 ? 1.7f : 1.0f;
+      local[j] = motor_from_transform(x);
+    }
+    LocalToModelJob l2m;
+    l2m.skeleton = &sk, l2m.mode = Interpolation::paper, l2m.local_motors = local, l2m.model_motors = model;
+    REQUIRE(l2m.Run());
+    for (int j = 0; j < 4; ++j) {
+      want_model[j] = sk.parents[j] < 0 ? local[j] : motor_mul(want_model[sk.parents[j]], local[j]);
+      for (int c = 0; c < 12; ++c) REQUIRE(model[j].c[c] == Approx(want_model[j].c[c]).margin(1e-5));
+    }
+    InverseBind ib;
+    const std::vector<int> remap = {3, 2, 1};
+    for (int k = 0; k < 3; ++k) {
+      Transform x;
+      x.translation = glm::vec3(u(rng), u(rng), u(rng));
+      x.scale = k == 0 ? 0.5f : 1.0f;  // one scaled inverse bind
+      ib.motors.push_back(motor_from_transform(x));
+    }
+    SkinningPaletteJob pal;
+    pal.mode = Interpolation::paper, pal.joint_remap = remap, pal.inverse_bind = &ib, pal.model_motors = model,
+    pal.out_motors = palette;
+    REQUIRE(pal.Run());
+    for (int k = 0; k < 3; ++k) {
+      const Motor want = motor_mul(model[remap[k]], ib.motors[k]);
+      for (int c = 0; c < 12; ++c) REQUIRE(palette[k].c[c] == Approx(want.c[c]).margin(1e-5));
+    }
+  }
+}
+
+TEST_CASE("joints are ordered breadth-first with parents first") {
+  for (const char* file : {"X/BCN_Epileptic.X", "X/Testwuson.X", "BVH/01_01.bvh"}) {
+    const Character ch = load_character(model(file), {});
+    const Skeleton& sk = ch.skeleton;
+    std::vector<int> depth(sk.joint_count());
+    for (int j = 0; j < sk.joint_count(); ++j) {
+      REQUIRE(sk.parents[j] < j);
+      depth[j] = sk.parents[j] < 0 ? 0 : depth[sk.parents[j]] + 1;
+      if (j > 0) CHECK(depth[j] >= depth[j - 1]);
     }
   }
 }

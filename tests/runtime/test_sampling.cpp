@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 
 #include "cga/runtime/jobs.hpp"
@@ -270,4 +271,155 @@ TEST_CASE("blending: edge weights give a layer back, equal poses give the pose")
     job.layers = none;
     CHECK_FALSE(job.Run());
   }
+}
+
+// ------------------------------------------------------------------------------------------ fast paths
+// The pose jobs' fast paths (per-interval keys, closed-form normalization, rigid and SIMD products) against
+// the straightforward computations they replace.
+
+namespace {
+
+Transform random_transform(std::mt19937& rng, bool scaled) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Transform x;
+  x.translation = glm::vec3(u(rng), u(rng), u(rng)) * 3.0f;
+  x.rotation = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+  x.scale = scaled ? std::exp(u(rng)) : 1.0f;
+  return x;
+}
+
+float max_diff(const Motor& a, const Motor& b) {
+  float d = 0.0f;
+  for (int c = 0; c < 12; ++c) d = std::max(d, std::abs(a.c[c] - b.c[c]));
+  return d;
+}
+
+// The sampler's result computed the slow way: binary search in the joint's own keys, then the mode's
+// interpolant through the wrappers of motor.hpp (the code before the per-interval keys).
+Motor reference_sample(const JointKeys& k, float t, Interpolation mode) {
+  if (k.size() == 1 || t <= k.times[0]) return k.motors[0];
+  if (t >= k.times.back()) return k.motors.back();
+  const std::size_t i = std::upper_bound(k.times.begin(), k.times.end(), t) - k.times.begin() - 1;
+  const float a = (t - k.times[i]) / (k.times[i + 1] - k.times[i]);
+  if (mode == Interpolation::paper)
+    return motor_lerp_paper(k.rigid[i], k.rigid[i + 1], k.transforms[i].scale, k.transforms[i + 1].scale, a);
+  const Motor& x = k.motors[i];
+  const Motor& y = k.motors[i + 1];
+  const float b = motor_rotor_dot(x, y) < 0.0f ? -a : a;
+  Motor m;
+  for (int c = 0; c < 12; ++c) m.c[c] = (1.0f - a) * x.c[c] + b * y.c[c];
+  return motor_normalize(m);
+}
+
+}  // namespace
+
+TEST_CASE("motor_normalize_fast equals motor_normalize (the TRS round trip) on blends of motors") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int n = 0; n < 500; ++n) {
+    const bool scaled = n % 2 == 1;
+    const Motor x = motor_from_transform(random_transform(rng, scaled));
+    const Motor y = motor_from_transform(random_transform(rng, scaled));
+    const float a = u(rng);
+    const float b = motor_rotor_dot(x, y) < 0.0f ? -a : a;
+    Motor m;
+    for (int c = 0; c < 12; ++c) m.c[c] = (1.0f - a) * x.c[c] + b * y.c[c];
+    const Motor want = motor_normalize(m);
+    const Motor got = motor_normalize_fast(m);
+    INFO("n " << n << " alpha " << a);
+    REQUIRE(max_diff(got, want) < 1e-4f * (1.0f + std::abs(want.c[3]) + std::abs(want.c[5]) + std::abs(want.c[6])));
+    // Rigid in, exactly rigid out (the jobs then take the 8-blade product).
+    if (!scaled) REQUIRE(motor_is_rigid(got));
+  }
+}
+
+TEST_CASE("the rigid motor products (generated 8-blade kernel and its SIMD form) equal motor_mul") {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int n = 0; n < 500; ++n) {
+    // Exact rigid motors, and arbitrary coefficients on the 8 rigid blades (blends are not versors).
+    Motor a = motor_from_transform(random_transform(rng, false));
+    Motor b = motor_from_transform(random_transform(rng, false));
+    if (n % 2) {
+      for (int c : {0, 1, 2, 3, 4, 5, 6, 8}) a.c[c] = u(rng), b.c[c] = u(rng);
+    }
+    REQUIRE(motor_is_rigid(a));
+    const Motor want = motor_mul(a, b);
+    Motor got, simd;
+    motor_mul_rigid(a, b, got);
+    motor_mul_rigid_simd(a, b, simd);
+    REQUIRE(max_diff(got, want) < 1e-5f * 10.0f);
+    REQUIRE(max_diff(simd, want) < 1e-5f * 10.0f);
+    REQUIRE(motor_is_rigid(simd));
+  }
+  // A dilation is not rigid.
+  Transform s;
+  s.scale = 2.0f;
+  CHECK_FALSE(motor_is_rigid(motor_from_transform(s)));
+}
+
+TEST_CASE("per-interval sampling equals a binary search in each joint's own keys") {
+  // Testwuson has joints with one key next to joints with 30 or 109; 01_01 has 2752 keys per joint.
+  std::mt19937 rng(13);
+  for (const char* file : {"X/Testwuson.X", "BVH/01_01.bvh", "X/BCN_Epileptic.X"}) {
+    const Character ch = load_character(model(file));
+    for (const Clip& clip : ch.clips) {
+      REQUIRE(clip.intervals.joints == clip.keys.size());
+      std::uniform_real_distribution<float> u(-0.1f * clip.duration - 0.1f, 1.1f * clip.duration + 0.1f);
+      PoseBuffer pose(ch.skeleton.joint_count());
+      std::vector<float> times = {0.0f, clip.duration, clip.intervals.times.front(), clip.intervals.times.back()};
+      for (int s = 0; s < 60; ++s) times.push_back(u(rng));
+      for (std::size_t s = 0; s < clip.intervals.times.size(); s += 7) times.push_back(clip.intervals.times[s]);
+      for (Interpolation mode : {Interpolation::paper, Interpolation::nlerp}) {
+        for (float t : times) {
+          INFO(file << " clip " << clip.name << " mode " << to_string(mode) << " t " << t);
+          REQUIRE(sampler(clip, t, mode, pose).Run());
+          const float tc = std::clamp(t, 0.0f, clip.duration);
+          for (std::size_t j = 0; j < clip.keys.size(); ++j) {
+            const Motor want = reference_sample(clip.keys[j], tc, mode);
+            REQUIRE(max_diff(pose.motors[j], want) < 2e-5f * (1.0f + std::abs(want.c[3]) + std::abs(want.c[5]) +
+                                                              std::abs(want.c[6]) + std::abs(want.c[8])));
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("joints whose keys start late or end early hold them while other joints move") {
+  Clip clip;
+  clip.name = "staggered";
+  clip.duration = 3.0f;
+  clip.tracks.resize(2);
+  Transform a, b, c;
+  b.translation = glm::vec3(1.0f, 0.0f, 0.0f);
+  c.translation = glm::vec3(0.0f, 2.0f, 0.0f);
+  c.rotation = glm::angleAxis(1.0f, glm::vec3(0.0f, 0.0f, 1.0f));
+  for (auto [t, x] : {std::pair{0.0f, a}, std::pair{1.0f, b}, std::pair{3.0f, c}}) {
+    clip.tracks[0].translations.push_back({t, x.translation});
+    clip.tracks[0].rotations.push_back({t, x.rotation, rotor_from_quat(x.rotation)});
+    clip.tracks[0].scales.push_back({t, x.scale});
+  }
+  for (auto [t, x] : {std::pair{1.5f, c}, std::pair{2.0f, b}}) {
+    clip.tracks[1].translations.push_back({t, x.translation});
+    clip.tracks[1].rotations.push_back({t, x.rotation, rotor_from_quat(x.rotation)});
+    clip.tracks[1].scales.push_back({t, x.scale});
+  }
+  build_joint_keys(clip);
+  REQUIRE(clip.intervals.times == std::vector<float>{0.0f, 1.0f, 1.5f, 2.0f, 3.0f});
+  PoseBuffer pose(2);
+  for (Interpolation mode : kAllInterpolations)
+    for (float t : {0.0f, 0.5f, 1.0f, 1.25f, 1.5f, 1.75f, 2.0f, 2.5f, 3.0f}) {
+      INFO(to_string(mode) << " t " << t);
+      REQUIRE(sampler(clip, t, mode, pose).Run());
+      // Joint 1 holds c before 1.5 and b after 2; in between it moves from c to b.
+      const glm::vec3 p = pose_apply(mode, pose, 1, glm::vec3(0.0f));
+      if (t <= 1.5f) CHECK(glm::length(p - c.translation) < 1e-5f);
+      if (t >= 2.0f) CHECK(glm::length(p - b.translation) < 1e-5f);
+      if (t > 1.5f && t < 2.0f) CHECK(glm::length(p - c.translation) > 1e-3f);
+      // Joint 0 passes through b at 1 on its way from a to c.
+      const glm::vec3 q = pose_apply(mode, pose, 0, glm::vec3(0.0f));
+      if (t == 1.0f) CHECK(glm::length(q - b.translation) < 1e-5f);
+      if (t == 0.5f) CHECK(glm::length(q - 0.5f * b.translation) < 1e-5f);
+    }
 }
