@@ -1,0 +1,3 @@
+// The skinning palettes of all instances, one after the other (instance i's entry k is entry
+// i * u_bone_count + k). An entry is PALETTE_STRIDE vec4s; the method file says how it reads one.
+layout(std430, binding = 0) readonly buffer Palette { vec4 palette[]; };
