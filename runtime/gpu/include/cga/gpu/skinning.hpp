@@ -24,6 +24,8 @@ std::string_view to_string(SkinPath path);  // "vertex+feedback", "compute"
 std::string_view shader_text(std::string_view name);
 // Where the build wrote that program (what glslangValidator checked); used in error messages.
 std::string_view shader_path(std::string_view name);
+// The method as shader file names spell it: "lbs", "dqs", "cga_points", "cga_motors".
+std::string shader_method_name(SkinningMethod method);
 
 // How many floats one palette entry takes on the GPU: lbs 12 (3 rows), dqs 8 (real xyzw, dual xyzw),
 // cga_points / cga_motors 12 (the motor's blades in order = the paper's mat3x4, blade k at column k/4).
