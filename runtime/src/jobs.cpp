@@ -277,7 +277,7 @@ bool SamplingJob::Run() const {
         const JointKeys& k = clip->keys[j];
         const std::size_t i = key[j];
         const float a = (t - t0[j]) * inv[j];
-        out_motors[j] = a == 0.0f ? k.motors[i] : motor_screw(k.transforms[i], k.transforms[i + 1], a);
+        out_motors[j] = a == 0.0f ? k.motors[i] : motor_screw(k.motors[i], k.motors[i + 1], a);
       }
       break;
     case Interpolation::glm_matrix:
@@ -371,14 +371,14 @@ bool BlendingJob::Run() const {
       break;
     case Interpolation::screw:
       for (std::size_t j = 0; j < out_motors.size(); ++j) {
-        Transform acc = motor_to_transform(layers[first].motors[j]);
+        Motor acc = layers[first].motors[j];
         float sum = layers[first].weight;
         for (std::size_t k = first + 1; k < layers.size(); ++k) {
           if (layers[k].weight <= 0.0f) continue;
           sum += layers[k].weight;
-          acc = transform_screw(acc, motor_to_transform(layers[k].motors[j]), layers[k].weight / sum);
+          acc = motor_screw(acc, layers[k].motors[j], layers[k].weight / sum);
         }
-        out_motors[j] = motor_from_transform(acc);
+        out_motors[j] = motor_normalize_fast(acc);
       }
       break;
     case Interpolation::glm_matrix:

@@ -75,6 +75,42 @@ Motor motor_screw(const Transform& x1, const Transform& x2, float alpha) {
   return motor_mul(m1, motor_from_transform(step));
 }
 
+namespace {
+
+// The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast: with
+// a' = R and b' = k R, 1 + k = 1 + a'.b', and the einf blades are (1 + k) times the rigid ones.
+Motor rigid_part(const Motor& m, double& scale) {
+  Motor n = motor_normalize_fast(m);
+  const float k = n.c[0] * n.c[7] + n.c[1] * n.c[9] + n.c[2] * n.c[10] + n.c[4] * n.c[11];
+  scale = (1.0 - double(k)) / (1.0 + double(k));
+  const float inv = 1.0f / (1.0f + k);
+  for (int c : {3, 5, 6, 8}) n.c[c] *= inv;
+  for (int c : {7, 9, 10, 11}) n.c[c] = 0.0f;
+  return n;
+}
+
+}  // namespace
+
+Motor motor_screw(const Motor& m1, const Motor& m2, float alpha) {
+  double s1, s2;
+  const Motor r1 = rigid_part(m1, s1);
+  const Motor r2 = rigid_part(m2, s2);
+  // The relative rigid motion ~R1 * R2: its rotor and, from the einf blades, its translation
+  // (t = -2 L(a)^T e for a unit rotor a, see motor_to_transform).
+  Motor rel;
+  motor_mul_rigid_simd(motor_reverse(r1), r2, rel);
+  const auto& c = rel.c;
+  const glm::dquat q = glm::normalize(glm::dquat(quat_from_rotor(c[0], c[1], c[2], c[4])));
+  const double g[4] = {c[0], c[1], c[2], c[4]}, e[4] = {c[3], c[5], c[6], c[8]};
+  const double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + g[3] * g[3];
+  const glm::dvec3 t = (-2.0 / gg) * glm::dvec3((g[0] * e[0] + g[1] * e[1] + g[2] * e[2] + g[3] * e[3]),
+                                                (-g[1] * e[0] + g[0] * e[1] + g[3] * e[2] - g[2] * e[3]),
+                                                (-g[2] * e[0] - g[3] * e[1] + g[0] * e[2] + g[1] * e[3]));
+  Transform step = screw_fraction(q, t, alpha);
+  step.scale = s1 == s2 ? static_cast<float>(s1) : static_cast<float>(std::pow(s1, 1.0 - alpha) * std::pow(s2, double(alpha)));
+  return motor_mul(r1, motor_from_transform(step));
+}
+
 Transform transform_screw(const Transform& x1, const Transform& x2, float alpha) {
   return motor_to_transform(motor_screw(x1, x2, alpha));
 }

@@ -423,3 +423,18 @@ TEST_CASE("joints whose keys start late or end early hold them while other joint
       if (t == 0.5f) CHECK(glm::length(q - 0.5f * b.translation) < 1e-5f);
     }
 }
+
+TEST_CASE("motor_screw on motors equals motor_screw on the transforms") {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int n = 0; n < 300; ++n) {
+    const bool scaled = n % 3 == 0;
+    const Transform x = random_transform(rng, scaled), y = random_transform(rng, scaled);
+    const float a = u(rng);
+    const Motor want = motor_screw(x, y, a);
+    const Motor got = motor_screw(motor_from_transform(x), motor_from_transform(y), a);
+    INFO("n " << n << " alpha " << a);
+    for (const glm::vec3& p : kProbe)
+      REQUIRE(glm::length(motor_transform_point(got, p) - motor_transform_point(want, p)) < 1e-4f);
+  }
+}

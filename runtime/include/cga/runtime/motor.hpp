@@ -275,6 +275,9 @@ inline void motor_mul_rigid(const Motor& a, const Motor& b, Motor& out) {
 // (constant-speed helix about the screw axis of the relative motion ~M1*M2, shortest way), the scale
 // geometrically (s1^(1-alpha) s2^alpha). alpha = 0 and 1 give the inputs exactly.
 Motor motor_screw(const Transform& x1, const Transform& x2, float alpha);
+// The same on two motors, straight from their coefficients (the jobs' form: no round trip through TRS).
+// The inputs are first projected onto exact motors as motor_normalize_fast does.
+Motor motor_screw(const Motor& m1, const Motor& m2, float alpha);
 // The same interpolation on the TRS level (used by motor_screw; exposed for tests and the accuracy tool).
 Transform transform_screw(const Transform& x1, const Transform& x2, float alpha);
 
