@@ -1,0 +1,76 @@
+// Pictures on the GL backend: skinned meshes drawn into an offscreen framebuffer (depth test, two-sided
+// Lambert shading, orthographic camera fitted to the meshes), read back as RGBA images and written as PNG.
+// render_posed_character() and render_twist_strip() are what the demo calls.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cga/gpu/context.hpp"
+#include "cga/runtime/loader.hpp"
+#include "cga/runtime/skinning.hpp"
+
+namespace cga::gpu {
+
+// RGBA8, rows top to bottom.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+  std::array<std::uint8_t, 4> pixel(int x, int y) const;
+  // Pixels whose colour differs from `colour` (e.g. the clear colour: 0 means a blank picture).
+  std::size_t count_pixels_unlike(std::array<std::uint8_t, 4> colour) const;
+};
+
+// Writes a PNG; throws std::runtime_error naming the path on failure.
+void write_png(const Image& image, const std::string& path);
+// Side by side, top-aligned, with `gap` columns of `gap_colour` between the pictures.
+Image side_by_side(std::span<const Image> images, int gap = 4, std::array<std::uint8_t, 4> gap_colour = {0, 0, 0, 255});
+
+// One mesh to draw: positions and normals as xyz triples (normals may be empty: flat-ish shading from a
+// constant normal is avoided by computing per-vertex normals from the triangles), triangle indices.
+struct DrawMesh {
+  std::span<const float> positions;
+  std::span<const float> normals;
+  std::span<const std::uint32_t> indices;
+  glm::vec3 colour{0.8f, 0.8f, 0.8f};
+};
+
+struct Camera {
+  // Direction the camera looks along and its up vector in model space. When `fit_axes` is set they are
+  // chosen from the meshes' bounding box instead: up = its longest axis, looking along its shortest one.
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  bool fit_axes = true;
+  // The box to frame: the meshes' bounding box when fit_box, else [box_min, box_max] (to frame several
+  // pictures identically).
+  bool fit_box = true;
+  glm::vec3 box_min{0.0f}, box_max{0.0f};
+  float margin = 1.08f;  // the framed extent times this fills the picture
+};
+
+inline constexpr std::array<std::uint8_t, 4> kClearColour{255, 255, 255, 255};
+
+// Draws the meshes (model space) into a width x height picture on a white background.
+Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, const Camera& camera, int width,
+                    int height);
+
+// The colour each method is drawn in (the demo's colours).
+glm::vec3 method_colour(SkinningMethod method);
+
+// Every mesh of the character posed at `time` of `clip` and skinned on the GPU (vertex shader + transform
+// feedback) with `method`.
+Image render_posed_character(const Context& context, const Character& character, const Clip& clip, float time,
+                             SkinningMethod method, int width = 512, int height = 512);
+
+// The two-bone twist cylinder (cga::make_twist_cylinder) with joint 1 twisted by `angle` radians, skinned
+// on the GPU by each of the four methods, side by side in the order lbs, dqs, cga-points, cga-motors.
+// At 180 degrees lbs and cga-points collapse to a "candy wrapper" in the middle, dqs and cga-motors do not.
+Image render_twist_strip(const Context& context, float angle = 3.14159265f, int panel_width = 256,
+                         int height = 384);
+
+}  // namespace cga::gpu
