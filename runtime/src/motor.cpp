@@ -52,7 +52,8 @@ Transform screw_fraction(glm::dquat q, const glm::dvec3& t, double alpha) {
   const glm::dvec3 u = v / sin_half;
   const double d = glm::dot(t, u);
   const glm::dvec3 t_perp = t - d * u;
-  const glm::dvec3 p = 0.5 * (t_perp + glm::cross(u, t_perp) / std::tan(0.5 * theta));
+  // 1/tan(theta/2) = q.w / sin_half (theta/2 = atan2(sin_half, q.w)); 0 at theta = pi, as it should be.
+  const glm::dvec3 p = 0.5 * (t_perp + glm::cross(u, t_perp) * (q.w / sin_half));
   const double half = 0.5 * alpha * theta;
   const glm::dquat qa(std::cos(half), std::sin(half) * u.x, std::sin(half) * u.y, std::sin(half) * u.z);
   out.rotation = glm::quat(qa);
@@ -108,7 +109,11 @@ Motor motor_screw(const Motor& m1, const Motor& m2, float alpha) {
                                                 (-g[2] * e[0] - g[3] * e[1] + g[0] * e[2] + g[1] * e[3]));
   Transform step = screw_fraction(q, t, alpha);
   step.scale = s1 == s2 ? static_cast<float>(s1) : static_cast<float>(std::pow(s1, 1.0 - alpha) * std::pow(s2, double(alpha)));
-  return motor_mul(r1, motor_from_transform(step));
+  const Motor m = motor_from_transform(step);
+  if (!motor_is_rigid(m)) return motor_mul(r1, m);
+  Motor out;
+  motor_mul_rigid_simd(r1, m, out);
+  return out;
 }
 
 Transform transform_screw(const Transform& x1, const Transform& x2, float alpha) {
