@@ -74,6 +74,10 @@ struct SkinningJob {
   std::span<float> out_px, out_py, out_pz;
   std::span<float> out_nx, out_ny, out_nz;
 
+  // Run lbs / cga_points / cga_motors on the hand-written AVX2 + FMA loops when the CPU has them (the default).
+  // false: always the portable loops, which agree to float rounding; tests use it to check both paths.
+  bool use_simd = true;
+
   // Checks sizes, the palette against every joint index and that every weight is finite and >= 0 with each
   // vertex's weights summing to 1 within kWeightSumTolerance (Run() itself checks only indices and finiteness).
   bool Validate() const { return ValidationError().empty(); }

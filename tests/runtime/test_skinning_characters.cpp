@@ -1,0 +1,138 @@
+// Skinning the real characters (Debian assimp-testmodels: X/BCN_Epileptic.X, X/Testwuson.X) at every key
+// frame of their first clip, with palettes from the runtime's own loader and pose jobs: cga-points must equal
+// lbs and cga-motors must equal dqs within 1e-5 of the character size, on the SIMD and the portable loops.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "cga/runtime/jobs.hpp"
+#include "cga/runtime/loader.hpp"
+#include "cga/runtime/skinning.hpp"
+
+namespace {
+
+using namespace cga;
+
+std::string model(const char* rel) { return std::string(CGA_MODELS_DIR) + "/" + rel; }
+
+// Every joint's key times, merged: at these times every sampling mode returns keys, not interpolations.
+std::vector<float> key_times(const Clip& clip) {
+  std::vector<float> times;
+  for (const JointKeys& k : clip.keys) times.insert(times.end(), k.times.begin(), k.times.end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  return times;
+}
+
+// One mesh's palettes at one time, in the representation of each mode (paper motors, GLM matrices, rigid
+// dual quaternions), made by sampling -> local-to-model -> skinning palette.
+struct MeshPalettes {
+  MotorPalette motors;
+  MatrixPalette matrices;
+  DualQuatPalette dual_quats;
+};
+
+MeshPalettes palettes_at(const Character& ch, const SkinnedMesh& mesh, const InverseBind& ib, float time) {
+  const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
+  const std::size_t p = mesh.joint_remap.size();
+  MeshPalettes out{MotorPalette(p), MatrixPalette(p), DualQuatPalette(p)};
+  for (Interpolation mode : {Interpolation::paper, Interpolation::glm_matrix, Interpolation::glm_dualquat}) {
+    PoseBuffer local(n), model_pose(n);
+    SamplingJob sampling{&ch.clips.front(), time, mode, local.motors, local.transforms, local.dual_quats,
+                         local.scales};
+    REQUIRE(sampling.Run());
+    LocalToModelJob l2m{&ch.skeleton,      mode,         local.motors,      local.transforms,
+                        local.dual_quats,  local.scales, model_pose.motors, model_pose.matrices,
+                        model_pose.dual_quats, model_pose.scales};
+    REQUIRE(l2m.Run());
+    SkinningPaletteJob palette;
+    palette.mode = mode;
+    palette.joint_remap = mesh.joint_remap;
+    palette.inverse_bind = &ib;
+    palette.model_motors = model_pose.motors;
+    palette.model_matrices = model_pose.matrices;
+    palette.model_dual_quats = model_pose.dual_quats;
+    palette.model_scales = model_pose.scales;
+    palette.out_motors = out.motors;
+    palette.out_matrices = out.matrices;
+    palette.out_dual_quats = out.dual_quats;
+    REQUIRE(palette.Run());
+  }
+  return out;
+}
+
+SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const MeshPalettes& pal, bool simd) {
+  SkinnedOutput out;
+  SkinningJob job = make_skinning_job(method, mesh, out);
+  job.matrices = pal.matrices;
+  job.dual_quats = pal.dual_quats;
+  job.motors = pal.motors;
+  job.use_simd = simd;
+  REQUIRE(job.Validate());
+  REQUIRE(job.Run());
+  return out;
+}
+
+float max_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
+  float d = 0.0f;
+  for (std::size_t i = 0; i < a.px.size(); ++i)
+    d = std::max(d, std::hypot(a.px[i] - b.px[i], a.py[i] - b.py[i], a.pz[i] - b.pz[i]));
+  return d;
+}
+
+float max_normal_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
+  float d = 0.0f;
+  for (std::size_t i = 0; i < a.nx.size(); ++i)
+    d = std::max(d, std::hypot(a.nx[i] - b.nx[i], a.ny[i] - b.ny[i], a.nz[i] - b.nz[i]));
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == dqs", "[skinning][characters]") {
+  REQUIRE(cga_skinning_kernels_available());
+  for (const char* file : {"X/BCN_Epileptic.X", "X/Testwuson.X"}) {
+    INFO(file);
+    const Character ch = load_character(model(file));
+    REQUIRE(!ch.clips.empty());
+    REQUIRE(!ch.meshes.empty());
+    const float size = character_size(ch);
+    REQUIRE(size > 0.0f);
+    const std::vector<float> times = key_times(ch.clips.front());
+    REQUIRE(times.size() >= 2);
+    std::vector<InverseBind> binds;
+    for (const SkinnedMesh& mesh : ch.meshes) binds.push_back(make_inverse_bind(mesh));
+    std::size_t skinned = 0;
+    float linear_vs_motor = 0.0f;  // how far lbs and dqs get apart somewhere: the comparisons must be able to fail
+    for (const float time : times) {
+      INFO("time " << time);
+      for (std::size_t m = 0; m < ch.meshes.size(); ++m) {
+        const SkinnedMesh& mesh = ch.meshes[m];
+        if (mesh.joint_remap.empty()) continue;
+        INFO("mesh " << m << " (" << mesh.name << ")");
+        const MeshPalettes pal = palettes_at(ch, mesh, binds[m], time);
+        for (const bool simd : {true, false}) {
+          INFO((simd ? "SIMD loops" : "portable loops"));
+          const SkinnedOutput lbs = skin(SkinningMethod::lbs, mesh, pal, simd);
+          const SkinnedOutput points = skin(SkinningMethod::cga_points, mesh, pal, simd);
+          const SkinnedOutput dqs = skin(SkinningMethod::dqs, mesh, pal, simd);
+          const SkinnedOutput motors = skin(SkinningMethod::cga_motors, mesh, pal, simd);
+          REQUIRE(max_distance(points, lbs) <= 1e-5f * size);
+          REQUIRE(max_distance(motors, dqs) <= 1e-5f * size);
+          if (mesh.has_normals()) {
+            REQUIRE(max_normal_distance(points, lbs) <= 1e-4f);
+            REQUIRE(max_normal_distance(motors, dqs) <= 1e-4f);
+          }
+          linear_vs_motor = std::max(linear_vs_motor, max_distance(lbs, dqs));
+        }
+        skinned += mesh.vertex_count();
+      }
+    }
+    CHECK(skinned > 0);
+    // Real animation has blended, rotated joints somewhere: linear and motor blending differ visibly.
+    CHECK(linear_vs_motor > 1e-4f * size);
+  }
+}

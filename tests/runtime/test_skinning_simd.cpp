@@ -1,0 +1,132 @@
+// The SIMD skinning loops (8 vertices per step, remainder and block edges) against the portable loops and
+// against a plain per-vertex reference, for vertex counts around the step (8) and block (256) sizes.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "cga/runtime/motor.hpp"
+#include "cga/runtime/skinning.hpp"
+#include "cga/runtime/skinning_palettes.hpp"
+#include "cga/runtime/skinning_test_meshes.hpp"
+
+namespace {
+
+using namespace cga;
+
+struct Palettes {
+  MatrixPalette matrices;
+  DualQuatPalette dual_quats;
+  MotorPalette motors;
+};
+
+Palettes make_palettes(const std::vector<Transform>& xs) {
+  Palettes p;
+  for (const Transform& x : xs) {
+    p.matrices.push_back(to_skinning_matrix(x));
+    Transform rigid = x;  // dqs holds no scale: its palette is the rigid part
+    rigid.scale = 1.0f;
+    p.dual_quats.push_back(to_dual_quat(rigid));
+    p.motors.push_back(motor_from_transform(x));
+  }
+  return p;
+}
+
+SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palettes& pal, bool simd) {
+  SkinnedOutput out;
+  SkinningJob job = make_skinning_job(method, mesh, out);
+  job.matrices = pal.matrices;
+  job.dual_quats = pal.dual_quats;
+  job.motors = pal.motors;
+  job.use_simd = simd;
+  REQUIRE(job.Run());
+  return out;
+}
+
+// p' = sum_k w_k (s R p + t) with GLM, one vertex at a time.
+glm::vec3 reference_lbs(const SkinnedMesh& mesh, const std::vector<Transform>& xs, std::size_t i) {
+  glm::vec3 sum(0.0f);
+  const glm::vec3 p(mesh.px[i], mesh.py[i], mesh.pz[i]);
+  for (int k = 0; k < 4; ++k) {
+    const Transform& x = xs[mesh.joints[i][k]];
+    sum += mesh.weights[i][k] * (x.scale * (x.rotation * p) + x.translation);
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("SIMD and portable skinning loops agree at every remainder and block edge", "[skinning][simd]") {
+  REQUIRE(cga_skinning_kernels_available());
+  const std::vector<Transform> rigid = make_random_transforms(24, 41, 2.0f);
+  const std::vector<Transform> scaled = make_random_transforms(24, 42, 2.0f, 0.5f);
+  const Palettes pal_rigid = make_palettes(rigid);
+  const Palettes pal_scaled = make_palettes(scaled);
+  const float size = 3.0f * std::exp(0.5f);
+  std::vector<std::size_t> counts;
+  for (std::size_t n = 1; n <= 17; ++n) counts.push_back(n);
+  for (std::size_t n : {255u, 256u, 257u, 263u, 520u}) counts.push_back(n);
+  for (const std::size_t n : counts) {
+    INFO(n << " vertices");
+    SkinnedMesh mesh = make_random_skinned_mesh(n, 24, static_cast<std::uint32_t>(1000 + n));
+    for (const bool normals : {true, false}) {
+      INFO((normals ? "with normals" : "positions only"));
+      if (!normals) {
+        mesh.nx.clear();
+        mesh.ny.clear();
+        mesh.nz.clear();
+      }
+      for (const Palettes* pal : std::array<const Palettes*, 2>{&pal_rigid, &pal_scaled}) {
+        for (SkinningMethod method : kAllSkinningMethods) {
+          INFO(to_string(method));
+          const SkinnedOutput simd = skin(method, mesh, *pal, true);
+          const SkinnedOutput portable = skin(method, mesh, *pal, false);
+          for (std::size_t i = 0; i < n; ++i) {
+            REQUIRE(std::hypot(simd.px[i] - portable.px[i], simd.py[i] - portable.py[i],
+                               simd.pz[i] - portable.pz[i]) <= 1e-5f * size);
+            if (normals) {
+              REQUIRE(std::hypot(simd.nx[i] - portable.nx[i], simd.ny[i] - portable.ny[i],
+                                 simd.nz[i] - portable.nz[i]) <= 1e-5f);
+              REQUIRE(std::hypot(simd.nx[i], simd.ny[i], simd.nz[i]) == Approx(1.0f).margin(1e-5));
+            }
+          }
+          if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points) {
+            const std::vector<Transform>& xs = pal == &pal_rigid ? rigid : scaled;
+            for (std::size_t i = 0; i < n; ++i) {
+              const glm::vec3 want = reference_lbs(mesh, xs, i);
+              REQUIRE(std::hypot(simd.px[i] - want.x, simd.py[i] - want.y, simd.pz[i] - want.z) <= 1e-5f * size);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("the SIMD loops leave outputs past the vertex count alone", "[skinning][simd]") {
+  REQUIRE(cga_skinning_kernels_available());
+  const Palettes pal = make_palettes(make_random_transforms(8, 51, 1.0f));
+  const SkinnedMesh mesh = make_random_skinned_mesh(13, 8, 52);
+  for (SkinningMethod method : kAllSkinningMethods) {
+    INFO(to_string(method));
+    // Outputs are views into longer arrays whose tails hold a sentinel.
+    std::vector<float> buf(6 * 24, -7.0f);
+    SkinnedOutput unused;
+    SkinningJob job = make_skinning_job(method, mesh, unused);
+    job.matrices = pal.matrices;
+    job.dual_quats = pal.dual_quats;
+    job.motors = pal.motors;
+    float* base = buf.data();
+    job.out_px = {base, 13};
+    job.out_py = {base + 24, 13};
+    job.out_pz = {base + 48, 13};
+    job.out_nx = {base + 72, 13};
+    job.out_ny = {base + 96, 13};
+    job.out_nz = {base + 120, 13};
+    REQUIRE(job.Run());
+    for (int s = 0; s < 6; ++s)
+      for (std::size_t i = 13; i < 24; ++i) REQUIRE(buf[24 * s + i] == -7.0f);
+  }
+}
