@@ -53,7 +53,9 @@ SkinningMethod parse_skinning_method(std::string_view text) {
       fmt::format("unknown skinning method '{}' (choose lbs, dqs, cga-points or cga-motors)", text));
 }
 
-bool cga_skinning_kernels_available() { return detail::kHaveMotorKernels; }
+// Always true: skinning_palettes.hpp includes the generated kernel unconditionally (kept for callers that
+// still ask).
+bool cga_skinning_kernels_available() { return true; }
 
 void SkinnedOutput::resize_for(const SkinnedMesh& mesh) {
   const std::size_t n = mesh.vertex_count();
@@ -101,7 +103,7 @@ std::size_t palette_size(const SkinningJob& job) {
   return 0;
 }
 
-// The O(1) checks: sizes, normals, palette limits, kernels present.
+// The O(1) checks: sizes, normals, palette limits.
 std::string shape_error(const SkinningJob& job) {
   const std::size_t n = job.in_px.size();
   if (job.in_py.size() != n || job.in_pz.size() != n)
@@ -122,11 +124,6 @@ std::string shape_error(const SkinningJob& job) {
                          job.out_ny.size(), job.out_nz.size());
   } else if (any_out_normals) {
     return "output normals given without input normals";
-  }
-  if (job.method == SkinningMethod::cga_points || job.method == SkinningMethod::cga_motors) {
-    if (!detail::kHaveMotorKernels)
-      return fmt::format("{} needs the generated motor_to_matrix kernel, absent from this build",
-                         to_string(job.method));
   }
   const std::size_t palette = palette_size(job);
   if (palette > kMaxConvertedPalette)

@@ -41,7 +41,7 @@ std::string_view to_string(SkinningMethod method);
 // Accepts the to_string() names and the enum spelling with '_'; throws std::invalid_argument naming the choices.
 SkinningMethod parse_skinning_method(std::string_view text);
 
-// True when this build has the generated kernels that cga_points / cga_motors run on.
+// True: the generated kernels that cga_points / cga_motors run on are a build dependency (kept for old callers).
 bool cga_skinning_kernels_available();
 
 // Largest palette a run takes: every method converts its palette once per run into the loop's layout (cga_points:

@@ -9,12 +9,9 @@
 
 #include "cga/runtime/types.hpp"
 
-#if __has_include(<motor_to_matrix.hpp>)
+// A hard dependency: the CGA methods run on this generated kernel (cga::kernels, generated/CMakeLists.txt), so
+// a build without it fails here rather than at run time.
 #include <motor_to_matrix.hpp>
-#define CGA_SKINNING_HAVE_MOTOR_KERNELS 1
-#else
-#define CGA_SKINNING_HAVE_MOTOR_KERNELS 0
-#endif
 
 namespace cga {
 
@@ -51,12 +48,9 @@ inline void pack_dual_quats(std::span<const glm::dualquat> in, std::span<float> 
 
 namespace detail {
 
-inline constexpr bool kHaveMotorKernels = CGA_SKINNING_HAVE_MOTOR_KERNELS != 0;
-
 // The weight-normalized point transform of a (possibly blended, unnormalized) motor as a row-major 3x4
 // matrix, computed by the generated motor_to_matrix kernel.
 inline void motor_matrix(const float motor[12], float out[12]) {
-#if CGA_SKINNING_HAVE_MOTOR_KERNELS
   float c1[3], c2[3], c3[3], t[3];
   cga::kernels::motor_to_matrix(motor, c1, c2, c3, t);
   for (int r = 0; r < 3; ++r) {
@@ -65,10 +59,6 @@ inline void motor_matrix(const float motor[12], float out[12]) {
     out[4 * r + 2] = c3[r];
     out[4 * r + 3] = t[r];
   }
-#else
-  (void)motor;
-  for (int e = 0; e < 12; ++e) out[e] = 0.0f;  // unreachable: jobs refuse cga methods without the kernels
-#endif
 }
 
 }  // namespace detail
