@@ -86,6 +86,64 @@ const CanonicalKeys::Entry& CanonicalKeys::entry(const ex& e) {
   return memo_.emplace(e, std::move(r)).first->second;
 }
 
+namespace {
+
+class Orienter {
+ public:
+  explicit Orienter(CanonicalKeys& keys) : keys_(keys) {}
+  ex operator()(const ex& e) {
+    if (is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e)) return e;
+    auto it = memo_.find(e);
+    if (it != memo_.end()) return it->second;
+    ex r;
+    if (is_a<add>(e)) {
+      exvector terms;
+      for (size_t i = 0; i < e.nops(); ++i) terms.push_back((*this)(e.op(i)));
+      r = dynallocate<add>(terms);
+    } else if (is_a<mul>(e)) {
+      exvector factors;
+      bool negate = false;
+      for (size_t i = 0; i < e.nops(); ++i) {
+        ex f = (*this)(e.op(i));
+        if (is_a<add>(f) && keys_.sign(f) < 0) {
+          f = -f;
+          negate = !negate;
+        }
+        factors.push_back(f);
+      }
+      r = dynallocate<mul>(factors);
+      if (negate) r = -r;
+    } else if (is_a<power>(e)) {
+      ex base = (*this)(e.op(0));
+      const ex& x = e.op(1);
+      bool negate = false;
+      if (is_a<numeric>(x) && ex_to<numeric>(x).is_integer() && is_a<add>(base) && keys_.sign(base) < 0) {
+        base = -base;
+        negate = ex_to<numeric>(x).is_odd();
+      }
+      r = pow(base, (*this)(x));
+      if (negate) r = -r;
+    } else {
+      struct F : map_function {
+        Orienter* self;
+        ex operator()(const ex& x) override { return (*self)(x); }
+      } f;
+      f.self = this;
+      r = e.map(f);
+    }
+    memo_.emplace(e, r);
+    return r;
+  }
+
+ private:
+  CanonicalKeys& keys_;
+  std::map<ex, ex, ex_is_less> memo_;
+};
+
+}  // namespace
+
+ex orient_sums(const ex& e, CanonicalKeys& keys) { return Orienter(keys)(e); }
+
 bool is_sqrt(const ex& e) {
   return is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)) == numeric(1, 2);
 }

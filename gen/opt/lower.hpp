@@ -83,6 +83,12 @@ std::vector<GiNaC::ex> ordered_children(const GiNaC::ex& e, CanonicalKeys& keys)
 // The cost of printing e (its own operations; symbols cost nothing).
 OpCounts count_ops(const GiNaC::ex& e, CanonicalKeys& keys);
 
+// e rebuilt so that every sum that is a factor of a product or the base of an integer power is oriented
+// (keys.sign(sum) > 0), its sign moved into the product's coefficient (odd powers) or dropped (even powers).
+// A top-level sum keeps its sign (GiNaC distributes -1 over a lone sum). GiNaC's choice between (a-b)*x and
+// -(b-a)*x depends on its hash order, which moves with ASLR; after this the tree depends only on the keys.
+GiNaC::ex orient_sums(const GiNaC::ex& e, CanonicalKeys& keys);
+
 // True for a power with a non-negative, non-integer rational exponent 1/2 (printed as sqrt).
 bool is_sqrt(const GiNaC::ex& e);
 

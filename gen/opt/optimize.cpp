@@ -2,9 +2,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cctype>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <iostream>
+#include <optional>
 #include <functional>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "opt/program.hpp"
 
@@ -31,6 +37,21 @@ SymbolNames symbol_names(const Program& program) {
 
 namespace {
 
+// CGAGEN_TIMING=1 prints how long each optimizer phase takes (to stderr), for finding hot spots.
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(std::string what) : what_(std::move(what)), start_(std::chrono::steady_clock::now()) {}
+  ~PhaseTimer() {
+    static const bool on = std::getenv("CGAGEN_TIMING") != nullptr;
+    if (!on) return;
+    auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    std::cerr << "cgagen timing: " << what_ << " " << ms << " ms\n";
+  }
+ private:
+  std::string what_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
 
 bool has_denominator(const ex& e) {
@@ -52,12 +73,20 @@ struct Rat {
 
 // Whether x (with denominators) is identically zero: cheap numeric probes first, then exact normal().
 bool is_zero_rational(const ex& x) {
-  ExSet syms;
-  collect_symbols(x, syms);
+  ExSet found;
+  collect_symbols(x, found);
+  // Probe values by symbol name, not by the set's (hash-dependent) order.
+  std::vector<std::pair<std::string, ex>> syms;
+  for (const auto& s : found) syms.push_back({ex_to<symbol>(s).get_name(), s});
+  std::sort(syms.begin(), syms.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Irregular points: evenly spaced values would put e.g. three points on one line (a pole of circle3).
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
   for (int probe = 0; probe < 2; ++probe) {
     exmap at;
-    int i = 0;
-    for (const auto& s : syms) at[s] = numeric(3 + 2 * i++ + probe * 7, 11 + probe);
+    for (const auto& s : syms) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      at[s.second] = numeric(static_cast<long>(300 + (state >> 33) % 1400), 1000);  // in [0.3, 1.7)
+    }
     try {
       ex v = x.subs(at, subs_options::no_pattern).evalf();
       if (is_a<numeric>(v) && abs(ex_to<numeric>(v)) > numeric(1, 1000000)) return false;
@@ -74,10 +103,45 @@ Rat canonical(const ex& e) {
   return {x, 1};
 }
 
+// e as (numerator, D) when e is a sum whose terms all have the same non-numeric denominator D (integer
+// powers with negative exponents); nullopt otherwise.
+std::optional<std::pair<ex, ex>> split_common_denominator(const ex& e) {
+  if (!is_a<add>(e)) return std::nullopt;
+  std::optional<ex> den;
+  exvector nums;
+  for (size_t i = 0; i < e.nops(); ++i) {
+    const ex& t = e.op(i);
+    exvector up, down;
+    auto take = [&](const ex& f) {
+      if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer() &&
+          ex_to<numeric>(f.op(1)).is_negative())
+        down.push_back(pow(f.op(0), -f.op(1)));
+      else
+        up.push_back(f);
+    };
+    if (is_a<mul>(t))
+      for (size_t j = 0; j < t.nops(); ++j) take(t.op(j));
+    else
+      take(t);
+    ex d = dynallocate<mul>(down);
+    if (is_a<numeric>(d)) return std::nullopt;
+    if (!den) den = d;
+    else if (!den->is_equal(d)) return std::nullopt;
+    nums.push_back(dynallocate<mul>(up));
+  }
+  return std::make_pair(ex(dynallocate<add>(nums)), *den);
+}
+
 // Brings a small output coefficient with denominators over one common denominator when that makes it
 // shorter (u.u - 1 with u = x/n folds to 0 or to a plain expression).
 Rat combine_fractions(const Rat& r) {
   if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return r;
+  // When every term has the same denominator D the terms over D stay as many (they are distinct monomials),
+  // so only a common factor of the numerator and D can make the form shorter: one gcd instead of
+  // numer_denom's gcd per term (seconds on circle3).
+  if (auto split = split_common_denominator(r.num)) {
+    if (is_a<numeric>(gcd(split->first, split->second))) return r;
+  }
   ex nd = r.num.numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
   auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
@@ -107,6 +171,50 @@ double estimate_terms(const ex& e, const std::map<ex, double, ex_is_less>& sizes
   if (is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer())
     return std::pow(estimate_terms(e.op(0), sizes), ex_to<numeric>(e.op(1)).to_double());
   return 1;
+}
+
+// The power of x that is a direct factor of term t (x or x^n, n an integer) and the rest of t; (0, t) when
+// there is none (x under a root, a function or a denominator sum stays in the coefficient).
+std::pair<int, ex> split_power_of(const ex& t, const ex& x) {
+  auto power_of = [&](const ex& f) {
+    if (f.is_equal(x)) return 1;
+    if (is_a<power>(f) && f.op(0).is_equal(x) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer())
+      return ex_to<numeric>(f.op(1)).to_int();
+    return 0;
+  };
+  if (!is_a<mul>(t)) {
+    int d = power_of(t);
+    return d != 0 ? std::pair<int, ex>{d, 1} : std::pair<int, ex>{0, t};
+  }
+  for (size_t i = 0; i < t.nops(); ++i)
+    if (int d = power_of(t.op(i)); d != 0) {
+      exvector rest;
+      for (size_t j = 0; j < t.nops(); ++j)
+        if (j != i) rest.push_back(t.op(j));
+      return {d, dynallocate<mul>(rest)};
+    }
+  return {0, t};
+}
+
+// e (an expanded sum) collected recursively: a polynomial in xs[k] whose coefficients are collected in
+// xs[k+1...]. Like GiNaC's collect(e, lst) but linear in the size of e (GiNaC's takes seconds on a few
+// hundred terms) and defined for every e (symbols under roots and functions stay in the coefficients).
+ex collect_in(const ex& e, const std::vector<ex>& xs, size_t k = 0) {
+  if (k == xs.size()) return e;
+  std::map<int, exvector> by_degree;
+  if (is_a<add>(e)) {
+    for (size_t i = 0; i < e.nops(); ++i) {
+      auto [d, rest] = split_power_of(e.op(i), xs[k]);
+      by_degree[d].push_back(rest);
+    }
+  } else {
+    auto [d, rest] = split_power_of(e, xs[k]);
+    by_degree[d].push_back(rest);
+  }
+  exvector out;
+  for (auto& [d, rests] : by_degree)
+    out.push_back(pow(xs[k], d) * collect_in(dynallocate<add>(rests), xs, k + 1));
+  return dynallocate<add>(out);
 }
 
 // Above this estimated size a value is not substituted into its users but kept as a temporary.
@@ -296,16 +404,26 @@ class Cse {
 
   // Runs every pass; roots are the output slot expressions (in order).
   void run(std::vector<ex>& roots) {
-    pair_products(roots);
+    { PhaseTimer t("  cse orient"); orient_all(roots); }
+    { PhaseTimer t("  cse pairs"); pair_products(roots); }
     topo_sort();
-    shared_subtrees(roots);
-    fold_negations(roots);
-    inline_single_use(roots);
+    { PhaseTimer t("  cse orient"); orient_all(roots); }
+    { PhaseTimer t("  cse subtrees"); shared_subtrees(roots); }
+    { PhaseTimer t("  cse orient"); orient_all(roots); }
+    { PhaseTimer t("  cse negations"); fold_negations(roots); }
+    { PhaseTimer t("  cse inline"); inline_single_use(roots); }
   }
 
   std::vector<Temp> temps() const { return in_temps_; }
 
  private:
+  // Every expression with its sums oriented by the keys (lower.hpp), so that equal subexpressions are equal
+  // trees whatever signs GiNaC's hash-dependent term order gave them.
+  void orient_all(std::vector<ex>& roots) {
+    for (auto& t : in_temps_) t.value = orient_sums(t.value, keys_);
+    for (auto& r : roots) r = orient_sums(r, keys_);
+  }
+
   // Orders the temporaries so that each comes after those it uses (stable otherwise).
   void topo_sort() {
     std::map<ex, size_t, ex_is_less> index;
@@ -382,49 +500,86 @@ class Cse {
     for (const auto& t : in_temps_) gather_muls(t.value, visited, order);
     for (const auto& r : roots) gather_muls(r, visited, order);
     if (order.empty()) return;
+    // Atoms are interned as ids; pair counts are kept up to date incrementally (only the cores holding a
+    // chosen pair are recounted), and ties go to the pair first in canonical key order.
+    std::vector<ex> atom_ex;
+    std::vector<std::string> atom_key;
+    std::map<ex, int, ex_is_less> atom_id;
+    std::vector<std::set<size_t>> cores_with;  // atom id -> indices into `order` of the cores holding it
+    auto intern = [&](const ex& a) {
+      auto [it, fresh] = atom_id.emplace(a, static_cast<int>(atom_ex.size()));
+      if (fresh) {
+        atom_ex.push_back(a);
+        atom_key.push_back(keys_.magnitude(a) + "|" + keys_.key(a));
+        cores_with.emplace_back();
+      }
+      return it->second;
+    };
+    using Pair = std::pair<int, int>;  // (first, second) in key order
+    auto make_pair_of = [&](int x, int y) { return atom_key[y] < atom_key[x] ? Pair{y, x} : Pair{x, y}; };
+    std::vector<std::vector<int>> ids(order.size());
+    std::map<Pair, int> count;
+    auto pairs_of = [&](const std::vector<int>& v) {
+      std::set<Pair> here;
+      for (size_t i = 0; i < v.size(); ++i)
+        for (size_t j = i + 1; j < v.size(); ++j) here.insert(make_pair_of(v[i], v[j]));
+      return here;
+    };
+    auto tally = [&](size_t c, int delta) {
+      for (const Pair& pk : pairs_of(ids[c])) {
+        int& n = count[pk];
+        n += delta;
+        if (n == 0) count.erase(pk);
+      }
+    };
+    for (size_t c = 0; c < order.size(); ++c) {
+      for (const auto& a : cores_[order[c]]) ids[c].push_back(intern(a));
+      for (int id : ids[c]) cores_with[id].insert(c);
+      tally(c, +1);
+    }
     std::vector<Temp> pair_temps;
     std::vector<std::pair<ex, ex>> pair_atoms;
     for (int iter = 0; iter < 100000; ++iter) {
-      std::map<std::pair<std::string, std::string>, int> count;
-      std::map<std::pair<std::string, std::string>, std::pair<ex, ex>> atoms_of;
-      for (const auto& core : order) {
-        const auto& atoms = cores_[core];
-        std::set<std::pair<std::string, std::string>> here;
-        for (size_t i = 0; i < atoms.size(); ++i)
-          for (size_t j = i + 1; j < atoms.size(); ++j) {
-            std::string a = keys_.magnitude(atoms[i]) + "|" + keys_.key(atoms[i]);
-            std::string b = keys_.magnitude(atoms[j]) + "|" + keys_.key(atoms[j]);
-            bool swap = b < a;
-            auto pk = swap ? std::make_pair(b, a) : std::make_pair(a, b);
-            if (here.insert(pk).second) {
-              ++count[pk];
-              if (!atoms_of.count(pk)) atoms_of[pk] = swap ? std::make_pair(atoms[j], atoms[i]) : std::make_pair(atoms[i], atoms[j]);
-            }
-          }
-      }
-      const std::pair<std::string, std::string>* best = nullptr;
+      const Pair* best = nullptr;
       int best_count = 1;
-      for (const auto& [pk, c] : count)
-        if (c > best_count) best_count = c, best = &pk;
+      for (const auto& [pk, n] : count) {
+        if (n < 2 || n < best_count) continue;
+        if (!best || n > best_count ||
+            std::tie(atom_key[pk.first], atom_key[pk.second]) < std::tie(atom_key[best->first], atom_key[best->second]))
+          best_count = n, best = &pk;
+      }
       if (!best) break;
-      auto [a, b] = atoms_of[*best];
+      const auto [ia, ib] = *best;
+      const ex a = atom_ex[ia], b = atom_ex[ib];
       Temp t = make_temp(a * b);
       pair_temps.push_back(t);
       pair_atoms.push_back({a, b});
-      for (const auto& core : order) {
-        auto& atoms = cores_[core];
-        while (true) {
-          auto ia = std::find_if(atoms.begin(), atoms.end(), [&](const ex& x) { return x.is_equal(a); });
-          if (ia == atoms.end()) break;
-          auto ib = std::find_if(atoms.begin(), atoms.end(),
-                                 [&](const ex& x) { return &x != &*ia && x.is_equal(b); });
-          if (ib == atoms.end()) break;
-          auto first = std::max(ia, ib), second = std::min(ia, ib);
-          atoms.erase(first);
-          atoms.erase(second);
-          atoms.push_back(t.sym);
+      const int it_id = intern(t.sym);
+      const std::set<size_t> holders = cores_with[ia];
+      for (size_t c : holders) {
+        auto& v = ids[c];
+        auto has_pair = [&] {
+          auto pa = std::find(v.begin(), v.end(), ia);
+          if (pa == v.end()) return false;
+          return ia == ib ? std::find(pa + 1, v.end(), ib) != v.end() : std::find(v.begin(), v.end(), ib) != v.end();
+        };
+        if (!has_pair()) continue;
+        tally(c, -1);
+        while (has_pair()) {
+          v.erase(std::find(v.begin(), v.end(), ia));
+          v.erase(std::find(v.begin(), v.end(), ib));
+          v.push_back(it_id);
         }
+        for (int x : {ia, ib})
+          if (std::find(v.begin(), v.end(), x) == v.end()) cores_with[x].erase(c);
+        cores_with[it_id].insert(c);
+        tally(c, +1);
       }
+    }
+    for (size_t c = 0; c < order.size(); ++c) {
+      auto& atoms = cores_[order[c]];
+      atoms.clear();
+      for (int id : ids[c]) atoms.push_back(atom_ex[id]);
     }
     if (pair_temps.empty()) return;
     ExMap memo;
@@ -542,49 +697,63 @@ class Cse {
     in_temps_ = std::move(out);
   }
 
-  // A temporary whose value prints with a leading minus is stored negated; its users subtract instead.
+  // A temporary whose value prints with a leading minus, or is a sum whose first term (by key) is negative,
+  // is stored negated; its users absorb the sign.
   void fold_negations(std::vector<ex>& roots) {
     exmap flip;
     for (auto& t : in_temps_) {
-      if (!flip.empty()) t.value = t.value.subs(flip, subs_options::no_pattern);
-      if (is_negative_term(t.value, keys_)) {
+      if (!flip.empty()) t.value = orient_sums(t.value.subs(flip, subs_options::no_pattern), keys_);
+      if (keys_.sign(t.value) < 0) {
         t.value = -t.value;
         flip[t.sym] = -t.sym;
       }
     }
     if (!flip.empty())
-      for (auto& r : roots) r = r.subs(flip, subs_options::no_pattern);
+      for (auto& r : roots) r = orient_sums(r.subs(flip, subs_options::no_pattern), keys_);
   }
 
   // Temporaries used once are put back into their user; unused ones are dropped.
   void inline_single_use(std::vector<ex>& roots) {
-    for (size_t i = in_temps_.size(); i-- > 0;) {
+    // Occurrences of each temporary's symbol per expression (node k < T: temporary k, else root k - T),
+    // kept up to date as values change, so a pass costs the size of the program, not temps x program.
+    const size_t nt = in_temps_.size();
+    std::map<ex, size_t, ex_is_less> temp_index;
+    for (size_t i = 0; i < nt; ++i) temp_index[in_temps_[i].sym] = i;
+    std::vector<std::map<size_t, int>> occ(nt);  // temp -> node -> occurrences
+    auto account = [&](const ex& e, size_t node, int delta) {
+      for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+        if (is_a<symbol>(*it))
+          if (auto ti = temp_index.find(*it); ti != temp_index.end())
+            if ((occ[ti->second][node] += delta) == 0) occ[ti->second].erase(node);
+    };
+    auto value_of = [&](size_t node) -> ex& { return node < nt ? in_temps_[node].value : roots[node - nt]; };
+    for (size_t i = 0; i < nt; ++i) account(in_temps_[i].value, i, +1);
+    for (size_t r = 0; r < roots.size(); ++r) account(roots[r], nt + r, +1);
+    std::vector<bool> alive(nt, true);
+    for (size_t i = nt; i-- > 0;) {
       const Temp t = in_temps_[i];
       int uses = 0;
-      auto count_in = [&](const ex& e) {
-        for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
-          if (is_a<symbol>(*it) && it->is_equal(t.sym)) ++uses;
-      };
-      for (size_t j = i + 1; j < in_temps_.size(); ++j) count_in(in_temps_[j].value);
-      for (const auto& r : roots) count_in(r);
+      for (const auto& [node, n] : occ[i]) uses += n;
       if (uses >= 2) continue;
       if (uses == 1) {
-        exmap m{{t.sym, t.value}};
-        for (size_t j = i + 1; j < in_temps_.size(); ++j)
-          if (in_temps_[j].value.has(t.sym)) {
-            ex v = in_temps_[j].value.subs(m, subs_options::no_pattern);
-            // GiNaC may re-simplify on substitution; keep the temporary when that would cost more.
-            if (count_ops(v, keys_).weighted() >
-                count_ops(in_temps_[j].value, keys_).weighted() + count_ops(t.value, keys_).weighted())
-              goto keep;
-            in_temps_[j].value = v;
-          }
-        for (auto& r : roots)
-          if (r.has(t.sym)) r = r.subs(m, subs_options::no_pattern);
+        const size_t user = occ[i].begin()->first;
+        ex& target = value_of(user);
+        ex v = target.subs(exmap{{t.sym, t.value}}, subs_options::no_pattern);
+        // GiNaC may re-simplify on substitution; keep the temporary when that would cost more.
+        if (user < nt && count_ops(v, keys_).weighted() >
+                             count_ops(target, keys_).weighted() + count_ops(t.value, keys_).weighted())
+          continue;
+        account(target, user, -1);
+        target = v;
+        account(target, user, +1);
       }
-      in_temps_.erase(in_temps_.begin() + static_cast<long>(i));
-    keep:;
+      account(t.value, i, -1);
+      alive[i] = false;
     }
+    std::vector<Temp> kept;
+    for (size_t i = 0; i < nt; ++i)
+      if (alive[i]) kept.push_back(in_temps_[i]);
+    in_temps_ = std::move(kept);
   }
 
   Namer namer_;
@@ -625,29 +794,25 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
   };
   // 1. The expanded -O1 forms.
   const std::vector<Temp> kept = materialized_temps(k, s);
-  variants.push_back(finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
+  {
+    PhaseTimer t("variant expanded");
+    variants.push_back(finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
+  }
   // 2. Collected in the scalar inputs, then in each multivector input's coefficients.
-  std::vector<lst> groups;
-  lst scalars;
+  std::vector<std::vector<ex>> groups;
+  std::vector<ex> scalars;
   for (const auto& in : k.inputs)
-    if (!in.is_multivector) scalars.append(in.symbols.at(0));
-  if (scalars.nops() > 0) groups.push_back(scalars);
+    if (!in.is_multivector) scalars.push_back(in.symbols.at(0));
+  if (!scalars.empty()) groups.push_back(scalars);
   for (const auto& in : k.inputs)
-    if (in.is_multivector) {
-      lst g;
-      for (const auto& sym : in.symbols) g.append(sym);
-      groups.push_back(g);
-    }
+    if (in.is_multivector) groups.emplace_back(in.symbols.begin(), in.symbols.end());
   for (const auto& g : groups) {
     std::vector<ex> roots;
-    try {
-      roots = roots_with([&](const SlotPlan& sp) {
-        ex n = collect(sp.value.num, g);
-        return sp.value.den.is_equal(1) ? n : n / collect(sp.value.den, g);
-      });
-    } catch (const std::exception&) {
-      continue;  // GiNaC cannot collect in a symbol under a non-integer power (sqrt(x)); skip this form
-    }
+    PhaseTimer t("variant collected");
+    roots = roots_with([&](const SlotPlan& sp) {
+      ex n = collect_in(sp.value.num, g);
+      return sp.value.den.is_equal(1) ? n : n / collect_in(sp.value.den, g);
+    });
     variants.push_back(finish_o2(k, kept, roots, plans));
   }
   // 3. The script's own statements (each value expanded over earlier values), which keeps products like
@@ -660,8 +825,10 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
         if (s.needed.count(v.symbols[i]))
           temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
                            v.symbols[i], canonical(v.coeffs[i]).value()});
+    PhaseTimer t("variant statements");
     variants.push_back(finish_o2(k, temps, roots_with([](const SlotPlan& sp) { return sp.value_sym; }), plans));
   }
+  PhaseTimer tc("costs");
   size_t best = 0;
   long best_cost = program_cost(variants[0]);
   for (size_t i = 1; i < variants.size(); ++i) {
@@ -675,8 +842,9 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
 
 Program optimize(const Kernel& kernel, Level level) {
   if (level == Level::O0) return optimize_o0(kernel);
-  Substituted s = substitute(kernel);
-  auto plans = plan_slots(kernel, s);
+  PhaseTimer all("optimize");
+  Substituted s = [&] { PhaseTimer t("substitute"); return substitute(kernel); }();
+  auto plans = [&] { PhaseTimer t("plan slots"); return plan_slots(kernel, s); }();
   if (level == Level::O1) return optimize_o1(kernel, s, plans);
   return optimize_o2(kernel, s, plans);
 }
