@@ -203,7 +203,7 @@ Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, co
       glVertexArrayAttribBinding(vao.get(), a, a);
       glEnableVertexArrayAttrib(vao.get(), a);
     }
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_color"), m.colour.r, m.colour.g, m.colour.b);
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "u_color"), m.colour.x, m.colour.y, m.colour.z);
     glUseProgram(prog);
     glBindVertexArray(vao.get());
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(m.indices.size()), GL_UNSIGNED_INT, nullptr);
