@@ -280,7 +280,8 @@ class Expander {
       out.loc = m.loc;
       out.value = it->second;
       auto p = output_pragmas_.find(m.name);
-      out.blades = p != output_pragmas_.end() ? p->second.blades : kernel_.values[it->second].blades;
+      out.from_pragma = p != output_pragmas_.end();
+      out.blades = out.from_pragma ? p->second.blades : kernel_.values[it->second].blades;
       kernel_.outputs.push_back(std::move(out));
     }
   }

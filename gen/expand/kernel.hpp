@@ -44,6 +44,9 @@ struct KernelOutput {
   // The blades the generated function returns, in this order: those of `#pragma output NAME ...` when
   // given (blades not in the value are returned as 0), else the value's blades.
   std::vector<algebra::BladeIndex> blades;
+  // True when `blades` come from `#pragma output`: then every one of them is returned, as literal 0 when
+  // its coefficient is (or turns out to be, after optimization) identically zero.
+  bool from_pragma = false;
 };
 
 struct ScalarRange {  // `#pragma range MIN <= NAME <= MAX`

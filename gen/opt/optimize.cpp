@@ -244,9 +244,6 @@ std::string sanitize(const std::string& s) {
   return r;
 }
 
-// Whether the output's blades came from a pragma (then zero blades are kept as literal 0).
-bool pragma_blades(const Kernel& k, const KernelOutput& o) { return o.blades != k.values.at(o.value).blades; }
-
 int blade_pos(const KernelValue& v, algebra::BladeIndex b) {
   auto it = std::find(v.blades.begin(), v.blades.end(), b);
   return it == v.blades.end() ? -1 : static_cast<int>(it - v.blades.begin());
@@ -356,7 +353,7 @@ std::vector<std::vector<SlotPlan>> plan_slots(const Kernel& k, const Substituted
   std::vector<std::vector<SlotPlan>> plans;
   for (const auto& o : k.outputs) {
     const auto& v = k.values.at(o.value);
-    bool keep_zeros = pragma_blades(k, o);
+    const bool keep_zeros = o.from_pragma;  // pragma'd blades are always returned, zero ones as literal 0
     std::vector<SlotPlan> slots;
     for (auto b : o.blades) {
       int i = blade_pos(v, b);

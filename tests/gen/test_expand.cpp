@@ -464,3 +464,13 @@ TEST_CASE("pragma diagnostics") {
   REQUIRE(k.ranges.size() == 1);
   CHECK(k.ranges[0].min == -1.0);
 }
+
+TEST_CASE("outputs record whether their blades come from a pragma", "[expand]") {
+  Kernel k = expand_text("#pragma output P e1 e2\n?P = x*e1 + y*e2;\n?Q = x*e1;\n");
+  REQUIRE(k.outputs.size() == 2);
+  CHECK(k.outputs[0].name == "P");
+  CHECK(k.outputs[0].from_pragma);
+  CHECK(k.outputs[0].blades == std::vector<algebra::BladeIndex>{1, 2});
+  CHECK(k.outputs[1].name == "Q");
+  CHECK_FALSE(k.outputs[1].from_pragma);
+}

@@ -92,6 +92,46 @@ TEST_CASE("O1 drops dead values and zero blades, keeps pragma'd blades as 0", "[
   CHECK(opt::program_stats(opt::optimize(k, Level::O2)).total.call == 2);
 }
 
+// P = x e1 + (x/n + 1/n - 1) e2 with n = x + 1: the e2 coefficient is not zero in the kernel (it is over
+// n's symbol) but vanishes once n is substituted.
+Kernel vanishing_blade_kernel(bool pragma) {
+  Kernel k;
+  k.name = "vanishing";
+  k.inputs.push_back(cga_test::scalar_input("x"));
+  GiNaC::ex x = k.inputs[0].symbols[0];
+  symbolic::Multivector n = cga_test::add_value(k, "n", symbolic::Multivector(x + 1));
+  GiNaC::ex nn = n.scalar();
+  cga_test::add_value(k, "P", symbolic::Multivector::blade(1, x) + symbolic::Multivector::blade(2, x / nn + 1 / nn - 1));
+  REQUIRE(k.values.back().blades == std::vector<algebra::BladeIndex>{1, 2});
+  // The pragma lists exactly the value's blades: only from_pragma tells the optimizer to keep e2.
+  cga_test::add_output(k, "P", pragma ? std::vector<int>{1, 2} : std::vector<int>{});
+  REQUIRE(k.outputs.back().from_pragma == pragma);
+  return k;
+}
+
+TEST_CASE("pragma'd blades are emitted as literal 0 even when the pragma lists the value's blades", "[opt]") {
+  for (Level level : {Level::O1, Level::O2}) {
+    INFO("level " << static_cast<int>(level));
+    auto kept = opt::optimize(vanishing_blade_kernel(true), level);
+    REQUIRE(kept.outputs.size() == 1);
+    REQUIRE(kept.outputs[0].slots.size() == 2);
+    CHECK(kept.outputs[0].slots[0].blade == 1);
+    CHECK(kept.outputs[0].slots[1].blade == 2);
+    CHECK(kept.outputs[0].slots[1].value.is_zero());
+    emit::EmitOptions eo;
+    eo.target = emit::Target::Cpp;
+    std::string code = emit::emit(kept, eo);
+    CHECK(code.find("std::array<std::string_view, 2> vanishing_P_blades") != std::string::npos);
+    CHECK(code.find("P[1] = 0") != std::string::npos);
+    // Without the pragma the vanishing blade is dropped.
+    auto dropped = opt::optimize(vanishing_blade_kernel(false), level);
+    REQUIRE(dropped.outputs[0].slots.size() == 1);
+    CHECK(dropped.outputs[0].slots[0].blade == 1);
+  }
+  // -O0 returns every pragma'd blade too.
+  CHECK(opt::optimize(vanishing_blade_kernel(true), Level::O0).outputs[0].slots.size() == 2);
+}
+
 TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
   auto k = cga_test::normalize_kernel();
   auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;

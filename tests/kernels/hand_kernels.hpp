@@ -64,7 +64,8 @@ inline void add_output(Kernel& k, const std::string& name, std::vector<int> blad
   KernelOutput o;
   o.name = name;
   o.value = vi;
-  o.blades = blades.empty() ? k.values.at(vi).blades : blades;
+  o.from_pragma = !blades.empty();
+  o.blades = o.from_pragma ? blades : k.values.at(vi).blades;
   k.outputs.push_back(o);
 }
 
