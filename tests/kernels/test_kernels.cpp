@@ -3,20 +3,27 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <oracle/multivector.hpp>
 
+#include "circle3.hpp"
 #include "motor_from_trs.hpp"
 #include "motor_lerp_paper.hpp"
 #include "motor_mul.hpp"
 #include "motor_reverse.hpp"
 #include "motor_to_matrix.hpp"
+#include "paper_a1.hpp"
+#include "paper_motor.hpp"
 #include "plane_distance.hpp"
+#include "rotor_n3.hpp"
 #include "transform_point.hpp"
 #include "translator_inverse.hpp"
 
@@ -164,6 +171,134 @@ TEST_CASE("translator_inverse: both inverses undo T", "[kernels]") {
     check_against(back2.data(), k::translator_inverse_back2_blades, oracle::up(x, y, z));
     check_against(one.data(), k::translator_inverse_one_blades, MV::scalar(1.0));
     check_against(one2.data(), k::translator_inverse_one2_blades, MV::scalar(1.0));
+  }
+}
+
+using Vec3 = std::array<double, 3>;
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// |got - want| <= tol * max(1, |want|), per component.
+void check_close(const Vec3& got, const Vec3& want, double tol) {
+  double scale = std::max({1.0, std::abs(want[0]), std::abs(want[1]), std::abs(want[2])});
+  for (int i = 0; i < 3; ++i) {
+    INFO("component " << i << ": got " << got[i] << ", want " << want[i]);
+    REQUIRE(std::abs(got[i] - want[i]) <= tol * scale);
+  }
+}
+
+TEST_CASE("circle3: m = -c einf c / ((c einf c).einf), r; circumcentre and radius of plain geometry", "[kernels]") {
+  Rng rng;
+  int checked = 0;
+  for (int n = 0; n < kTrials; ++n) {
+    Vec3 a{rng(), rng(), rng()}, b{rng(), rng(), rng()}, c{rng(), rng(), rng()};
+    Vec3 u = sub(b, a), v = sub(c, a), w = cross(u, v);
+    // Nearly collinear points have a far-away, ill-conditioned centre: compare well-shaped triangles only.
+    if (dot(w, w) < 1e-2 * dot(u, u) * dot(v, v)) continue;
+    ++checked;
+    double m[5], r[1];
+    k::circle3(a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], m, r);
+    MV C = oracle::dual(oracle::up(a) ^ oracle::up(b) ^ oracle::up(c));
+    MV mtmp = C * einf * C;
+    check_against(m, k::circle3_m_blades, -1.0 * mtmp / oracle::scalar_part(oracle::inner(mtmp, einf)));
+    double ec = oracle::scalar_part(oracle::inner(einf, C));
+    double rr[1] = {std::sqrt(std::abs(oracle::scalar_part(oracle::inner(C, C)) / (ec * ec)))};
+    REQUIRE(std::abs(r[0] - rr[0]) <= 1e-12 * std::max(1.0, rr[0]));
+    // Plain geometry: centre = a + (|u|^2 v x w + |v|^2 w x u) / (2 |w|^2), radius = |centre - a|.
+    Vec3 t1 = cross(v, w), t2 = cross(w, u);
+    double s = 2 * dot(w, w);
+    Vec3 centre;
+    for (int i = 0; i < 3; ++i) centre[i] = a[i] + (dot(u, u) * t1[i] + dot(v, v) * t2[i]) / s;
+    REQUIRE(k::circle3_m_blades[4] == "e0");
+    CHECK(std::abs(m[4] - 1) <= 1e-12);
+    check_close({m[0], m[1], m[2]}, centre, 1e-10);
+    Vec3 ac = sub(centre, a);
+    CHECK(std::abs(r[0] - std::sqrt(dot(ac, ac))) <= 1e-10 * std::max(1.0, r[0]));
+  }
+  CHECK(checked > kTrials / 2);
+}
+
+TEST_CASE("paper_a1: the appendix's blended motor (4th-order exp) moves a point", "[kernels]") {
+  Rng rng;
+  auto exp4 = [](const MV& b) {  // the script's Exp_approx
+    MV b2 = b * b;
+    return MV::scalar(1.0) + b + b2 / 2.0 + b2 * b / 6.0 + b2 * b2 / 24.0;
+  };
+  for (int n = 0; n < kTrials; ++n) {
+    Vec3 t1{rng(), rng(), rng()}, ax1{rng(), rng(), rng()}, t2{rng(), rng(), rng()}, ax2{rng(), rng(), rng()};
+    double angle1 = rng(-3.2, 3.2), d1 = rng(0.1, 3), angle2 = rng(-3.2, 3.2), d2 = rng(0.1, 3), alpha = rng(0, 1);
+    double X = rng(), Y = rng(), Z = rng(), P[4];
+    k::paper_a1(t1[0], t1[1], t1[2], ax1[0], ax1[1], ax1[2], angle1, d1, t2[0], t2[1], t2[2], ax2[0], ax2[1], ax2[2],
+                angle2, d2, alpha, X, Y, Z, P);
+    auto motor = [&](const Vec3& t, const Vec3& ax, double angle) {
+      MV tv = t[0] * oracle::e1<double>() + t[1] * oracle::e2<double>() + t[2] * oracle::e3<double>();
+      MV T = MV::scalar(1.0) - 0.5 * (tv ^ einf);
+      MV plane = oracle::dual(oracle::up(ax) ^ oracle::up(0.0, 0.0, 0.0) ^ einf);
+      return T * exp4((-angle / 2) * plane);
+    };
+    auto dilation = [&](double d) { return MV::scalar(1.0) + ((1 - d) / (1 + d)) * (einf ^ e0); };
+    MV TR = motor(t1, ax1, angle1) * (1 - alpha) + motor(t2, ax2, angle2) * alpha;
+    MV D = dilation(d1) + (dilation(d2) - dilation(d1)) * alpha;
+    MV F = TR * D;
+    check_against(P, k::paper_a1_vertexPos_blades, F * oracle::up(X, Y, Z) * oracle::reverse(F));
+  }
+}
+
+TEST_CASE("paper_motor: T R D with the exact exp moves points like GLM translate * rotate * scale", "[kernels]") {
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    Vec3 t{rng(), rng(), rng()}, ax{rng(), rng(), rng()};
+    double len = std::sqrt(dot(ax, ax));
+    if (len < 0.1) continue;
+    for (auto& x : ax) x /= len;  // the script's plane is n1 e23 + n2 e31 + n3 e12 only for a unit axis
+    double angle = rng(-3.2, 3.2), d = rng(0.1, 3), X = rng(), Y = rng(), Z = rng(), P[4];
+    k::paper_motor(t[0], t[1], t[2], ax[0], ax[1], ax[2], angle, d, X, Y, Z, P);
+    MV tv = t[0] * oracle::e1<double>() + t[1] * oracle::e2<double>() + t[2] * oracle::e3<double>();
+    MV T = MV::scalar(1.0) - 0.5 * (tv ^ einf);
+    MV plane = oracle::dual(oracle::up(ax) ^ oracle::up(0.0, 0.0, 0.0) ^ einf);
+    MV R = oracle::exp((-0.5 * angle) * plane);
+    MV D = MV::scalar(1.0) + ((1 - d) / (1 + d)) * (einf ^ e0);
+    MV M = T * R * D;
+    check_against(P, k::paper_motor_P_blades, M * oracle::up(X, Y, Z) * oracle::reverse(M));
+    // The moved point (weight = the e0 coefficient) against GLM in double precision.
+    glm::dmat4 G = glm::translate(glm::dmat4(1.0), glm::dvec3(t[0], t[1], t[2])) *
+                   glm::rotate(glm::dmat4(1.0), angle, glm::dvec3(ax[0], ax[1], ax[2])) *
+                   glm::scale(glm::dmat4(1.0), glm::dvec3(d));
+    glm::dvec4 g = G * glm::dvec4(X, Y, Z, 1.0);
+    REQUIRE(k::paper_motor_P_blades[3] == "e0");
+    check_close({P[0] / P[3], P[1] / P[3], P[2] / P[3]}, {g.x, g.y, g.z}, 1e-12);
+  }
+}
+
+TEST_CASE("rotor_n3: T R X ~R ~T and M R; the point rotated about n (Rodrigues) and moved by t", "[kernels]") {
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    Vec3 nv{rng(), rng(), rng()};
+    if (dot(nv, nv) < 1e-2) continue;
+    double angle = rng(0, 6.3), tx = rng(), ty = rng(), tz = rng(), x = rng(), y = rng(), z = rng();
+    auto m = rng.array<4>();
+    double P[5], MR[4];
+    k::rotor_n3(m.data(), nv[0], nv[1], nv[2], angle, tx, ty, tz, x, y, z, P, MR);
+    double len = std::sqrt(dot(nv, nv));
+    MV plane = (nv[0] / len) * oracle::null_blade<double>("e2^e3") - (nv[1] / len) * oracle::null_blade<double>("e1^e3") +
+               (nv[2] / len) * oracle::null_blade<double>("e1^e2");  // e31 = -e13
+    MV R = std::cos(angle / 2) * MV::scalar(1.0) - std::sin(angle / 2) * plane;
+    MV tv = tx * oracle::e1<double>() + ty * oracle::e2<double>() + tz * oracle::e3<double>();
+    MV T = MV::scalar(1.0) - 0.5 * (tv * einf);
+    check_against(P, k::rotor_n3_P_blades, T * R * oracle::up(x, y, z) * oracle::reverse(R) * oracle::reverse(T));
+    MV M = from_coeffs(m.data(), {"1", "e1^e2", "e1^e3", "e2^e3"});
+    check_against(MR, k::rotor_n3_MR_blades, M * R);
+    // Rodrigues: p' = p cos + (k x p) sin + k (k.p)(1 - cos), then + t.
+    Vec3 kk{nv[0] / len, nv[1] / len, nv[2] / len}, p{x, y, z}, kxp = cross(kk, p);
+    Vec3 want;
+    for (int i = 0; i < 3; ++i)
+      want[i] = p[i] * std::cos(angle) + kxp[i] * std::sin(angle) + kk[i] * dot(kk, p) * (1 - std::cos(angle));
+    want = {want[0] + tx, want[1] + ty, want[2] + tz};
+    REQUIRE(k::rotor_n3_P_blades[0] == "e1");
+    check_close({P[0], P[1], P[2]}, want, 1e-12);
   }
 }
 
