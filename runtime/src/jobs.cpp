@@ -161,9 +161,10 @@ CGA_JOBS_CLONES void add_scaled(std::size_t count, float w, const float* __restr
   for (std::size_t x = 0; x < count; ++x) out[x] += w * in[x];
 }
 bool all_rigid(std::span<const Motor> m, std::size_t n) {
-  bool rigid = true;
-  for (std::size_t j = 0; j < n; ++j) rigid &= motor_is_rigid(m[j]);
-  return rigid;
+  std::uint32_t bits = 0;  // see motor_is_rigid
+  for (std::size_t j = 0; j < n; ++j)
+    for (int c : {7, 9, 10, 11}) bits |= std::bit_cast<std::uint32_t>(m[j].c[c]);
+  return (bits << 1) == 0u;
 }
 
 // model[j] = model[parent] * local[j], parents first; rigid: every motor has b = 0 (8-blade product).

@@ -12,7 +12,9 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 #include "cga/runtime/types.hpp"
@@ -254,7 +256,9 @@ inline Motor motor_normalize_fast(const Motor& m) {
 // A motor without dilation: its einf^e0-times blades (the b group) are exactly zero. The jobs then use the
 // 8-blade product motor_mul_rigid.
 inline bool motor_is_rigid(const Motor& m) {
-  return m.c[7] == 0.0f && m.c[9] == 0.0f && m.c[10] == 0.0f && m.c[11] == 0.0f;
+  // +0 or -0 in all four: OR their bits without the sign (no compares or branches per coefficient).
+  const auto bits = [&](int c) { return std::bit_cast<std::uint32_t>(m.c[c]); };
+  return ((bits(7) | bits(9) | bits(10) | bits(11)) << 1) == 0u;
 }
 
 // C = A*B for rigid motors (generated motor_mul_rigid on the 8 rigid blades; the b group of C is zero).
