@@ -173,48 +173,60 @@ double estimate_terms(const ex& e, const std::map<ex, double, ex_is_less>& sizes
   return 1;
 }
 
-// The power of x that is a direct factor of term t (x or x^n, n an integer) and the rest of t; (0, t) when
-// there is none (x under a root, a function or a denominator sum stays in the coefficient).
-std::pair<int, ex> split_power_of(const ex& t, const ex& x) {
-  auto power_of = [&](const ex& f) {
-    if (f.is_equal(x)) return 1;
-    if (is_a<power>(f) && f.op(0).is_equal(x) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer())
-      return ex_to<numeric>(f.op(1)).to_int();
-    return 0;
+// e (an expanded sum) collected recursively: a polynomial in xs[0] whose coefficients are polynomials in
+// xs[1], and so on. Like GiNaC's collect(e, lst) but near-linear in the size of e (GiNaC's takes seconds on
+// a few hundred terms) and defined for every e: only direct factors x^n (n an integer) count, symbols under
+// roots, functions or denominator sums stay in the coefficients. Each term is split once (rebuilding a
+// product re-evaluates its factors, costly when one is a large denominator).
+ex collect_in(const ex& e, const std::vector<ex>& xs) {
+  struct Split {
+    std::vector<int> degree;  // per xs
+    ex rest;
   };
-  if (!is_a<mul>(t)) {
-    int d = power_of(t);
-    return d != 0 ? std::pair<int, ex>{d, 1} : std::pair<int, ex>{0, t};
-  }
-  for (size_t i = 0; i < t.nops(); ++i)
-    if (int d = power_of(t.op(i)); d != 0) {
+  std::map<ex, size_t, ex_is_less> index;
+  for (size_t i = 0; i < xs.size(); ++i) index.emplace(xs[i], i);
+  auto split = [&](const ex& t) {
+    Split s{std::vector<int>(xs.size(), 0), 1};
+    auto power_of = [&](const ex& f) -> bool {
+      const ex& base = is_a<power>(f) ? f.op(0) : f;
+      auto it = index.find(base);
+      if (it == index.end()) return false;
+      if (!is_a<power>(f)) return s.degree[it->second] += 1, true;
+      if (!is_a<numeric>(f.op(1)) || !ex_to<numeric>(f.op(1)).is_integer()) return false;
+      s.degree[it->second] += ex_to<numeric>(f.op(1)).to_int();
+      return true;
+    };
+    if (is_a<mul>(t)) {
       exvector rest;
       for (size_t j = 0; j < t.nops(); ++j)
-        if (j != i) rest.push_back(t.op(j));
-      return {d, dynallocate<mul>(rest)};
+        if (!power_of(t.op(j))) rest.push_back(t.op(j));
+      s.rest = dynallocate<mul>(rest);
+    } else if (!power_of(t)) {
+      s.rest = t;
     }
-  return {0, t};
-}
-
-// e (an expanded sum) collected recursively: a polynomial in xs[k] whose coefficients are collected in
-// xs[k+1...]. Like GiNaC's collect(e, lst) but linear in the size of e (GiNaC's takes seconds on a few
-// hundred terms) and defined for every e (symbols under roots and functions stay in the coefficients).
-ex collect_in(const ex& e, const std::vector<ex>& xs, size_t k = 0) {
-  if (k == xs.size()) return e;
-  std::map<int, exvector> by_degree;
-  if (is_a<add>(e)) {
-    for (size_t i = 0; i < e.nops(); ++i) {
-      auto [d, rest] = split_power_of(e.op(i), xs[k]);
-      by_degree[d].push_back(rest);
+    return s;
+  };
+  std::vector<Split> terms;
+  if (is_a<add>(e))
+    for (size_t i = 0; i < e.nops(); ++i) terms.push_back(split(e.op(i)));
+  else
+    terms.push_back(split(e));
+  std::function<ex(const std::vector<const Split*>&, size_t)> build = [&](const std::vector<const Split*>& group,
+                                                                          size_t k) -> ex {
+    if (k == xs.size()) {
+      exvector rests;
+      for (const Split* s : group) rests.push_back(s->rest);
+      return dynallocate<add>(rests);
     }
-  } else {
-    auto [d, rest] = split_power_of(e, xs[k]);
-    by_degree[d].push_back(rest);
-  }
-  exvector out;
-  for (auto& [d, rests] : by_degree)
-    out.push_back(pow(xs[k], d) * collect_in(dynallocate<add>(rests), xs, k + 1));
-  return dynallocate<add>(out);
+    std::map<int, std::vector<const Split*>> by_degree;
+    for (const Split* s : group) by_degree[s->degree[k]].push_back(s);
+    exvector out;
+    for (const auto& [d, sub] : by_degree) out.push_back(pow(xs[k], d) * build(sub, k + 1));
+    return dynallocate<add>(out);
+  };
+  std::vector<const Split*> all;
+  for (const auto& t : terms) all.push_back(&t);
+  return build(all, 0);
 }
 
 // Above this estimated size a value is not substituted into its users but kept as a temporary.

@@ -1,0 +1,209 @@
+// Crowd-skinning kernels: one thread per vertex (grid-stride), blockIdx.y = instance. Each block stages its
+// instance's palette in shared memory; cga_points converts every motor there once into its weight-
+// normalized point-transform matrix with the generated motor_to_matrix (the point transform of a motor is
+// affine, so the per-bone transform_point + divide + average the paper does per vertex equals blending these
+// matrices), and cga_motors blends the 12 motor coefficients per vertex (rotor sign fix) and moves the point
+// with the generated transform_point. Methods and input formats are template parameters.
+#include <cuda_runtime.h>
+
+#include <cstdint>
+
+#include "kernels.hpp"
+#include "motor_to_matrix.cuh"
+#include "transform_point.cuh"
+
+namespace cga::cuda::detail {
+namespace {
+
+enum Method : int { kLbs = 0, kDqs = 1, kPoints = 2, kMotors = 3 };
+
+constexpr int kBlock = 256;
+constexpr int kVerticesPerThread = 4;  // grid-stride steps per thread, to amortize the palette staging
+
+struct KernelArgs {
+  unsigned vertex_count, bones, instance_offset;
+  bool per_instance_inputs;
+  const float* __restrict__ positions;
+  const float* __restrict__ normals;
+  const void* __restrict__ joints;
+  const void* __restrict__ weights;
+  const float* __restrict__ palettes;
+  float* __restrict__ out_positions;
+  float* __restrict__ out_normals;
+};
+
+template <bool kU8>
+__device__ __forceinline__ void load_joints(const void* p, std::size_t i, int j[4]) {
+  if constexpr (kU8) {
+    const uchar4 v = __ldg(static_cast<const uchar4*>(p) + i);
+    j[0] = v.x, j[1] = v.y, j[2] = v.z, j[3] = v.w;
+  } else {
+    const ushort4 v = __ldg(static_cast<const ushort4*>(p) + i);
+    j[0] = v.x, j[1] = v.y, j[2] = v.z, j[3] = v.w;
+  }
+}
+
+template <bool kUnorm>
+__device__ __forceinline__ void load_weights(const void* p, std::size_t i, float w[4]) {
+  if constexpr (kUnorm) {
+    const ushort4 v = __ldg(static_cast<const ushort4*>(p) + i);
+    constexpr float s = 1.0f / 65535.0f;
+    w[0] = v.x * s, w[1] = v.y * s, w[2] = v.z * s, w[3] = v.w * s;
+  } else {
+    const float4 v = __ldg(static_cast<const float4*>(p) + i);
+    w[0] = v.x, w[1] = v.y, w[2] = v.z, w[3] = v.w;
+  }
+}
+
+// Row-major 3x4 from the generated motor_to_matrix's columns.
+__device__ __forceinline__ void motor_rows(const float motor[12], float m[12]) {
+  float c1[3], c2[3], c3[3], t[3];
+  cga::kernels::motor_to_matrix(motor, c1, c2, c3, t);
+  for (int r = 0; r < 3; ++r) m[4 * r] = c1[r], m[4 * r + 1] = c2[r], m[4 * r + 2] = c3[r], m[4 * r + 3] = t[r];
+}
+
+// The rotation (times |r|^2) and translation of an unnormalized dual-quaternion blend, as a 3x4 matrix
+// divided by |r|^2 (the CPU dqs loop's formula).
+__device__ __forceinline__ void dual_quat_rows(const float b[8], float m[12]) {
+  const float rx = b[0], ry = b[1], rz = b[2], rw = b[3], dx = b[4], dy = b[5], dz = b[6], dw = b[7];
+  const float inv = 1.0f / (rx * rx + ry * ry + rz * rz + rw * rw);
+  const float diag = rw * rw - (rx * rx + ry * ry + rz * rz);
+  m[0] = (diag + 2 * rx * rx) * inv, m[1] = 2 * (rx * ry - rw * rz) * inv, m[2] = 2 * (rx * rz + rw * ry) * inv;
+  m[3] = 2.0f * (rw * dx - dw * rx + (ry * dz - rz * dy)) * inv;
+  m[4] = 2 * (ry * rx + rw * rz) * inv, m[5] = (diag + 2 * ry * ry) * inv, m[6] = 2 * (ry * rz - rw * rx) * inv;
+  m[7] = 2.0f * (rw * dy - dw * ry + (rz * dx - rx * dz)) * inv;
+  m[8] = 2 * (rz * rx - rw * ry) * inv, m[9] = 2 * (rz * ry + rw * rx) * inv, m[10] = (diag + 2 * rz * rz) * inv;
+  m[11] = 2.0f * (rw * dz - dw * rz + (rx * dy - ry * dx)) * inv;
+}
+
+template <int kMethod, bool kU8, bool kUnorm, bool kNormals>
+__global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
+  constexpr int kEntry = kMethod == kDqs ? 8 : 12;
+  extern __shared__ float palette[];
+  const unsigned instance = a.instance_offset + blockIdx.y;
+  const float* src = a.palettes + static_cast<std::size_t>(instance) * a.bones * kEntry;
+  if constexpr (kMethod == kPoints) {
+    for (unsigned b = threadIdx.x; b < a.bones; b += blockDim.x) {
+      float motor[12];
+      for (int e = 0; e < 12; ++e) motor[e] = src[12 * b + e];
+      motor_rows(motor, palette + 12 * b);
+    }
+  } else {
+    for (unsigned i = threadIdx.x; i < a.bones * kEntry; i += blockDim.x) palette[i] = src[i];
+  }
+  __syncthreads();
+
+  const std::size_t in_base = a.per_instance_inputs ? static_cast<std::size_t>(instance) * a.vertex_count : 0;
+  const std::size_t out_base = static_cast<std::size_t>(instance) * a.vertex_count;
+  for (unsigned v = blockIdx.x * blockDim.x + threadIdx.x; v < a.vertex_count; v += gridDim.x * blockDim.x) {
+    const std::size_t iv = in_base + v, ov = out_base + v;
+    const float x = __ldg(a.positions + 3 * iv), y = __ldg(a.positions + 3 * iv + 1),
+                z = __ldg(a.positions + 3 * iv + 2);
+    int j[4];
+    float w[4];
+    load_joints<kU8>(a.joints, iv, j);
+    load_weights<kUnorm>(a.weights, iv, w);
+    float m[12] = {};  // the blended 3x4; cga_motors without normals moves the point without it
+    bool have_matrix = true;
+    float px = 0.0f, py = 0.0f, pz = 0.0f;
+    if constexpr (kMethod == kLbs || kMethod == kPoints) {
+      for (int e = 0; e < 12; ++e) m[e] = w[0] * palette[12 * j[0] + e];
+      for (int k = 1; k < 4; ++k)
+        for (int e = 0; e < 12; ++e) m[e] += w[k] * palette[12 * j[k] + e];
+    } else if constexpr (kMethod == kDqs) {
+      const float* q0 = palette + 8 * j[0];
+      float b[8];
+      for (int e = 0; e < 8; ++e) b[e] = w[0] * q0[e];
+      for (int k = 1; k < 4; ++k) {
+        const float* q = palette + 8 * j[k];
+        const float dot = q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[3] * q[3];
+        const float wk = copysignf(w[k], dot);
+        for (int e = 0; e < 8; ++e) b[e] += wk * q[e];
+      }
+      dual_quat_rows(b, m);
+    } else {  // kMotors
+      const float* q0 = palette + 12 * j[0];
+      float b[12];
+      for (int e = 0; e < 12; ++e) b[e] = w[0] * q0[e];
+      for (int k = 1; k < 4; ++k) {
+        const float* q = palette + 12 * j[k];
+        // Rotor parts: blades 1, e12, e13, e23 (indices 0, 1, 2, 4).
+        const float dot = q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[4] * q[4];
+        const float wk = copysignf(w[k], dot);
+        for (int e = 0; e < 12; ++e) b[e] += wk * q[e];
+      }
+      if constexpr (kNormals) {
+        motor_rows(b, m);
+      } else {
+        float P[4];
+        cga::kernels::transform_point(b, x, y, z, P);
+        const float inv = 1.0f / P[3];
+        px = P[0] * inv, py = P[1] * inv, pz = P[2] * inv;
+        have_matrix = false;
+      }
+    }
+    if (have_matrix) {
+      px = m[0] * x + m[1] * y + m[2] * z + m[3];
+      py = m[4] * x + m[5] * y + m[6] * z + m[7];
+      pz = m[8] * x + m[9] * y + m[10] * z + m[11];
+    }
+    a.out_positions[3 * ov] = px;
+    a.out_positions[3 * ov + 1] = py;
+    a.out_positions[3 * ov + 2] = pz;
+    if constexpr (kNormals) {
+      const float nx = __ldg(a.normals + 3 * iv), ny = __ldg(a.normals + 3 * iv + 1), nz = __ldg(a.normals + 3 * iv + 2);
+      float ox = m[0] * nx + m[1] * ny + m[2] * nz;
+      float oy = m[4] * nx + m[5] * ny + m[6] * nz;
+      float oz = m[8] * nx + m[9] * ny + m[10] * nz;
+      const float inv = rsqrtf(ox * ox + oy * oy + oz * oz);
+      a.out_normals[3 * ov] = ox * inv;
+      a.out_normals[3 * ov + 1] = oy * inv;
+      a.out_normals[3 * ov + 2] = oz * inv;
+    }
+  }
+}
+
+using Kernel = void (*)(KernelArgs);
+
+template <int kMethod>
+Kernel pick(bool u8, bool unorm, bool normals) {
+  if (u8) {
+    if (unorm) return normals ? skin_kernel<kMethod, true, true, true> : skin_kernel<kMethod, true, true, false>;
+    return normals ? skin_kernel<kMethod, true, false, true> : skin_kernel<kMethod, true, false, false>;
+  }
+  if (unorm) return normals ? skin_kernel<kMethod, false, true, true> : skin_kernel<kMethod, false, true, false>;
+  return normals ? skin_kernel<kMethod, false, false, true> : skin_kernel<kMethod, false, false, false>;
+}
+
+}  // namespace
+
+std::string launch(const LaunchArgs& args, void* stream) {
+  const bool normals = args.normals != nullptr;
+  Kernel kernel = nullptr;
+  switch (args.method) {
+    case kLbs: kernel = pick<kLbs>(args.joints_u8, args.weights_unorm16, normals); break;
+    case kDqs: kernel = pick<kDqs>(args.joints_u8, args.weights_unorm16, normals); break;
+    case kPoints: kernel = pick<kPoints>(args.joints_u8, args.weights_unorm16, normals); break;
+    case kMotors: kernel = pick<kMotors>(args.joints_u8, args.weights_unorm16, normals); break;
+    default: return "unknown method " + std::to_string(args.method);
+  }
+  KernelArgs k{static_cast<unsigned>(args.vertex_count), static_cast<unsigned>(args.bones), 0,
+               args.per_instance_inputs, args.positions, args.normals, args.joints, args.weights,
+               args.palettes, args.out_positions, args.out_normals};
+  const std::size_t entry = args.method == kDqs ? 8 : 12;
+  const std::size_t shared = args.bones * entry * sizeof(float);
+  const std::size_t per_block = static_cast<std::size_t>(kBlock) * kVerticesPerThread;
+  const unsigned blocks_x = static_cast<unsigned>((args.vertex_count + per_block - 1) / per_block);
+  auto s = static_cast<cudaStream_t>(stream);
+  // gridDim.y is limited to 65535: larger crowds go in several launches.
+  for (std::size_t first = 0; first < args.instances; first += 65535) {
+    const std::size_t count = args.instances - first < 65535 ? args.instances - first : 65535;
+    k.instance_offset = static_cast<unsigned>(first);
+    kernel<<<dim3(blocks_x, static_cast<unsigned>(count)), kBlock, shared, s>>>(k);
+    const cudaError_t e = cudaGetLastError();
+    if (e != cudaSuccess) return cudaGetErrorString(e);
+  }
+  return {};
+}
+
+}  // namespace cga::cuda::detail

@@ -1,0 +1,59 @@
+// Host side of the CUDA crowd skinning (C++ compiler): palette packing, argument checks, the launch.
+#include "cga/cuda/crowd_skinning.hpp"
+
+#include "cga/runtime/skinning_palettes.hpp"
+#include "kernels.hpp"
+
+namespace cga::cuda {
+
+void append_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
+                    std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
+                    std::vector<float>& out) {
+  switch (method) {
+    case SkinningMethod::lbs:
+      for (const glm::mat3x4& m : matrices)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 4; ++c) out.push_back(m[r][c]);
+      break;
+    case SkinningMethod::dqs: {
+      const std::size_t at = out.size();
+      out.resize(at + 8 * dual_quats.size());
+      pack_dual_quats(dual_quats, std::span<float>(out).subspan(at));
+      break;
+    }
+    case SkinningMethod::cga_points:
+    case SkinningMethod::cga_motors:
+      for (const Motor& m : motors) out.insert(out.end(), m.c.begin(), m.c.end());
+      break;
+  }
+}
+
+std::size_t bytes_per_vertex(const CrowdArgs& a) {
+  const std::size_t joints = a.joint_format == JointFormat::u16x4 ? 8 : 4;
+  const std::size_t weights = a.weight_format == WeightFormat::f32x4 ? 16 : 8;
+  const std::size_t normals = a.normals ? 24 : 0;
+  return 12 + joints + weights + 12 + normals;
+}
+
+void launch_crowd_skinning(const CrowdArgs& a, void* stream) {
+  auto fail = [](const std::string& why) { throw CudaError("cga::cuda::launch_crowd_skinning: " + why); };
+  if (a.vertex_count == 0 || a.instances == 0) return;
+  if (a.bones == 0 || a.bones > kMaxBones)
+    fail(std::to_string(a.bones) + " bones per instance (1.." + std::to_string(kMaxBones) + ")");
+  if (a.vertex_count > 0xffffffffu) fail("more than 2^32 - 1 vertices per instance");
+  if (!a.positions || !a.joints || !a.weights || !a.palettes || !a.out_positions)
+    fail("a required device pointer is null");
+  if (a.normals && !a.out_normals) fail("input normals without output normals");
+  detail::LaunchArgs d;
+  d.method = static_cast<int>(a.method);
+  d.vertex_count = a.vertex_count, d.instances = a.instances, d.bones = a.bones;
+  d.per_instance_inputs = a.per_instance_inputs;
+  d.positions = a.positions, d.normals = a.normals;
+  d.joints = a.joints, d.joints_u8 = a.joint_format == JointFormat::u8x4;
+  d.weights = a.weights, d.weights_unorm16 = a.weight_format == WeightFormat::unorm16x4;
+  d.palettes = a.palettes, d.out_positions = a.out_positions, d.out_normals = a.out_normals;
+  const std::string error = detail::launch(d, stream);
+  if (!error.empty()) fail(std::string(to_string(a.method)) + ": " + error);
+}
+
+}  // namespace cga::cuda
