@@ -17,6 +17,8 @@
 
 #include <fmt/format.h>
 
+#include "cga/gpu/context.hpp"
+#include "cga/gpu/render.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/motor.hpp"
@@ -480,6 +482,30 @@ int run(const demo::Options& opt) {
       fmt::print("  twist-strip.png panels, left to right:");
       for (const auto& [method, out] : twisted) fmt::print(" {}", to_string(method));
       fmt::print("\n");
+    }
+  }
+  // ---- pictures on the GPU path: the same character and strip skinned by the GLSL vertex shaders built
+  // from the generated kernels, drawn by OpenGL (headless EGL: llvmpipe without a GPU).
+  if (opt.pictures) {
+    progress.stage("GPU: skinning and drawing with OpenGL");
+    try {
+      const gpu::Context context;
+      fmt::print("GPU       {} ({}, {})\n", context.renderer(), context.version(), context.platform());
+      std::vector<std::string> written;
+      const Clip& clip = *fade.a;
+      const float time = fade.time_a(0.5f);
+      for (SkinningMethod method : methods) {
+        if (ch.meshes.empty()) break;
+        written.push_back(fmt::format("{}/gpu-character-{}.png", opt.out_dir, to_string(method)));
+        gpu::write_png(gpu::render_posed_character(context, ch, clip, time, method), written.back());
+      }
+      written.push_back(opt.out_dir + "/gpu-twist-strip.png");
+      gpu::write_png(gpu::render_twist_strip(context), written.back());
+      fmt::print("pictures (GPU, clip '{}' at t = {:.3g} s):", clip.name, time);
+      for (const std::string& w : written) fmt::print(" {}", w);
+      fmt::print("\n  gpu-twist-strip.png panels, left to right: lbs dqs cga-points cga-motors\n");
+    } catch (const gpu::Unavailable& e) {
+      fmt::print("GPU       no OpenGL 4.5 context, GPU pictures not drawn: {}\n", e.what());
     }
   }
   progress.stage("done");
