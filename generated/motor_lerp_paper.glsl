@@ -8,31 +8,29 @@
 // M: 1, e1^e2, e1^e3, e1^einf, e2^e3, e2^einf, e3^einf, einf^e0, e1^e2^e3^einf, e1^e2^einf^e0, e1^e3^einf^e0, e2^e3^einf^e0
 
 void motor_lerp_paper(in float A[8], in float B[8], float d1, float d2, float alpha, out mat3x4 M) {
-  float t0 = 1.0;
-  float t1 = 1.0 / (1.0 + d1);
-  float t2 = d1 * t1 - t1;
-  float t3 = 1.0 / (1.0 + d2);
-  float t4 = A[0] * alpha - B[0] * alpha - A[0];
-  float t5 = A[1] * alpha - B[1] * alpha - A[1];
-  float t6 = A[2] * alpha - B[2] * alpha - A[2];
-  float t7 = A[3] * alpha - B[3] * alpha - A[3];
-  float t8 = A[4] * alpha - B[4] * alpha - A[4];
-  float t9 = A[5] * alpha - B[5] * alpha - A[5];
-  float t10 = A[6] * alpha - B[6] * alpha - A[6];
-  float t11 = A[7] * alpha - B[7] * alpha - A[7];
-  float t12 = alpha + t0 - alpha * t0;
-  float t13 = (d2 * t3 - t3) * alpha + t2 - alpha * t2;
-  M[0][0] = -t12 * t4;  // 1
-  M[0][1] = -t12 * t5;  // e1^e2
-  M[0][2] = -t12 * t6;  // e1^e3
-  M[0][3] = t13 * t7 - t12 * t7;  // e1^einf
-  M[1][0] = -t12 * t8;  // e2^e3
-  M[1][1] = t13 * t9 - t12 * t9;  // e2^einf
-  M[1][2] = t10 * t13 - t10 * t12;  // e3^einf
-  M[1][3] = t13 * t4;  // einf^e0
-  M[2][0] = t11 * t13 - t11 * t12;  // e1^e2^e3^einf
-  M[2][1] = t13 * t5;  // e1^e2^einf^e0
-  M[2][2] = t13 * t6;  // e1^e3^einf^e0
-  M[2][3] = t13 * t8;  // e2^e3^einf^e0
+  float t0 = 1.0 / (1.0 + d1);
+  float t1 = d1 * t0 - t0;
+  float t2 = 1.0 / (1.0 + d2);
+  float t3 = A[0] * alpha - B[0] * alpha - A[0];
+  float t4 = A[1] * alpha - B[1] * alpha - A[1];
+  float t5 = A[2] * alpha - B[2] * alpha - A[2];
+  float t6 = A[3] * alpha - B[3] * alpha - A[3];
+  float t7 = A[4] * alpha - B[4] * alpha - A[4];
+  float t8 = A[5] * alpha - B[5] * alpha - A[5];
+  float t9 = A[6] * alpha - B[6] * alpha - A[6];
+  float t10 = A[7] * alpha - B[7] * alpha - A[7];
+  float t11 = (d2 * t2 - t2) * alpha + t1 - alpha * t1;
+  M[0][0] = -t3;  // 1
+  M[0][1] = -t4;  // e1^e2
+  M[0][2] = -t5;  // e1^e3
+  M[0][3] = t11 * t6 - t6;  // e1^einf
+  M[1][0] = -t7;  // e2^e3
+  M[1][1] = t11 * t8 - t8;  // e2^einf
+  M[1][2] = t11 * t9 - t9;  // e3^einf
+  M[1][3] = t11 * t3;  // einf^e0
+  M[2][0] = t10 * t11 - t10;  // e1^e2^e3^einf
+  M[2][1] = t11 * t4;  // e1^e2^einf^e0
+  M[2][2] = t11 * t5;  // e1^e3^einf^e0
+  M[2][3] = t11 * t7;  // e2^e3^einf^e0
 }
 

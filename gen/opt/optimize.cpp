@@ -322,7 +322,9 @@ Substituted substitute(const Kernel& k) {
         ExSet used;
         collect_symbols(v.coeffs[i], used);
         for (const auto& u : used)
-          if (s.full.count(u) && !materialized.count(u)) {
+          // A value that is one input or one number (a point's x, its e0 coefficient 1) stays substituted:
+          // as a temporary it would only turn 1*z into products the later levels cannot fold.
+          if (s.full.count(u) && !materialized.count(u) && !is_atomic(s.full.at(u).value())) {
             materialized.insert(u);
             subst.erase(u);
             sizes.erase(u);
@@ -827,15 +829,27 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
   // 3. The script's own statements (each value expanded over earlier values), which keeps products like
   //    (M X) ~M factored.
   {
+    //    A coefficient that is one input or one number (a point's x, its e0 coefficient 1) is substituted
+    //    into its users instead: as a temporary it would leave products like 1*z that nothing folds later.
     std::vector<Temp> temps;
+    exmap atomic;
     Namer namer(k.inputs);
     for (const auto& v : k.values)
       for (size_t i = 0; i < v.blades.size(); ++i)
-        if (s.needed.count(v.symbols[i]))
-          temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
-                           v.symbols[i], canonical(v.coeffs[i]).value()});
+        if (s.needed.count(v.symbols[i])) {
+          ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, subs_options::no_pattern)).value();
+          if (is_atomic(c))
+            atomic[v.symbols[i]] = c;
+          else
+            temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                             v.symbols[i], c});
+        }
     PhaseTimer t("variant statements");
-    variants.push_back(finish_o2(k, temps, roots_with([](const SlotPlan& sp) { return sp.value_sym; }), plans));
+    variants.push_back(finish_o2(k, temps, roots_with([&](const SlotPlan& sp) {
+                                   auto it = atomic.find(sp.value_sym);
+                                   return it == atomic.end() ? sp.value_sym : it->second;
+                                 }),
+                                 plans));
   }
   PhaseTimer tc("costs");
   size_t best = 0;
