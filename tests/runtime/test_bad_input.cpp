@@ -5,6 +5,8 @@
 // wrong pose. Files are derived from Debian's assimp-testmodels and written to a temporary folder.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -35,15 +37,24 @@ std::string read_bytes(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// A file in this test's own temporary folder (removed and re-created once per run).
+// A temporary folder of this process, removed at exit. Per process because ctest runs each test case as
+// its own process, in parallel: a shared folder was removed by one while another wrote into it.
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("cga_test_bad_input." + std::to_string(::getpid()));
+  TempDir() {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+// A file in this process's temporary folder.
 std::string temp_file(const std::string& name, const std::string& bytes) {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / "cga_test_bad_input";
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
-  const fs::path p = dir / name;
+  static const TempDir dir;
+  const fs::path p = dir.path / name;
   std::ofstream out(p, std::ios::binary);
   out << bytes;
   REQUIRE(out.good());

@@ -2,6 +2,8 @@
 // bad files with a LoadError instead of crashing.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -84,7 +86,9 @@ std::vector<std::string> clip_names(const Character& ch) {
 }
 
 std::string temp_file(const std::string& name, const std::string& bytes) {
-  const auto path = std::filesystem::temp_directory_path() / ("cga_runtime_test_" + name);
+  // Per process: ctest runs test cases as parallel processes.
+  const auto path =
+      std::filesystem::temp_directory_path() / ("cga_runtime_test_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path, std::ios::binary) << bytes;
   return path.string();
 }
