@@ -189,21 +189,27 @@ inline v4f splat(v4f v) { return __builtin_shufflevector(v, v, L, L, L, L); }
 
 inline void motor_mul_rigid_simd(const Motor& x, const Motor& y, Motor& out) {
   using namespace detail;
-  const v4f xl = load4(&x.c[0]), xm = load4(&x.c[4]), xh = load4(&x.c[8]);
+  // The left factor's coefficients are only ever splatted: broadcast them straight from memory (load-port
+  // work, no shuffles), and permute only the right factor. In the hierarchy and the palette the left factor
+  // is the parent / model motor (the dependency chain), the right one the local / inverse bind motor, whose
+  // permutations are then off the chain. The shuffle pipes were the bottleneck of the register splats.
+  const auto s = [&](int c) {
+    const float v = x.c[c];
+    return v4f{v, v, v, v};
+  };
   const v4f yl = load4(&y.c[0]), ym = load4(&y.c[4]), yh = load4(&y.c[8]);
-  const v4f a = __builtin_shufflevector(xl, xm, 0, 1, 2, 4);
-  const v4f e = __builtin_shufflevector(__builtin_shufflevector(xl, xm, 3, 5, 6, 7), xh, 0, 1, 2, 4);
   const v4f b = __builtin_shufflevector(yl, ym, 0, 1, 2, 4);
   const v4f f = __builtin_shufflevector(__builtin_shufflevector(yl, ym, 3, 5, 6, 7), yh, 0, 1, 2, 4);
   const v4f b1 = p1(b), b2 = p2(b), b3 = p3(b);
-  const v4f ca = (splat<0>(a) * b + splat<1>(a) * b1) + (splat<2>(a) * b2 + splat<3>(a) * b3);
-  const v4f ce = ((splat<0>(e) * b + splat<1>(e) * b1) + (splat<2>(e) * b2 + splat<3>(e) * b3)) +
-                 ((splat<0>(a) * f - splat<1>(a) * p1(f)) + (splat<3>(a) * p3(f) - splat<2>(a) * p2(f)));
+  // a = (c0, c1, c2, c4), e = (c3, c5, c6, c8) of x.
+  const v4f ca = (s(0) * b + s(1) * b1) + (s(2) * b2 + s(4) * b3);
+  const v4f ce = ((s(3) * b + s(5) * b1) + (s(6) * b2 + s(8) * b3)) +
+                 ((s(0) * f - s(1) * p1(f)) + (s(4) * p3(f) - s(2) * p2(f)));
   const v4f zero = {0.0f, 0.0f, 0.0f, 0.0f};
   store4(&out.c[0], __builtin_shufflevector(ca, ce, 0, 1, 2, 4));   // 1 e12 e13 e1inf
   // Whole 16-byte stores only: the next product of the hierarchy loads them back (store forwarding).
-  const v4f e12z = __builtin_shufflevector(ce, zero, 1, 2, 4, 4);
-  store4(&out.c[4], __builtin_shufflevector(ca, e12z, 3, 4, 5, 6));  // e23 e2inf e3inf einf^e0 = 0
+  store4(&out.c[4], __builtin_shufflevector(__builtin_shufflevector(ca, ce, 3, 5, 6, 7), zero, 0, 1, 2, 4));
+                                                                     // e23 e2inf e3inf einf^e0 = 0
   store4(&out.c[8], __builtin_shufflevector(ce, zero, 3, 4, 4, 4));  // e123inf, b group 0
 }
 #else
