@@ -128,7 +128,8 @@ std::string format_eval(const std::vector<EvalLine>& lines) {
   std::string s;
   char buf[64];
   for (const auto& l : lines) {
-    std::snprintf(buf, sizeof buf, "%.17g", l.value);
+    // -0 prints as 0: the sign of a zero depends on GiNaC's term order, which varies between processes.
+    std::snprintf(buf, sizeof buf, "%.17g", l.value == 0.0 ? 0.0 : l.value);
     s += l.output + " " + algebra::blade_name(l.blade) + " " + buf + "\n";
   }
   return s;
@@ -164,8 +165,9 @@ std::string unified_diff(const std::string& a, const std::string& b, const std::
   size_t i = 0, j = 0;
   while (i < n || j < m) {
     if (i < n && j < m && A[i] == B[j]) ops.push_back({' ', i++, j++});
-    else if (j < m && (i == n || lcs[i][j + 1] >= lcs[i + 1][j])) ops.push_back({'+', i, j++});
-    else ops.push_back({'-', i++, j});
+    // Deletions before insertions where both keep the LCS, as diff(1) prints a changed line.
+    else if (i < n && (j == m || lcs[i + 1][j] >= lcs[i][j + 1])) ops.push_back({'-', i++, j});
+    else ops.push_back({'+', i, j++});
   }
   std::string out = "--- " + name_a + "\n+++ " + name_b + "\n";
   const size_t ctx = 3;

@@ -178,4 +178,7 @@ TEST_CASE("diff text names the levels and the op change", "[opt]") {
   std::string delta = opt::stats_delta(p1, p2);
   CHECK(delta.find("div 2 -> 1 (-1)") != std::string::npos);
   CHECK(opt::unified_diff("a\nb\n", "a\nb\n", "x", "y").empty());
+  // A changed line reads as diff(1) prints it: the old line, then the new one.
+  CHECK(opt::unified_diff("a\nb\nc\nd\n", "a\nx\ny\nd\n", "x", "y") ==
+        "--- x\n+++ y\n@@ -1,4 +1,4 @@\n a\n-b\n-c\n+x\n+y\n d\n");
 }
