@@ -31,11 +31,70 @@ constexpr std::size_t kB = 8;
 using Block = float[kM][kB];
 
 #if defined(__GNUC__)
-inline void transpose4(detail::v4f& r0, detail::v4f& r1, detail::v4f& r2, detail::v4f& r3) {
-  const detail::v4f t0 = __builtin_shufflevector(r0, r1, 0, 4, 1, 5), t1 = __builtin_shufflevector(r2, r3, 0, 4, 1, 5);
-  const detail::v4f t2 = __builtin_shufflevector(r0, r1, 2, 6, 3, 7), t3 = __builtin_shufflevector(r2, r3, 2, 6, 3, 7);
-  r0 = __builtin_shufflevector(t0, t1, 0, 1, 4, 5), r1 = __builtin_shufflevector(t0, t1, 2, 3, 6, 7);
-  r2 = __builtin_shufflevector(t2, t3, 0, 1, 4, 5), r3 = __builtin_shufflevector(t2, t3, 2, 3, 6, 7);
+// 8-float vectors (GCC vector extensions: one AVX register in the x86-64-v3 clones, two SSE registers in the
+// default ones). The shuffles below are the 8x8 transpose of unpcklps/unpckhps, shufps and vperm2f128.
+#pragma GCC diagnostic ignored "-Wpsabi"  // file-local, always inlined: the AVX argument ABI never applies
+using v8f = float __attribute__((vector_size(32)));
+inline v8f load8(const float* p) {
+  v8f v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store8(float* p, v8f v) { __builtin_memcpy(p, &v, sizeof v); }
+
+// In place: r[i][l] becomes r[l][i].
+inline void transpose8(v8f r[8]) {
+  v8f t[8], u[8];
+  for (int k = 0; k < 4; ++k) {
+    t[2 * k] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+    t[2 * k + 1] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+  }
+  for (int k = 0; k < 2; ++k) {
+    u[4 * k + 0] = __builtin_shufflevector(t[4 * k], t[4 * k + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+    u[4 * k + 1] = __builtin_shufflevector(t[4 * k], t[4 * k + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+    u[4 * k + 2] = __builtin_shufflevector(t[4 * k + 1], t[4 * k + 3], 0, 1, 8, 9, 4, 5, 12, 13);
+    u[4 * k + 3] = __builtin_shufflevector(t[4 * k + 1], t[4 * k + 3], 2, 3, 10, 11, 6, 7, 14, 15);
+  }
+  for (int k = 0; k < 4; ++k) {
+    r[k] = __builtin_shufflevector(u[k], u[k + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    r[k + 4] = __builtin_shufflevector(u[k], u[k + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+  }
+}
+
+// 8 motors (m(0) .. m(7), each a Motor&) into 12 coefficient rows.
+template <class Get>
+inline void gather_rows(Get m, v8f rows[kM]) {
+  for (int l = 0; l < 8; ++l) rows[l] = load8(&m(l).c[0]);
+  transpose8(rows);
+  // Coefficients 8-11: motors l and l + 4 in the halves of one vector, then 4x4 transposes within the halves.
+  v8f g[4];
+  for (int k = 0; k < 4; ++k)
+    g[k] = __builtin_shufflevector(detail::load4(&m(k).c[8]), detail::load4(&m(k + 4).c[8]), 0, 1, 2, 3, 4, 5, 6, 7);
+  const v8f a01 = __builtin_shufflevector(g[0], g[1], 0, 8, 1, 9, 4, 12, 5, 13);
+  const v8f b01 = __builtin_shufflevector(g[0], g[1], 2, 10, 3, 11, 6, 14, 7, 15);
+  const v8f a23 = __builtin_shufflevector(g[2], g[3], 0, 8, 1, 9, 4, 12, 5, 13);
+  const v8f b23 = __builtin_shufflevector(g[2], g[3], 2, 10, 3, 11, 6, 14, 7, 15);
+  rows[8] = __builtin_shufflevector(a01, a23, 0, 1, 8, 9, 4, 5, 12, 13);
+  rows[9] = __builtin_shufflevector(a01, a23, 2, 3, 10, 11, 6, 7, 14, 15);
+  rows[10] = __builtin_shufflevector(b01, b23, 0, 1, 8, 9, 4, 5, 12, 13);
+  rows[11] = __builtin_shufflevector(b01, b23, 2, 3, 10, 11, 6, 7, 14, 15);
+}
+// 12 coefficient rows into 8 motors (rows is clobbered).
+inline void scatter_rows(v8f rows[kM], Motor* __restrict m) {
+  const v8f a = __builtin_shufflevector(rows[8], rows[9], 0, 8, 1, 9, 4, 12, 5, 13);
+  const v8f b = __builtin_shufflevector(rows[10], rows[11], 0, 8, 1, 9, 4, 12, 5, 13);
+  const v8f c = __builtin_shufflevector(rows[8], rows[9], 2, 10, 3, 11, 6, 14, 7, 15);
+  const v8f d = __builtin_shufflevector(rows[10], rows[11], 2, 10, 3, 11, 6, 14, 7, 15);
+  const v8f h[4] = {__builtin_shufflevector(a, b, 0, 1, 8, 9, 4, 5, 12, 13),
+                    __builtin_shufflevector(a, b, 2, 3, 10, 11, 6, 7, 14, 15),
+                    __builtin_shufflevector(c, d, 0, 1, 8, 9, 4, 5, 12, 13),
+                    __builtin_shufflevector(c, d, 2, 3, 10, 11, 6, 7, 14, 15)};
+  transpose8(rows);
+  for (int l = 0; l < 8; ++l) store8(&m[l].c[0], rows[l]);
+  for (int k = 0; k < 4; ++k) {
+    detail::store4(&m[k].c[8], __builtin_shufflevector(h[k], h[k], 0, 1, 2, 3));
+    detail::store4(&m[k + 4].c[8], __builtin_shufflevector(h[k], h[k], 4, 5, 6, 7));
+  }
 }
 #endif
 
@@ -43,14 +102,9 @@ inline void transpose4(detail::v4f& r0, detail::v4f& r1, detail::v4f& r2, detail
 inline void load_block(const Motor* __restrict m, std::size_t count, Block& b) {
 #if defined(__GNUC__)
   if (count == kB) {
-    for (std::size_t g = 0; g < kB; g += 4)
-      for (std::size_t q = 0; q < kM; q += 4) {
-        detail::v4f r0 = detail::load4(&m[g].c[q]), r1 = detail::load4(&m[g + 1].c[q]);
-        detail::v4f r2 = detail::load4(&m[g + 2].c[q]), r3 = detail::load4(&m[g + 3].c[q]);
-        transpose4(r0, r1, r2, r3);
-        detail::store4(&b[q][g], r0), detail::store4(&b[q + 1][g], r1);
-        detail::store4(&b[q + 2][g], r2), detail::store4(&b[q + 3][g], r3);
-      }
+    v8f rows[kM];
+    gather_rows([m](int l) -> const Motor& { return m[l]; }, rows);
+    for (std::size_t c = 0; c < kM; ++c) store8(b[c], rows[c]);
     return;
   }
 #endif
@@ -62,14 +116,9 @@ inline void load_block(const Motor* __restrict m, std::size_t count, Block& b) {
 inline void store_block(const Block& b, std::size_t count, Motor* __restrict m) {
 #if defined(__GNUC__)
   if (count == kB) {
-    for (std::size_t g = 0; g < kB; g += 4)
-      for (std::size_t q = 0; q < kM; q += 4) {
-        detail::v4f r0 = detail::load4(&b[q][g]), r1 = detail::load4(&b[q + 1][g]);
-        detail::v4f r2 = detail::load4(&b[q + 2][g]), r3 = detail::load4(&b[q + 3][g]);
-        transpose4(r0, r1, r2, r3);
-        detail::store4(&m[g].c[q], r0), detail::store4(&m[g + 1].c[q], r1);
-        detail::store4(&m[g + 2].c[q], r2), detail::store4(&m[g + 3].c[q], r3);
-      }
+    v8f rows[kM];
+    for (std::size_t c = 0; c < kM; ++c) rows[c] = load8(b[c]);
+    scatter_rows(rows, m);
     return;
   }
 #endif
@@ -193,7 +242,29 @@ CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const M
   for (std::size_t k = 0; k < n; ++k)
     for (int c : {7, 9, 10, 11}) bits |= std::bit_cast<std::uint32_t>(model[remap[k]].c[c]) | std::bit_cast<std::uint32_t>(ib[k].c[c]);
   if ((bits << 1) == 0u) {
-    for (std::size_t k = 0; k < n; ++k) motor_mul_rigid_simd(model[remap[k]], ib[k], out[k]);
+    std::size_t k = 0;
+#if CGA_RUNTIME_HAVE_KERNELS && defined(__GNUC__)
+    // Blocks of 8 entries as structure of arrays: the generated 8-blade product vectorized across entries.
+    constexpr int kRigidBlade[kR] = {0, 1, 2, 3, 4, 5, 6, 8};
+    for (; k + kB <= n; k += kB) {
+      v8f x[kM], y[kM];
+      gather_rows([&](int l) -> const Motor& { return model[remap[k + l]]; }, x);
+      gather_rows([&](int l) -> const Motor& { return ib[k + l]; }, y);
+      float xs[kR][kB], ys[kR][kB], zs[kR][kB];
+      for (std::size_t c = 0; c < kR; ++c) store8(xs[c], x[kRigidBlade[c]]), store8(ys[c], y[kRigidBlade[c]]);
+      for (std::size_t l = 0; l < kB; ++l) {
+        float a[kR], b[kR], z[kR];
+        for (std::size_t c = 0; c < kR; ++c) a[c] = xs[c][l], b[c] = ys[c][l];
+        kernels::motor_mul_rigid(a, b, z);
+        for (std::size_t c = 0; c < kR; ++c) zs[c][l] = z[c];
+      }
+      v8f z[kM];
+      z[7] = z[9] = z[10] = z[11] = v8f{};
+      for (std::size_t c = 0; c < kR; ++c) z[kRigidBlade[c]] = load8(zs[c]);
+      scatter_rows(z, out + k);
+    }
+#endif
+    for (; k < n; ++k) motor_mul_rigid_simd(model[remap[k]], ib[k], out[k]);
     return;
   }
   for (std::size_t k = 0; k < n; ++k) {

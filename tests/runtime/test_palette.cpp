@@ -156,3 +156,42 @@ TEST_CASE("joints are ordered breadth-first with parents first") {
     }
   }
 }
+
+TEST_CASE("palette: blocks of 8 rigid entries (structure of arrays) and their remainders equal motor_mul per entry") {
+  // 1..27 entries cover no block, whole blocks of 8 and every remainder; the remap gathers model motors in
+  // any order (repeats included). A non-rigid entry in the model or the inverse binds sends the whole run
+  // to the per-entry loop, which must agree too.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> pick(0, 29);
+  auto random_motor = [&](float scale) {
+    Transform x;
+    x.translation = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f;
+    x.rotation = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
+    x.scale = scale;
+    return motor_from_transform(x);
+  };
+  std::vector<Motor> model(30);
+  for (Motor& m : model) m = random_motor(1.0f);
+  for (int variant = 0; variant < 3; ++variant) {  // all rigid; one scaled model motor; one scaled inverse bind
+    for (std::size_t n = 1; n <= 27; ++n) {
+      INFO("variant " << variant << ", " << n << " entries");
+      std::vector<int> remap(n);
+      for (int& r : remap) r = pick(rng);
+      InverseBind ib;
+      for (std::size_t k = 0; k < n; ++k) ib.motors.push_back(random_motor(variant == 2 && k == n / 2 ? 0.6f : 1.0f));
+      std::vector<Motor> m = model;
+      if (variant == 1) m[remap[n - 1]] = random_motor(1.4f);
+      std::vector<Motor> palette(n);
+      SkinningPaletteJob pal;
+      pal.mode = Interpolation::paper, pal.joint_remap = remap, pal.inverse_bind = &ib, pal.model_motors = m,
+      pal.out_motors = palette;
+      REQUIRE(pal.Run());
+      for (std::size_t k = 0; k < n; ++k) {
+        const Motor want = motor_mul(m[remap[k]], ib.motors[k]);
+        for (int c = 0; c < 12; ++c) REQUIRE(palette[k].c[c] == Approx(want.c[c]).margin(1e-5));
+        if (motor_is_rigid(m[remap[k]]) && motor_is_rigid(ib.motors[k])) REQUIRE(motor_is_rigid(palette[k]));
+      }
+    }
+  }
+}

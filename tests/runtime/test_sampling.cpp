@@ -438,3 +438,45 @@ TEST_CASE("motor_screw on motors equals motor_screw on the transforms") {
       REQUIRE(glm::length(motor_transform_point(got, p) - motor_transform_point(want, p)) < 1e-4f);
   }
 }
+
+TEST_CASE("nlerp and paper blending of many joints (blocks of 8 and remainders) equal the per-joint formulas") {
+  // 1..21 joints, 1..3 layers with random weights; motors with scales and random signs (antipodal layers).
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> w01(0.05f, 1.0f);
+  for (std::size_t n = 1; n <= 21; ++n)
+    for (std::size_t layers_n = 1; layers_n <= 3; ++layers_n) {
+      INFO(n << " joints, " << layers_n << " layers");
+      std::vector<std::vector<Motor>> poses(layers_n, std::vector<Motor>(n));
+      std::vector<float> weights(layers_n);
+      for (std::size_t l = 0; l < layers_n; ++l) {
+        weights[l] = w01(rng);
+        for (Motor& m : poses[l]) {
+          m = motor_from_transform(random_transform(rng, true));
+          if (w01(rng) < 0.4f)
+            for (float& c : m.c) c = -c;
+        }
+      }
+      std::vector<BlendLayer> layers;
+      for (std::size_t l = 0; l < layers_n; ++l) layers.push_back(BlendLayer{weights[l], poses[l], {}, {}, {}});
+      float total = 0.0f;
+      for (float w : weights) total += w;
+      for (Interpolation mode : {Interpolation::nlerp, Interpolation::paper}) {
+        std::vector<Motor> out(n);
+        BlendingJob job;
+        job.mode = mode, job.layers = layers, job.out_motors = out;
+        REQUIRE(job.Run());
+        for (std::size_t j = 0; j < n; ++j) {
+          Motor want;
+          for (std::size_t l = 0; l < layers_n; ++l) {
+            const float s = mode == Interpolation::nlerp && l > 0 && motor_rotor_dot(poses[0][j], poses[l][j]) < 0.0f
+                                ? -1.0f
+                                : 1.0f;
+            for (int c = 0; c < 12; ++c) want.c[c] = (l == 0 ? 0.0f : want.c[c]) + s * weights[l] / total * poses[l][j].c[c];
+          }
+          if (mode == Interpolation::nlerp) want = motor_normalize_fast(want);
+          INFO("joint " << j << " mode " << to_string(mode));
+          REQUIRE(max_diff(out[j], want) < 1e-4f);
+        }
+      }
+    }
+}
