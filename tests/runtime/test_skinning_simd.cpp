@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -129,4 +130,50 @@ TEST_CASE("the SIMD loops leave outputs past the vertex count alone", "[skinning
     for (int s = 0; s < 6; ++s)
       for (std::size_t i = 13; i < 24; ++i) REQUIRE(buf[24 * s + i] == -7.0f);
   }
+}
+
+TEST_CASE("Run refuses a bad joint index or weight in any block, on the SIMD and the portable loops", "[skinning][simd]") {
+  // The check runs inside each block function (integer max reductions over the block's joints and weight
+  // exponents): a bad value at a block's first or last vertex, in any slot, in the first, a middle or the
+  // last (partial) block must stop Run(); blocks before it may be written.
+  const Palettes pal = make_palettes(make_random_transforms(24, 61, 1.0f));
+  const SkinnedMesh good = make_random_skinned_mesh(700, 24, 62);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (SkinningMethod method : kAllSkinningMethods)
+    for (const bool simd : {true, false}) {
+      INFO(to_string(method) << (simd ? " simd" : " portable"));
+      SkinnedOutput out;
+      SkinningJob job = make_skinning_job(method, good, out);
+      job.matrices = pal.matrices;
+      job.dual_quats = pal.dual_quats;
+      job.motors = pal.motors;
+      job.use_simd = simd;
+      REQUIRE(job.Run());
+      for (std::size_t i : {0u, 7u, 255u, 256u, 300u, 511u, 512u, 699u})
+        for (int k = 0; k < 4; ++k) {
+          INFO("vertex " << i << " slot " << k);
+          for (std::uint16_t joint : {std::uint16_t{24}, std::uint16_t{255}, std::uint16_t{65535}}) {
+            SkinnedMesh bad = good;
+            bad.joints[i][k] = joint;
+            job.joints = bad.joints;
+            job.weights = good.weights;
+            CHECK_FALSE(job.Run());
+          }
+          for (float w : {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN(), inf, -inf}) {
+            SkinnedMesh bad = good;
+            bad.weights[i][k] = w;
+            job.joints = good.joints;
+            job.weights = bad.weights;
+            CHECK_FALSE(job.Run());
+          }
+          // The largest finite weight and the largest valid joint index pass Run() (Validate() rejects the
+          // weight: its sum is not 1).
+          SkinnedMesh edge = good;
+          edge.weights[i][k] = std::numeric_limits<float>::max();
+          edge.joints[i][k] = 23;
+          job.joints = edge.joints;
+          job.weights = edge.weights;
+          CHECK(job.Run());
+        }
+    }
 }
