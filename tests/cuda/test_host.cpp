@@ -73,7 +73,7 @@ TEST_CASE("bytes per vertex of the standard and compact layouts") {
   CHECK(bytes_per_vertex(a) == 60);  // + 12 normal in + 12 normal out
 }
 
-TEST_CASE("palettes are packed in the layout the kernels read") {
+TEST_CASE("palettes are packed in the layout the kernels read (cga::append_packed_palette)") {
   const std::vector<Transform> xs = make_random_transforms(5, 77u, 1.0f);
   std::vector<glm::mat3x4> mats;
   std::vector<glm::dualquat> dqs;
@@ -85,7 +85,7 @@ TEST_CASE("palettes are packed in the layout the kernels read") {
   }
   for (SkinningMethod m : kAllSkinningMethods) {
     std::vector<float> out{42.0f};  // appends after what is there
-    append_palette(m, mats, dqs, motors, out);
+    append_packed_palette(m, mats, dqs, motors, out);
     REQUIRE(out.size() == 1 + xs.size() * palette_floats(m));
     CHECK(out[0] == 42.0f);
     for (std::size_t b = 0; b < xs.size(); ++b) {

@@ -192,7 +192,7 @@ int main(int argc, char** argv) try {
           mots[p].push_back(motor_from_transform(x));
         }
       std::vector<float> one_cycle;
-      for (std::size_t p = 0; p < kPalettes; ++p) append_palette(method, mats[p], dqs[p], mots[p], one_cycle);
+      for (std::size_t p = 0; p < kPalettes; ++p) append_packed_palette(method, mats[p], dqs[p], mots[p], one_cycle);
       std::vector<float> palettes;
       palettes.reserve(one_cycle.size() / kPalettes * opt.instances);
       const std::size_t per_instance = one_cycle.size() / kPalettes;

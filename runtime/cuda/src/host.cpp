@@ -1,32 +1,9 @@
-// Host side of the CUDA crowd skinning (C++ compiler): palette packing, argument checks, the launch.
+// Host side of the CUDA crowd skinning (C++ compiler): argument checks, byte counts, the launch.
 #include "cga/cuda/crowd_skinning.hpp"
 
-#include "cga/runtime/skinning_palettes.hpp"
 #include "kernels.hpp"
 
 namespace cga::cuda {
-
-void append_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
-                    std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
-                    std::vector<float>& out) {
-  switch (method) {
-    case SkinningMethod::lbs:
-      for (const glm::mat3x4& m : matrices)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 4; ++c) out.push_back(m[r][c]);
-      break;
-    case SkinningMethod::dqs: {
-      const std::size_t at = out.size();
-      out.resize(at + 8 * dual_quats.size());
-      pack_dual_quats(dual_quats, std::span<float>(out).subspan(at));
-      break;
-    }
-    case SkinningMethod::cga_points:
-    case SkinningMethod::cga_motors:
-      for (const Motor& m : motors) out.insert(out.end(), m.c.begin(), m.c.end());
-      break;
-  }
-}
 
 std::size_t bytes_per_vertex(const CrowdArgs& a) {
   const std::size_t joints = a.joint_format == JointFormat::u16x4 ? 8 : 4;

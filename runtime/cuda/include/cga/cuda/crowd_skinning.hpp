@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cga/runtime/packed_palette.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/types.hpp"
 
@@ -30,13 +31,10 @@ struct CudaError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Floats per palette entry: lbs 12 (row-major 3x4), dqs 8 (real xyzw, dual xyzw), cga_* 12 (motor blades).
-inline std::size_t palette_floats(SkinningMethod m) { return m == SkinningMethod::dqs ? 8 : 12; }
-
-// Appends one instance's palette in the kernels' layout (the method's array; the others are ignored).
-void append_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
-                    std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
-                    std::vector<float>& out);
+// Palettes in the kernels' layout: cga::packed_palette_floats / cga::append_packed_palette
+// (cga/runtime/packed_palette.hpp), the layout the GL shaders read too.
+inline std::size_t palette_floats(SkinningMethod m) { return packed_palette_floats(m); }
+using cga::append_packed_palette;
 
 // Device pointers and sizes of one launch.
 struct CrowdArgs {
