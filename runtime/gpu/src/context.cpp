@@ -2,6 +2,7 @@
 #include "cga/gpu/context.hpp"
 
 #include <cstdio>
+#include <stdexcept>
 #include <string_view>
 
 #include <EGL/egl.h>
@@ -131,6 +132,7 @@ void Object::release() noexcept {
     case ObjectKind::vertex_array: glDeleteVertexArrays(1, &n); break;
     case ObjectKind::framebuffer: glDeleteFramebuffers(1, &n); break;
     case ObjectKind::renderbuffer: glDeleteRenderbuffers(1, &n); break;
+    case ObjectKind::query: glDeleteQueries(1, &n); break;
   }
   name_ = 0;
 }
@@ -203,6 +205,11 @@ void Context::check(const char* what) const {
   std::string more;
   while (glGetError() != GL_NO_ERROR) more = " (and more errors)";
   throw GlError("cga::gpu: GL error " + hex(e) + more + " after " + what);
+}
+
+void Context::finish() const {
+  glFinish();
+  check("glFinish");
 }
 
 void Context::bind_dummy_framebuffer() const {
@@ -284,26 +291,46 @@ void Context::read(const Buffer& b, void* data, std::size_t bytes, std::size_t o
   check("glGetNamedBufferSubData");
 }
 
+namespace {
+
+// The transform feedback draw of capture_points / feedback_points; `query` (0: none) counts the primitives.
+void draw_feedback_points(GLuint program, GLuint vao, std::size_t count, std::size_t instances, GLuint out,
+                          GLuint query) {
+  if (count > 0x7fffffffu || instances > 0x7fffffffu)
+    throw std::invalid_argument("cga::gpu: a draw of " + std::to_string(count) + " vertices x " +
+                                std::to_string(instances) + " instances exceeds GLsizei");
+  glUseProgram(program);
+  glBindVertexArray(vao);
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out);
+  if (query) glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(count), static_cast<GLsizei>(instances));
+  glEndTransformFeedback();
+  if (query) glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  glDisable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glBindVertexArray(0);
+}
+
+}  // namespace
+
+void Context::feedback_points(unsigned program, unsigned vao, std::size_t count, std::size_t instances,
+                              const Buffer& out) const {
+  bind_dummy_framebuffer();
+  draw_feedback_points(program, vao, count, instances, out.get(), 0);
+  check("the transform feedback draw");
+}
+
 std::size_t Context::capture_points(unsigned program, unsigned vao, std::size_t count, std::size_t instances,
                                     const Buffer& out) const {
   bind_dummy_framebuffer();
   GLuint query = 0;
   glGenQueries(1, &query);
-  glUseProgram(program);
-  glBindVertexArray(vao);
-  glEnable(GL_RASTERIZER_DISCARD);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out.get());
-  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
-  glBeginTransformFeedback(GL_POINTS);
-  glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(count), static_cast<GLsizei>(instances));
-  glEndTransformFeedback();
-  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-  glDisable(GL_RASTERIZER_DISCARD);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-  glBindVertexArray(0);
+  const Object owned(ObjectKind::query, query);
+  draw_feedback_points(program, vao, count, instances, out.get(), query);
   GLuint64 written = 0;
   glGetQueryObjectui64v(query, GL_QUERY_RESULT, &written);
-  glDeleteQueries(1, &query);
   check("the transform feedback draw");
   if (written != count * instances)
     throw GlError("cga::gpu: transform feedback wrote " + std::to_string(written) + " of " +
@@ -316,6 +343,57 @@ void Context::dispatch(unsigned program, unsigned groups_x, unsigned groups_y, u
   glDispatchCompute(groups_x, groups_y, groups_z);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
   check("glDispatchCompute");
+}
+
+void Context::copy(const Buffer& src, const Buffer& dst, std::size_t bytes, std::size_t src_offset,
+                   std::size_t dst_offset) const {
+  if (src_offset + bytes > src.bytes || dst_offset + bytes > dst.bytes)
+    throw std::out_of_range("cga::gpu::Context::copy: " + std::to_string(bytes) + " bytes from offset " +
+                            std::to_string(src_offset) + " of a " + std::to_string(src.bytes) +
+                            "-byte buffer to offset " + std::to_string(dst_offset) + " of a " +
+                            std::to_string(dst.bytes) + "-byte buffer");
+  if (bytes)
+    glCopyNamedBufferSubData(src.get(), dst.get(), static_cast<GLintptr>(src_offset),
+                             static_cast<GLintptr>(dst_offset), static_cast<GLsizeiptr>(bytes));
+  check("glCopyNamedBufferSubData");
+}
+
+std::size_t Context::max_storage_block_bytes() const {
+  GLint64 v = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &v);
+  check("glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)");
+  return static_cast<std::size_t>(v);
+}
+
+GpuTimer::GpuTimer(const Context& context) : context_(&context) {
+  GLuint q = 0;
+  glGenQueries(1, &q);
+  query_ = Object(ObjectKind::query, q);
+  context.check("glGenQueries (timer)");
+}
+
+void GpuTimer::begin() {
+  if (running_) throw GlError("cga::gpu::GpuTimer::begin: the timer is already running");
+  glBeginQuery(GL_TIME_ELAPSED, query_.get());
+  context_->check("glBeginQuery(GL_TIME_ELAPSED) (is another timer running?)");
+  running_ = true;
+  ended_ = false;
+}
+
+void GpuTimer::end() {
+  if (!running_) throw GlError("cga::gpu::GpuTimer::end: the timer was not started");
+  glEndQuery(GL_TIME_ELAPSED);
+  context_->check("glEndQuery(GL_TIME_ELAPSED)");
+  running_ = false;
+  ended_ = true;
+}
+
+double GpuTimer::seconds() const {
+  if (!ended_) throw GlError("cga::gpu::GpuTimer::seconds: begin() and end() were not both called");
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
+  context_->check("glGetQueryObjectui64v(GL_TIME_ELAPSED result)");
+  return static_cast<double>(ns) * 1e-9;
 }
 
 }  // namespace cga::gpu

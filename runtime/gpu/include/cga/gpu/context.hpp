@@ -25,7 +25,7 @@ struct GlError : std::runtime_error {
 };
 
 // An owned GL object name; moves, never copies. The deleter is chosen by the kind.
-enum class ObjectKind { buffer, program, vertex_array, framebuffer, renderbuffer };
+enum class ObjectKind { buffer, program, vertex_array, framebuffer, renderbuffer, query };
 class Object {
  public:
   Object() = default;
@@ -95,6 +95,8 @@ class Context {
 
   // Throws GlError naming `what` when glGetError reports an error.
   void check(const char* what) const;
+  // glFinish: waits until the GPU has executed every command issued so far.
+  void finish() const;
 
   // Binds a tiny framebuffer object so that draws (including rasterizer-discarded transform feedback
   // draws) are legal without a default framebuffer (GL_INVALID_FRAMEBUFFER_OPERATION otherwise).
@@ -105,6 +107,18 @@ class Context {
   // count * instances vertices were written and returns that number.
   std::size_t capture_points(unsigned program, unsigned vao, std::size_t count, std::size_t instances,
                              const Buffer& out) const;
+  // The same draw without the query: nothing waits for the GPU (for timing). The caller makes `out` large
+  // enough (transform feedback silently stops at the end of the buffer).
+  void feedback_points(unsigned program, unsigned vao, std::size_t count, std::size_t instances,
+                       const Buffer& out) const;
+
+  // glCopyNamedBufferSubData of `bytes` bytes from `src` at `src_offset` to `dst` at `dst_offset`, on the GPU
+  // (queued; nothing waits). Throws std::out_of_range when a range leaves its buffer.
+  void copy(const Buffer& src, const Buffer& dst, std::size_t bytes, std::size_t src_offset = 0,
+            std::size_t dst_offset = 0) const;
+
+  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the largest buffer range one SSBO binding may expose to a shader.
+  std::size_t max_storage_block_bytes() const;
 
   // glDispatchCompute followed by the barriers buffer reads need.
   void dispatch(unsigned program, unsigned groups_x, unsigned groups_y = 1, unsigned groups_z = 1) const;
@@ -114,6 +128,22 @@ class Context {
   void* context_ = nullptr;
   std::string platform_;
   Object dummy_fbo_, dummy_rb_;
+};
+
+// GPU time of the commands issued between begin() and end() (a GL_TIME_ELAPSED query): the time the GPU
+// spent on them, not the caller's. One timer may be running at a time in a context (GL allows one active
+// GL_TIME_ELAPSED query). seconds() waits for the result; begin() may be called again afterwards.
+class GpuTimer {
+ public:
+  explicit GpuTimer(const Context& context);
+  void begin();
+  void end();
+  double seconds() const;  // throws GlError when begin/end were not both called
+
+ private:
+  const Context* context_;
+  Object query_;
+  bool running_ = false, ended_ = false;
 };
 
 // The name of a shader stage constant, for messages.

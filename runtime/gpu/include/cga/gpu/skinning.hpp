@@ -43,15 +43,31 @@ struct SkinnedVertices {
   std::vector<float> normals;  // empty when normals were not requested
 };
 
+// Bytes one skinned vertex reads from the rest mesh (position 12, joints u16x4 8, weights f32x4 16, normal
+// 12 when `normals`) and writes (position 12, normal 12 when `normals`); palettes are not counted.
+inline constexpr std::size_t rest_vertex_bytes(bool normals) { return normals ? 48 : 36; }
+inline constexpr std::size_t skinned_vertex_bytes(bool normals) { return normals ? 24 : 12; }
+
 // One method's programs (vertex + compute) and the GPU copy of one rest mesh.
+//
+// Two ways to use it: run() skins and reads everything back (one call); set_palettes() + dispatch() queue the
+// skinning with the results left in GPU buffers the Skinner owns (no readback, no wait: what a renderer or a
+// benchmark wants), and read_back() fetches some instances of the last dispatch.
 class Skinner {
  public:
   Skinner(const Context& context, SkinningMethod method);
   SkinningMethod method() const { return method_; }
 
-  // Uploads the rest positions, normals (zeros when the mesh has none), joints and weights.
+  // Uploads the rest positions, normals (zeros when the mesh has none), joints and weights. Every instance
+  // reads this one copy (shared inputs).
   void set_mesh(const SkinnedMesh& mesh);
+  // Uploads `copies` copies of the mesh one after the other (replicated on the GPU): instance i reads copy i,
+  // as when each instance streams its own vertices (the crowd layout). Then at most `copies`
+  // instances can be skinned. copies == 0 is an error.
+  void set_mesh_per_instance(const SkinnedMesh& mesh, std::size_t copies);
   std::size_t vertex_count() const { return vertex_count_; }
+  // 0 when every instance reads the one rest mesh (set_mesh), else the number of copies.
+  std::size_t per_instance_copies() const { return per_instance_copies_; }
 
   // Skins `instances` copies of the mesh. `palettes` holds instances * bone_count entries in the layout of
   // append_palette; every joint index of the mesh must be < bone_count (checked on the CPU at set_mesh /
@@ -59,16 +75,41 @@ class Skinner {
   SkinnedVertices run(SkinPath path, std::span<const float> palettes, std::size_t bone_count,
                       std::size_t instances, bool normals);
 
+  // Uploads the palettes of `instances` instances for the following dispatch() calls (the checks of run).
+  void set_palettes(std::span<const float> palettes, std::size_t bone_count, std::size_t instances);
+  std::size_t instances() const { return instances_; }
+  // Queues the skinning of every instance of the last set_palettes into the Skinner's output buffers; returns
+  // without reading back or waiting for the GPU. Output buffers grow when needed (allocation happens on the
+  // first call of a size, so time the later ones) and are reused otherwise. Throws GlError on a GL error,
+  // std::invalid_argument / std::logic_error on a size GL cannot address or a missing set_palettes.
+  void dispatch(SkinPath path, bool normals);
+  // Instances [first_instance, first_instance + instance_count) of the last dispatch, read back (waits for
+  // the GPU). Normals only when that dispatch wrote them. Throws std::out_of_range past its instances.
+  SkinnedVertices read_back(std::size_t first_instance, std::size_t instance_count) const;
+
  private:
-  void upload_palettes(std::span<const float> palettes, std::size_t bone_count, std::size_t instances);
+  void upload_mesh(const SkinnedMesh& mesh, std::size_t copies);
+  const Object& vertex_program(bool normals);
 
   const Context* context_;
   SkinningMethod method_;
-  Object vertex_program_, compute_program_, vao_;
+  // Transform feedback captures (position, normal) interleaved, or the position alone.
+  Object vertex_program_, vertex_program_positions_, compute_program_, vao_;
   Buffer positions_, normals_, joints_, weights_, palette_;
+  Buffer feedback_out_, out_positions_, out_normals_;
   std::size_t vertex_count_ = 0;
+  std::size_t per_instance_copies_ = 0;
   unsigned max_joint_ = 0;
   bool mesh_has_normals_ = false;
+  // The last set_palettes and dispatch.
+  std::size_t bone_count_ = 0, instances_ = 0;
+  bool palettes_set_ = false;
+  struct LastDispatch {
+    bool done = false;
+    SkinPath path = SkinPath::compute;
+    bool normals = false;
+    std::size_t instances = 0;
+  } last_;
 };
 
 }  // namespace cga::gpu
