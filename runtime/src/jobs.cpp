@@ -5,6 +5,10 @@
 // data is structure of arrays (sampling, paper blending) and schedules them tightly where it is not.
 #include "cga/runtime/jobs.hpp"
 
+// The 8-float vector helpers below are file-local and inlined: the AVX argument ABI that -Wpsabi warns
+// about never applies.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include <algorithm>
 #include <cmath>
 
@@ -33,7 +37,6 @@ using Block = float[kM][kB];
 #if defined(__GNUC__)
 // 8-float vectors (GCC vector extensions: one AVX register in the x86-64-v3 clones, two SSE registers in the
 // default ones). The shuffles below are the 8x8 transpose of unpcklps/unpckhps, shufps and vperm2f128.
-#pragma GCC diagnostic ignored "-Wpsabi"  // file-local, always inlined: the AVX argument ABI never applies
 using v8f = float __attribute__((vector_size(32)));
 inline v8f load8(const float* p) {
   v8f v;
@@ -96,6 +99,26 @@ inline void scatter_rows(v8f rows[kM], Motor* __restrict m) {
     detail::store4(&m[k + 4].c[8], __builtin_shufflevector(h[k], h[k], 4, 5, 6, 7));
   }
 }
+
+// Square root of every lane: a loop GCC turns into one vsqrtps (two sqrtps in the default clones).
+inline v8f sqrt8(v8f v) {
+  float a[8];
+  __builtin_memcpy(a, &v, sizeof a);
+  for (float& x : a) x = std::sqrt(x);
+  __builtin_memcpy(&v, a, sizeof a);
+  return v;
+}
+// motor_normalize_fast on 8 motors' coefficient rows, in place.
+inline void normalize_rows(v8f m[kM]) {
+  detail::motor_normalize_fast_t(m, m, [](v8f v) { return sqrt8(v); });
+}
+// 8 rows into out[0..count): straight for a whole block, else through a local block.
+inline void scatter_rows(v8f rows[kM], std::size_t count, Motor* __restrict out) {
+  if (count == kB) return scatter_rows(rows, out);
+  Motor tmp[kB];
+  scatter_rows(rows, tmp);
+  for (std::size_t l = 0; l < count; ++l) out[l] = tmp[l];
+}
 #endif
 
 // Joints m[0..count) into a block; lanes past count hold the identity.
@@ -150,54 +173,76 @@ CGA_JOBS_CLONES void sample_paper(std::size_t n, std::size_t w, float t, const f
 #endif
 }
 
-// nlerp of every joint: key i plus alpha times the (sign-matched) difference, normalized.
+// nlerp of every joint: key i plus alpha times the (sign-matched) difference, normalized; 8 joints per step
+// as coefficient rows (the interval's SoA arrays are padded to whole blocks).
 CGA_JOBS_CLONES void sample_nlerp(std::size_t n, std::size_t w, float t, const float* __restrict t0,
                                   const float* __restrict inv, const float* __restrict m0,
                                   const float* __restrict md, Motor* __restrict out) {
+#if defined(__GNUC__)
   for (std::size_t j0 = 0; j0 < n; j0 += kB) {
-    Block res;
-    for (std::size_t l = 0; l < kB; ++l) {
-      const std::size_t j = j0 + l;
-      const float a = (t - t0[j]) * inv[j];
-      float m[kM], y[kM];
-      for (std::size_t c = 0; c < kM; ++c) m[c] = m0[c * w + j] + a * md[c * w + j];
-      motor_normalize_fast(m, y);
-      for (std::size_t c = 0; c < kM; ++c) res[c][l] = y[c];
-    }
-    store_block(res, std::min(kB, n - j0), out + j0);
+    const v8f a = (t - load8(t0 + j0)) * load8(inv + j0);
+    v8f m[kM];
+    for (std::size_t c = 0; c < kM; ++c) m[c] = load8(m0 + c * w + j0) + a * load8(md + c * w + j0);
+    normalize_rows(m);
+    scatter_rows(m, std::min(kB, n - j0), out + j0);
   }
+#else
+  for (std::size_t j = 0; j < n; ++j) {
+    const float a = (t - t0[j]) * inv[j];
+    float m[kM];
+    for (std::size_t c = 0; c < kM; ++c) m[c] = m0[c * w + j] + a * md[c * w + j];
+    motor_normalize_fast(m, out[j].c.data());
+  }
+#endif
 }
 
-// nlerp's blend: the weighted sum with each motor's sign matched to the reference layer's, normalized.
+// nlerp's blend: the weighted sum with each motor's sign matched to the reference layer's, normalized; 8 joints
+// per step as coefficient rows.
 CGA_JOBS_CLONES void blend_nlerp(std::size_t n, std::span<const BlendLayer> layers, std::size_t first, float inv,
                                  Motor* __restrict out) {
+#if defined(__GNUC__)
+  using v8i = int __attribute__((vector_size(32)));
+  const auto rows_of = [n](const Motor* m, std::size_t j0, v8f r[kM]) {
+    if (j0 + kB <= n) return gather_rows([m, j0](int l) -> const Motor& { return m[j0 + l]; }, r);
+    Block b;
+    load_block(m + j0, n - j0, b);
+    for (std::size_t c = 0; c < kM; ++c) r[c] = load8(b[c]);
+  };
   for (std::size_t j0 = 0; j0 < n; j0 += kB) {
-    const std::size_t count = std::min(kB, n - j0);
-    Block ref, x, acc;
-    load_block(layers[first].motors.data() + j0, count, ref);
+    v8f ref[kM], acc[kM], x[kM];
+    rows_of(layers[first].motors.data(), j0, ref);
     const float w0 = layers[first].weight * inv;
-    for (std::size_t c = 0; c < kM; ++c)
-      for (std::size_t l = 0; l < kB; ++l) acc[c][l] = w0 * ref[c][l];
+    for (std::size_t c = 0; c < kM; ++c) acc[c] = w0 * ref[c];
+    // The reference's rotor part a + b.
+    const v8f g0 = ref[0] + ref[7], g1 = ref[1] + ref[9], g2 = ref[2] + ref[10], g3 = ref[4] + ref[11];
     for (std::size_t k = first + 1; k < layers.size(); ++k) {
       if (layers[k].weight <= 0.0f) continue;
-      load_block(layers[k].motors.data() + j0, count, x);
+      rows_of(layers[k].motors.data(), j0, x);
       const float w = layers[k].weight * inv;
-      for (std::size_t l = 0; l < kB; ++l) {
-        const float dot = (ref[0][l] + ref[7][l]) * (x[0][l] + x[7][l]) + (ref[1][l] + ref[9][l]) * (x[1][l] + x[9][l]) +
-                          (ref[2][l] + ref[10][l]) * (x[2][l] + x[10][l]) + (ref[4][l] + ref[11][l]) * (x[4][l] + x[11][l]);
-        const float s = dot < 0.0f ? -w : w;
-        for (std::size_t c = 0; c < kM; ++c) acc[c][l] += s * x[c][l];
-      }
+      const v8f dot = g0 * (x[0] + x[7]) + g1 * (x[1] + x[9]) + g2 * (x[2] + x[10]) + g3 * (x[4] + x[11]);
+      // -w where dot < 0, else w.
+      const v8i flip = (dot < 0.0f) & static_cast<int>(0x80000000u);
+      const v8f s = reinterpret_cast<v8f>(reinterpret_cast<v8i>(v8f{} + w) ^ flip);
+      for (std::size_t c = 0; c < kM; ++c) acc[c] += s * x[c];
     }
-    Block res;
-    for (std::size_t l = 0; l < kB; ++l) {
-      float m[kM], y[kM];
-      for (std::size_t c = 0; c < kM; ++c) m[c] = acc[c][l];
-      motor_normalize_fast(m, y);
-      for (std::size_t c = 0; c < kM; ++c) res[c][l] = y[c];
-    }
-    store_block(res, count, out + j0);
+    normalize_rows(acc);
+    scatter_rows(acc, std::min(kB, n - j0), out + j0);
   }
+#else
+  for (std::size_t j = 0; j < n; ++j) {
+    const Motor& ref = layers[first].motors[j];
+    Motor acc;
+    for (std::size_t c = 0; c < kM; ++c) acc.c[c] = layers[first].weight * inv * ref.c[c];
+    for (std::size_t k = first + 1; k < layers.size(); ++k) {
+      if (layers[k].weight <= 0.0f) continue;
+      const Motor& x = layers[k].motors[j];
+      const float w = layers[k].weight * inv;
+      const float s = motor_rotor_dot(ref, x) < 0.0f ? -w : w;
+      for (std::size_t c = 0; c < kM; ++c) acc.c[c] += s * x.c[c];
+    }
+    motor_normalize_fast(acc.c.data(), out[j].c.data());
+  }
+#endif
 }
 
 // out = sum of w_l * in_l over the flat coefficient arrays (the paper's weighted sum).
@@ -209,12 +254,27 @@ CGA_JOBS_CLONES void add_scaled(std::size_t count, float w, const float* __restr
 #pragma GCC ivdep
   for (std::size_t x = 0; x < count; ++x) out[x] += w * in[x];
 }
-bool all_rigid(std::span<const Motor> m, std::size_t n) {
-  std::uint32_t bits = 0;  // see motor_is_rigid
+// No motor of m[0..n) has a dilation (see motor_is_rigid): OR the b groups' bits (coefficient 7, lane 3 of
+// the second 16 bytes; 9-11, lanes 1-3 of the third) over whole 16-byte words, without the sign bits.
+inline bool all_rigid(const Motor* __restrict m, std::size_t n) {
+#if defined(__GNUC__)
+  using v4u = unsigned __attribute__((vector_size(16)));
+  v4u mid = {}, high = {};
+  for (std::size_t j = 0; j < n; ++j) {
+    v4u x, y;
+    __builtin_memcpy(&x, &m[j].c[4], sizeof x);
+    __builtin_memcpy(&y, &m[j].c[8], sizeof y);
+    mid |= x, high |= y;
+  }
+  return ((mid[3] | high[1] | high[2] | high[3]) << 1) == 0u;
+#else
+  std::uint32_t bits = 0;
   for (std::size_t j = 0; j < n; ++j)
     for (int c : {7, 9, 10, 11}) bits |= std::bit_cast<std::uint32_t>(m[j].c[c]);
   return (bits << 1) == 0u;
+#endif
 }
+bool all_rigid(std::span<const Motor> m, std::size_t n) { return all_rigid(m.data(), n); }
 
 // model[j] = model[parent] * local[j], parents first; rigid: every motor has b = 0 (8-blade product).
 CGA_JOBS_CLONES void local_to_model_rigid(std::size_t n, const int* __restrict parents,
@@ -236,12 +296,11 @@ CGA_JOBS_CLONES void local_to_model_general(std::size_t n, const int* __restrict
 // loop of nothing but rigid products: with the test and the 12-blade product in the same loop body, GCC
 // hoists parts of the 12-blade product above the branch and the loop costs twice as much.
 __attribute__((noinline)) void palette_general(const Motor& m, const Motor& ib, Motor& out) { out = motor_mul(m, ib); }
+// The check reads every model motor (contiguous, vectorized), not only the remapped ones: a dilated joint
+// that no entry uses sends the palette to the per-entry loop, which is slower but equal.
 CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const Motor* __restrict model,
-                             const Motor* __restrict ib, Motor* __restrict out) {
-  std::uint32_t bits = 0;  // see motor_is_rigid
-  for (std::size_t k = 0; k < n; ++k)
-    for (int c : {7, 9, 10, 11}) bits |= std::bit_cast<std::uint32_t>(model[remap[k]].c[c]) | std::bit_cast<std::uint32_t>(ib[k].c[c]);
-  if ((bits << 1) == 0u) {
+                             std::size_t joints, const Motor* __restrict ib, Motor* __restrict out) {
+  if (all_rigid(model, joints) && all_rigid(ib, n)) {
     std::size_t k = 0;
 #if CGA_RUNTIME_HAVE_KERNELS && defined(__GNUC__)
     // Blocks of 8 entries as structure of arrays: the generated 8-blade product vectorized across entries.
@@ -623,7 +682,8 @@ bool SkinningPaletteJob::Run() const {
     case Interpolation::paper:
     case Interpolation::nlerp:
     case Interpolation::screw:
-      palette(n, joint_remap.data(), model_motors.data(), inverse_bind->motors.data(), out_motors.data());
+      palette(n, joint_remap.data(), model_motors.data(), model_motors.size(), inverse_bind->motors.data(),
+              out_motors.data());
       break;
     case Interpolation::glm_matrix:
       for (std::size_t k = 0; k < n; ++k)

@@ -233,25 +233,34 @@ inline Motor motor_normalize(const Motor& m) { return motor_from_transform(motor
 // the einf blades of an exact motor T*R*D span (the columns of L(g) in motor_to_transform). For b = 0
 // (no scale) g = h bit for bit, so b' = 0 exactly. No rotor part gives non-finite coefficients.
 // in and out may alias.
-inline void motor_normalize_fast(const float* in, float* out) {
-  const float g0 = in[0] + in[7], g1 = in[1] + in[9], g2 = in[2] + in[10], g3 = in[4] + in[11];
-  const float h0 = in[0] - in[7], h1 = in[1] - in[9], h2 = in[2] - in[10], h3 = in[4] - in[11];
-  const float gg = g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3;
-  const float hh = h0 * h0 + h1 * h1 + h2 * h2 + h3 * h3;
-  const float ng = std::sqrt(gg), nh = std::sqrt(hh);
-  const float inv_g = 1.0f / ng, inv_sum = 1.0f / (ng + nh);
-  const float k = (ng - nh) * inv_sum;
-  const float e0 = in[3], e1 = in[5], e2 = in[6], e3 = in[8];
+namespace detail {
+// motor_normalize_fast's formula on any arithmetic type T (float, or a SIMD vector holding one coefficient of
+// several motors, as the jobs use it), with the square root given.
+template <class T, class Sqrt>
+inline void motor_normalize_fast_t(const T* in, T* out, Sqrt sqrt) {
+  const T g0 = in[0] + in[7], g1 = in[1] + in[9], g2 = in[2] + in[10], g3 = in[4] + in[11];
+  const T h0 = in[0] - in[7], h1 = in[1] - in[9], h2 = in[2] - in[10], h3 = in[4] - in[11];
+  const T gg = g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3;
+  const T hh = h0 * h0 + h1 * h1 + h2 * h2 + h3 * h3;
+  const T ng = sqrt(gg), nh = sqrt(hh);
+  const T inv_g = 1.0f / ng, inv_sum = 1.0f / (ng + nh);
+  const T k = (ng - nh) * inv_sum;
+  const T e0 = in[3], e1 = in[5], e2 = in[6], e3 = in[8];
   // (n . e) n with n unnormalized: divide by |g|^2 once.
-  const float ne = (-g3 * e0 + g2 * e1 - g1 * e2 + g0 * e3) * (inv_g * inv_g);
-  const float ce = 2.0f * inv_sum;
-  const float a0 = g0 * inv_g, a1 = g1 * inv_g, a2 = g2 * inv_g, a3 = g3 * inv_g;
+  const T ne = (-g3 * e0 + g2 * e1 - g1 * e2 + g0 * e3) * (inv_g * inv_g);
+  const T ce = 2.0f * inv_sum;
+  const T a0 = g0 * inv_g, a1 = g1 * inv_g, a2 = g2 * inv_g, a3 = g3 * inv_g;
   out[0] = a0, out[1] = a1, out[2] = a2, out[4] = a3;
   out[7] = k * a0, out[9] = k * a1, out[10] = k * a2, out[11] = k * a3;
   out[3] = ce * (e0 + ne * g3);
   out[5] = ce * (e1 - ne * g2);
   out[6] = ce * (e2 + ne * g1);
   out[8] = ce * (e3 - ne * g0);
+}
+}  // namespace detail
+
+inline void motor_normalize_fast(const float* in, float* out) {
+  detail::motor_normalize_fast_t(in, out, [](float x) { return std::sqrt(x); });
 }
 inline Motor motor_normalize_fast(const Motor& m) {
   Motor out;
