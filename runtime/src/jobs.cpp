@@ -3,11 +3,12 @@
 // live in the kernels below, each compiled twice (x86-64-v3 with AVX2/FMA, and the baseline ISA; the loader
 // picks at startup) with the generated kernels flattened in, so GCC vectorizes them across joints where the
 // data is structure of arrays (sampling, paper blending) and schedules them tightly where it is not.
-#include "cga/runtime/jobs.hpp"
-
-// The 8-float vector helpers below are file-local and inlined: the AVX argument ABI that -Wpsabi warns
-// about never applies.
+//
+// The 8-float vector helpers below (and motor.hpp's templates on them) are file-local and inlined: the AVX
+// argument ABI that -Wpsabi warns about never applies.
 #pragma GCC diagnostic ignored "-Wpsabi"
+
+#include "cga/runtime/jobs.hpp"
 
 #include <algorithm>
 #include <cmath>
