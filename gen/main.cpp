@@ -38,7 +38,7 @@ options:
   --stats-out FILE        write op counts to FILE besides the code
   --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change
   --dump-ast              print the parsed script
-  --eval NAME=VALUE ...   evaluate the optimized kernel; a multivector input as NAME=v1,v2,...
+  --eval NAME=VALUE ...   evaluate the optimized kernel (values before or after SCRIPT); a multivector input as NAME=v1,v2,...
                           (one value per declared blade); prints OUTPUT BLADE VALUE lines
   --help                  this text
 )";
@@ -79,6 +79,17 @@ Options parse_args(int argc, char** argv) {
     if (i + 1 >= args.size()) throw UsageError(flag + " needs a value");
     return args[++i];
   };
+  auto add_eval_input = [&](const std::string& v) {
+    auto eq = v.find('=');
+    std::string name = v.substr(0, eq);
+    if (name.empty()) throw UsageError("--eval expects NAME=VALUE, got '" + v + "'");
+    std::vector<double> vals;
+    std::stringstream ss(v.substr(eq + 1));
+    std::string item;
+    while (std::getline(ss, item, ',')) vals.push_back(parse_number(item, v));
+    if (vals.empty()) throw UsageError("--eval: no value in '" + v + "'");
+    o.eval_inputs[name] = vals;
+  };
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     try {
@@ -114,18 +125,10 @@ Options parse_args(int argc, char** argv) {
         o.dump_ast = true;
       } else if (a == "--eval") {
         o.eval = true;
-        while (i + 1 < args.size() && args[i + 1].find('=') != std::string::npos && args[i + 1][0] != '-') {
-          std::string v = args[++i];
-          auto eq = v.find('=');
-          std::string name = v.substr(0, eq);
-          if (name.empty()) throw UsageError("--eval expects NAME=VALUE, got '" + v + "'");
-          std::vector<double> vals;
-          std::stringstream ss(v.substr(eq + 1));
-          std::string item;
-          while (std::getline(ss, item, ',')) vals.push_back(parse_number(item, v));
-          if (vals.empty()) throw UsageError("--eval: no value in '" + v + "'");
-          o.eval_inputs[name] = vals;
-        }
+        while (i + 1 < args.size() && args[i + 1].find('=') != std::string::npos && args[i + 1][0] != '-')
+          add_eval_input(args[++i]);
+      } else if (o.eval && a.find('=') != std::string::npos && a[0] != '-') {
+        add_eval_input(a);  // `--eval SCRIPT x=1 y=2`: the values may follow the script
       } else if (!a.empty() && a[0] == '-' && a != "-") {
         throw UsageError("unknown option '" + a + "'");
       } else {
