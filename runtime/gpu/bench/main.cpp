@@ -13,7 +13,7 @@
 // a GL_TIME_ELAPSED query around the draw / dispatch alone (uniforms and buffers are set up by a warm-up
 // dispatch before; nothing is read back inside the timed part). Mesa's software renderers (llvmpipe,
 // softpipe) run vertex shaders, compute shaders and buffer copies on the calling thread, outside what their
-// GL_TIME_ELAPSED queries measure (they report ~0 for a 40 MiB copy): there --timing auto (the default) uses
+// GL_TIME_ELAPSED queries measure (they report ~0 for ten 4 MiB copies): there --timing auto (the default) uses
 // the wall clock between glFinish calls around all iterations instead, and says so. For every row it prints vertices/s, bytes per
 // vertex, the bandwidth bound (copy bandwidth / bytes per vertex), the fraction of it reached, and the largest
 // distance between the first and last instance and the CPU SkinningJob (exit status 1 when one is off by more

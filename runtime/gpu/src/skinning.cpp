@@ -199,8 +199,11 @@ void Skinner::dispatch(SkinPath path, bool normals) {
   if (3 * total > 0xffffffffu || total > 0x7fffffffu)
     throw std::invalid_argument("cga::gpu::Skinner::dispatch: " + std::to_string(total) +
                                 " skinned vertices is more than the shaders can index (2^32 / 3)");
-  last_ = {true, path, normals, instances};
-  if (total == 0) return;
+  last_ = {};  // until this dispatch is queued
+  if (total == 0) {
+    last_ = {true, path, normals, instances};
+    return;
+  }
   const bool per_instance = per_instance_copies_ > 0;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, palette_.get());
   if (path == SkinPath::vertex_feedback) {
@@ -247,6 +250,7 @@ void Skinner::dispatch(SkinPath path, bool normals) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, out_normals_.get());
     context_->dispatch(prog, groups(vertex_count_, kComputeGroup), static_cast<unsigned>(instances));
   }
+  last_ = {true, path, normals, instances};
 }
 
 SkinnedVertices Skinner::read_back(std::size_t first_instance, std::size_t instance_count) const {
