@@ -49,31 +49,6 @@ std::string shader_method_name(SkinningMethod m) {
   return s;
 }
 
-std::size_t palette_floats(SkinningMethod method) { return method == SkinningMethod::dqs ? 8 : 12; }
-
-void append_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
-                    std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
-                    std::vector<float>& out) {
-  switch (method) {
-    case SkinningMethod::lbs:
-      for (const glm::mat3x4& m : matrices)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 4; ++c) out.push_back(m[r][c]);
-      break;
-    case SkinningMethod::dqs: {
-      const std::size_t at = out.size();
-      out.resize(at + 8 * dual_quats.size());
-      pack_dual_quats(dual_quats, std::span<float>(out).subspan(at));
-      break;
-    }
-    case SkinningMethod::cga_points:
-    case SkinningMethod::cga_motors:
-      // Blade k at float k is the std430 mat3x4 with blade k at column k/4, row k%4 (the paper's packing).
-      for (const Motor& m : motors) out.insert(out.end(), m.c.begin(), m.c.end());
-      break;
-  }
-}
-
 Skinner::Skinner(const Context& context, SkinningMethod method) : context_(&context), method_(method) {
   const std::string base = "skin_" + shader_method_name(method);
   const ShaderSource vs[] = {source(GL_VERTEX_SHADER, base + ".vert")};

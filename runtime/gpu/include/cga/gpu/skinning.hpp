@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cga/gpu/context.hpp"
+#include "cga/runtime/packed_palette.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/types.hpp"
 
@@ -27,15 +28,14 @@ std::string_view shader_path(std::string_view name);
 // The method as shader file names spell it: "lbs", "dqs", "cga_points", "cga_motors".
 std::string shader_method_name(SkinningMethod method);
 
-// How many floats one palette entry takes on the GPU: lbs 12 (3 rows), dqs 8 (real xyzw, dual xyzw),
-// cga_points / cga_motors 12 (the motor's blades in order = the paper's mat3x4, blade k at column k/4).
-std::size_t palette_floats(SkinningMethod method);
-
-// Appends the method's palette (matrices for lbs, dual_quats for dqs, motors for the cga methods; the
-// others are ignored) to `out` in the GPU layout. Use once per instance to build a crowd's palettes.
-void append_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
-                    std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
-                    std::vector<float>& out);
+// Palettes in the shaders' layout: cga::packed_palette_floats / cga::append_packed_palette
+// (cga/runtime/packed_palette.hpp), shared with the CUDA kernels.
+inline std::size_t palette_floats(SkinningMethod method) { return packed_palette_floats(method); }
+inline void append_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
+                           std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
+                           std::vector<float>& out) {
+  append_packed_palette(method, matrices, dual_quats, motors, out);
+}
 
 // Skinned vertices of all instances, instance-major: vertex v of instance i at 3 * (i * vertex_count + v).
 struct SkinnedVertices {
