@@ -10,6 +10,9 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cga/runtime/motor.hpp"
+#include "cga/runtime/skinning_palettes.hpp"
+
 namespace cga {
 
 TwistCylinder make_twist_cylinder(const TwistCylinderSpec& spec) {
@@ -143,6 +146,18 @@ std::vector<Transform> make_random_transforms(int count, std::uint32_t seed, flo
     x.scale = max_log_scale > 0 ? std::exp(rng.uniform(-max_log_scale, max_log_scale)) : 1.0f;
     out.push_back(x);
   }
+  return out;
+}
+
+RandomPalettes make_random_palettes(int bones, std::size_t count, std::uint32_t seed) {
+  RandomPalettes out;
+  out.matrices.resize(count), out.dual_quats.resize(count), out.motors.resize(count);
+  for (std::size_t p = 0; p < count; ++p)
+    for (const Transform& x : make_random_transforms(bones, seed + static_cast<std::uint32_t>(p), 1.0f)) {
+      out.matrices[p].push_back(to_skinning_matrix(x));
+      out.dual_quats[p].push_back(to_dual_quat(x));
+      out.motors[p].push_back(motor_from_transform(x));
+    }
   return out;
 }
 

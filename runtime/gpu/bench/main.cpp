@@ -218,19 +218,11 @@ int main(int argc, char** argv) try {
   // One rest mesh and 16 distinct rigid palettes cycled over the instances (those of cga-cuda-bench).
   const SkinnedMesh mesh = make_random_skinned_mesh(opt.vertices, static_cast<int>(opt.bones), 1234u, 1.0f);
   constexpr std::size_t kPalettes = 16;
-  std::vector<std::vector<Transform>> poses;
-  for (std::size_t p = 0; p < kPalettes; ++p)
-    poses.push_back(make_random_transforms(static_cast<int>(opt.bones), 500u + static_cast<std::uint32_t>(p), 1.0f));
+  const RandomPalettes crowd = make_random_palettes(static_cast<int>(opt.bones), kPalettes, 500u);
+  const auto& mats = crowd.matrices;
+  const auto& dqs = crowd.dual_quats;
+  const auto& mots = crowd.motors;
   const float scene_size = 6.0f;  // positions in [-1, 1]^3 moved by translations in [-1, 1]^3: within a 6-wide box
-  std::vector<MatrixPalette> mats(kPalettes);
-  std::vector<DualQuatPalette> dqs(kPalettes);
-  std::vector<MotorPalette> mots(kPalettes);
-  for (std::size_t p = 0; p < kPalettes; ++p)
-    for (const Transform& x : poses[p]) {
-      mats[p].push_back(to_skinning_matrix(x));
-      dqs[p].push_back(to_dual_quat(x));
-      mots[p].push_back(motor_from_transform(x));
-    }
 
   std::vector<bool> layouts;  // per_instance?
   if (opt.inputs != "per-instance") layouts.push_back(false);
@@ -252,16 +244,7 @@ int main(int argc, char** argv) try {
         skinner.set_mesh_per_instance(mesh, opt.instances);
       else
         skinner.set_mesh(mesh);
-      std::vector<float> one_cycle;
-      for (std::size_t p = 0; p < kPalettes; ++p) append_palette(method, mats[p], dqs[p], mots[p], one_cycle);
-      const std::size_t per_palette = one_cycle.size() / kPalettes;
-      std::vector<float> palettes;
-      palettes.reserve(per_palette * opt.instances);
-      for (std::size_t i = 0; i < opt.instances; ++i) {
-        const std::size_t p = i % kPalettes;
-        palettes.insert(palettes.end(), one_cycle.begin() + static_cast<std::ptrdiff_t>(p * per_palette),
-                        one_cycle.begin() + static_cast<std::ptrdiff_t>((p + 1) * per_palette));
-      }
+      const std::vector<float> palettes = cycled_packed_palettes(method, mats, dqs, mots, opt.instances);
       skinner.set_palettes(palettes, opt.bones, opt.instances);
 
       for (SkinPath path : paths) {

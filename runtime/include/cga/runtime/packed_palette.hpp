@@ -4,6 +4,7 @@
 // with blade k at column k/4, row k%4).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -38,6 +39,24 @@ inline void append_packed_palette(SkinningMethod method, std::span<const glm::ma
       for (const Motor& m : motors) out.insert(out.end(), m.c.begin(), m.c.end());
       break;
   }
+}
+
+// The packed palettes of `instances` instances, instance i posed by palette i % count of the `count`
+// palettes given per method (the crowd benchmarks' layout: few distinct poses, many instances).
+inline std::vector<float> cycled_packed_palettes(SkinningMethod method, std::span<const MatrixPalette> matrices,
+                                                 std::span<const DualQuatPalette> dual_quats,
+                                                 std::span<const MotorPalette> motors, std::size_t instances) {
+  const std::size_t count = std::max({matrices.size(), dual_quats.size(), motors.size()});
+  std::vector<std::vector<float>> packed(count);
+  for (std::size_t p = 0; p < count; ++p)
+    append_packed_palette(method, p < matrices.size() ? matrices[p] : MatrixPalette{},
+                          p < dual_quats.size() ? dual_quats[p] : DualQuatPalette{},
+                          p < motors.size() ? motors[p] : MotorPalette{}, packed[p]);
+  std::vector<float> out;
+  if (count == 0) return out;
+  out.reserve(packed[0].size() * instances);
+  for (std::size_t i = 0; i < instances; ++i) out.insert(out.end(), packed[i % count].begin(), packed[i % count].end());
+  return out;
 }
 
 }  // namespace cga

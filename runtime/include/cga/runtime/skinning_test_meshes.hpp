@@ -51,4 +51,14 @@ SkinnedMesh make_random_skinned_mesh(std::size_t vertex_count, int joint_count, 
 std::vector<Transform> make_random_transforms(int count, std::uint32_t seed, float max_translation = 1.0f,
                                               float max_log_scale = 0.0f);
 
+// `count` distinct random rigid poses of `bones` joints (make_random_transforms with seeds seed, seed + 1, ...,
+// translations in [-1, 1]^3), each in every method's palette form: what the crowd benchmarks cycle over their
+// instances.
+struct RandomPalettes {
+  std::vector<MatrixPalette> matrices;
+  std::vector<DualQuatPalette> dual_quats;
+  std::vector<MotorPalette> motors;
+};
+RandomPalettes make_random_palettes(int bones, std::size_t count, std::uint32_t seed);
+
 }  // namespace cga
