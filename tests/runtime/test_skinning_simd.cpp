@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -102,6 +103,40 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
           }
         }
       }
+    }
+  }
+}
+
+TEST_CASE("large meshes (non-temporal output stores) skin as the portable loops, aligned outputs or not", "[skinning][simd]") {
+  // 2^17 + 13 vertices: past the size from which the matrix loops stream their outputs, with a remainder.
+  const std::size_t n = (std::size_t{1} << 17) + 13;
+  const SkinnedMesh mesh = make_random_skinned_mesh(n, 64, 71);
+  const Palettes pal = make_palettes(make_random_transforms(64, 72, 2.0f, 0.3f));
+  const float size = 3.0f * std::exp(0.3f);
+  for (SkinningMethod method : {SkinningMethod::lbs, SkinningMethod::cga_points}) {
+    INFO(to_string(method));
+    const SkinnedOutput portable = skin(method, mesh, pal, false);
+    for (const std::size_t offset : {0u, 1u}) {
+      INFO("outputs offset by " << offset << " floats from the allocation");  // 1: not 16-byte aligned
+      std::vector<float> buf(6 * (n + 1), -7.0f);
+      SkinnedOutput unused;
+      SkinningJob job = make_skinning_job(method, mesh, unused);
+      job.matrices = pal.matrices;
+      job.motors = pal.motors;
+      std::span<float>* outs[6] = {&job.out_px, &job.out_py, &job.out_pz, &job.out_nx, &job.out_ny, &job.out_nz};
+      for (int k = 0; k < 6; ++k) *outs[k] = std::span<float>(buf.data() + k * (n + 1) + offset, n);
+      REQUIRE(job.Run());
+      double worst_p = 0.0, worst_n = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        worst_p = std::max<double>(worst_p, std::hypot(job.out_px[i] - portable.px[i], job.out_py[i] - portable.py[i],
+                                                       job.out_pz[i] - portable.pz[i]));
+        worst_n = std::max<double>(worst_n, std::hypot(job.out_nx[i] - portable.nx[i], job.out_ny[i] - portable.ny[i],
+                                                       job.out_nz[i] - portable.nz[i]));
+      }
+      REQUIRE(worst_p <= 1e-5 * size);
+      REQUIRE(worst_n <= 1e-5);
+      if (offset == 0)
+        for (int k = 0; k < 6; ++k) REQUIRE(buf[k * (n + 1) + n] == -7.0f);  // nothing written past the end
     }
   }
 }
