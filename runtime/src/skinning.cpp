@@ -648,16 +648,11 @@ CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, co
   motor_rows_apply<kNormals>(rows, s, begin, end);
 }
 
-CGA_AVX2 __attribute__((flatten)) bool motor_block_p_avx2(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
-    std::size_t palette) {
+template <bool kNormals>
+CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, const Streams& s, std::size_t begin,
+                                                           std::size_t end, std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
-  motor_block_avx2<false>(pal, s, begin, end);
-  return true;
-}
-CGA_AVX2 __attribute__((flatten)) bool motor_block_pn_avx2(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
-    std::size_t palette) {
-  if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
-  motor_block_avx2<true>(pal, s, begin, end);
+  motor_block_avx2<kNormals>(pal, s, begin, end);
   return true;
 }
 
@@ -840,8 +835,8 @@ bool SkinningJob::Run() const {
       }
       block = normals ? motor_block_pn : motor_block_p;
 #if CGA_SKIN_HAVE_AVX2
-      if (use_simd && cpu_has_avx2_fma()) block = normals ? motor_block_pn_avx2 : motor_block_p_avx2;
-      if (use_simd && cpu_has_avx512()) block = motor_block_avx512_for(normals, large);
+      if (use_simd && cpu_has_avx2_fma()) block = normals ? motor_block_avx2_fn<true> : motor_block_avx2_fn<false>;
+      if (use_simd && use_avx512 && cpu_has_avx512()) block = motor_block_avx512_for(normals, large);
 #endif
       break;
   }

@@ -36,13 +36,15 @@ Palettes make_palettes(const std::vector<Transform>& xs) {
   return p;
 }
 
-SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palettes& pal, bool simd) {
+SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palettes& pal, bool simd,
+                   bool avx512 = true) {
   SkinnedOutput out;
   SkinningJob job = make_skinning_job(method, mesh, out);
   job.matrices = pal.matrices;
   job.dual_quats = pal.dual_quats;
   job.motors = pal.motors;
   job.use_simd = simd;
+  job.use_avx512 = avx512;
   REQUIRE(job.Run());
   return out;
 }
@@ -83,15 +85,20 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
       for (const Palettes* pal : std::array<const Palettes*, 2>{&pal_rigid, &pal_scaled}) {
         for (SkinningMethod method : kAllSkinningMethods) {
           INFO(to_string(method));
-          const SkinnedOutput simd = skin(method, mesh, *pal, true);
           const SkinnedOutput portable = skin(method, mesh, *pal, false);
-          for (std::size_t i = 0; i < n; ++i) {
-            REQUIRE(std::hypot(simd.px[i] - portable.px[i], simd.py[i] - portable.py[i],
-                               simd.pz[i] - portable.pz[i]) <= 1e-5f * size);
-            if (normals) {
-              REQUIRE(std::hypot(simd.nx[i] - portable.nx[i], simd.ny[i] - portable.ny[i],
-                                 simd.nz[i] - portable.nz[i]) <= 1e-5f);
-              REQUIRE(std::hypot(simd.nx[i], simd.ny[i], simd.nz[i]) == Approx(1.0f).margin(1e-5));
+          const SkinnedOutput simd = skin(method, mesh, *pal, true);
+          // The widest loops the CPU has, and the AVX2 ones (the same on a CPU without AVX-512).
+          for (const bool avx512 : {true, false}) {
+            INFO((avx512 ? "widest SIMD loops" : "AVX2 loops"));
+            const SkinnedOutput got = avx512 ? simd : skin(method, mesh, *pal, true, false);
+            for (std::size_t i = 0; i < n; ++i) {
+              REQUIRE(std::hypot(got.px[i] - portable.px[i], got.py[i] - portable.py[i],
+                                 got.pz[i] - portable.pz[i]) <= 1e-5f * size);
+              if (normals) {
+                REQUIRE(std::hypot(got.nx[i] - portable.nx[i], got.ny[i] - portable.ny[i],
+                                   got.nz[i] - portable.nz[i]) <= 1e-5f);
+                REQUIRE(std::hypot(got.nx[i], got.ny[i], got.nz[i]) == Approx(1.0f).margin(1e-5));
+              }
             }
           }
           if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points) {
@@ -107,13 +114,14 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
   }
 }
 
-TEST_CASE("large meshes (non-temporal output stores) skin as the portable loops, aligned outputs or not", "[skinning][simd]") {
-  // 2^17 + 13 vertices: past the size from which the matrix loops stream their outputs, with a remainder.
+TEST_CASE("large meshes (prefetching, non-temporal output stores) skin as the portable loops, aligned outputs or not", "[skinning][simd]") {
+  // 2^17 + 13 vertices: past the size from which the SIMD loops prefetch and the matrix loops stream their
+  // outputs, with a remainder.
   const std::size_t n = (std::size_t{1} << 17) + 13;
   const SkinnedMesh mesh = make_random_skinned_mesh(n, 64, 71);
   const Palettes pal = make_palettes(make_random_transforms(64, 72, 2.0f, 0.3f));
   const float size = 3.0f * std::exp(0.3f);
-  for (SkinningMethod method : {SkinningMethod::lbs, SkinningMethod::cga_points}) {
+  for (SkinningMethod method : {SkinningMethod::lbs, SkinningMethod::cga_points, SkinningMethod::cga_motors}) {
     INFO(to_string(method));
     const SkinnedOutput portable = skin(method, mesh, pal, false);
     for (const std::size_t offset : {0u, 1u}) {

@@ -77,6 +77,9 @@ struct SkinningJob {
   // Run lbs / cga_points / cga_motors on the hand-written AVX2 + FMA loops when the CPU has them (the default).
   // false: always the portable loops, which agree to float rounding; tests use it to check both paths.
   bool use_simd = true;
+  // With use_simd, take the AVX-512 loops where the CPU has them (cga_motors); false keeps the AVX2 ones, so
+  // tests and A/B benchmarks reach those on an AVX-512 machine too.
+  bool use_avx512 = true;
 
   // Checks sizes, the palette against every joint index and that every weight is finite and >= 0 with each
   // vertex's weights summing to 1 within kWeightSumTolerance (Run() itself checks only indices and finiteness).
