@@ -19,6 +19,7 @@
 
 #include "cga/gpu/context.hpp"
 #include "cga/gpu/render.hpp"
+#include "cga/gpu/skinning.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/motor.hpp"
@@ -370,13 +371,13 @@ int run(const demo::Options& opt) {
 
   // ---- skinning: every method on the same pose (middle of the fade), speed and deviations
   std::map<SkinningMethod, PosedCharacter> posed;
+  std::vector<MethodPalettes> palettes;  // the mid-fade pose's, per mesh (the GL path skins it again below)
   if (ch.meshes.empty()) {
     fmt::print("skinning: the file has no skinned mesh, nothing to skin\n\n");
   } else {
     const Interpolation pose_mode = kernels ? Interpolation::screw : Interpolation::glm_matrix;
     progress.stage(fmt::format("skinning {} vertices with {} methods", vertices, methods.size()));
     PosePipeline p(pose_mode, sk, ch.meshes, inverse_binds);
-    std::vector<MethodPalettes> palettes;
     int scaled = 0;
     if (kernels) {
       p.run(fade, 0.5f);
@@ -484,13 +485,44 @@ int run(const demo::Options& opt) {
       fmt::print("\n");
     }
   }
-  // ---- pictures on the GPU path: the same character and strip skinned by the GLSL vertex shaders built
-  // from the generated kernels, drawn by OpenGL (headless EGL: llvmpipe without a GPU).
-  if (opt.pictures) {
-    progress.stage("GPU: skinning and drawing with OpenGL");
-    try {
-      const gpu::Context context;
-      fmt::print("GPU       {} ({}, {})\n", context.renderer(), context.version(), context.platform());
+  // ---- the GPU path: the mid-fade pose skinned again by the GLSL shaders built from the generated kernels
+  // (vertex shader + transform feedback, and compute), checked against the CPU jobs; then the pictures,
+  // drawn by OpenGL (headless EGL: llvmpipe without a GPU).
+  progress.stage("GPU: skinning and drawing with OpenGL");
+  try {
+    const gpu::Context context;
+    fmt::print("GPU       {} ({}, {})\n", context.renderer(), context.version(), context.platform());
+    if (!posed.empty()) {
+      fmt::print("GPU skinning of the mid-fade pose: max vertex distance to the CPU job / size (ms to upload, skin\n"
+                 "and read back every mesh; on llvmpipe the GPU is the CPU: a correctness check, not a speed figure)\n");
+      fmt::print("  {:<11} {:>26} {:>26}\n", "method", to_string(gpu::SkinPath::vertex_feedback),
+                 to_string(gpu::SkinPath::compute));
+      for (const auto& [method, pc] : posed) {
+        std::string cells;
+        for (const gpu::SkinPath path : {gpu::SkinPath::vertex_feedback, gpu::SkinPath::compute}) {
+          gpu::Skinner skinner(context, method);
+          float worst = 0.0f;
+          const auto start = std::chrono::steady_clock::now();
+          for (std::size_t m = 0; m < ch.meshes.size(); ++m) {
+            const MethodPalettes& pal = palettes[m];
+            std::vector<float> packed;
+            gpu::append_palette(method, pal.matrices, pal.dual_quats, pal.motors, packed);
+            skinner.set_mesh(ch.meshes[m]);
+            const gpu::SkinnedVertices got =
+                skinner.run(path, packed, packed.size() / gpu::palette_floats(method), 1, false);
+            const SkinnedOutput& cpu = pc.meshes[m];
+            for (std::size_t v = 0; v < cpu.px.size(); ++v)
+              worst = std::max(worst, glm::length(glm::vec3(got.positions[3 * v] - cpu.px[v],
+                                                            got.positions[3 * v + 1] - cpu.py[v],
+                                                            got.positions[3 * v + 2] - cpu.pz[v])));
+          }
+          const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          cells += fmt::format(" {:>26}", fmt::format("{:.2g} ({:.1f} ms)", worst / size, ms));
+        }
+        fmt::print("  {:<11}{}\n", to_string(method), cells);
+      }
+    }
+    if (opt.pictures) {
       std::vector<std::string> written;
       const Clip& clip = *fade.a;
       const float time = fade.time_a(0.5f);
@@ -504,9 +536,9 @@ int run(const demo::Options& opt) {
       fmt::print("pictures (GPU, clip '{}' at t = {:.3g} s):", clip.name, time);
       for (const std::string& w : written) fmt::print(" {}", w);
       fmt::print("\n  gpu-twist-strip.png panels, left to right: lbs dqs cga-points cga-motors\n");
-    } catch (const gpu::Unavailable& e) {
-      fmt::print("GPU       no OpenGL 4.5 context, GPU pictures not drawn: {}\n", e.what());
     }
+  } catch (const gpu::Unavailable& e) {
+    fmt::print("GPU       no OpenGL 4.5 context, GPU path skipped: {}\n", e.what());
   }
   progress.stage("done");
   return 0;

@@ -1,0 +1,32 @@
+# ctest driver for cga-demo (cmake -P): runs the demo on its default character with few frames and fails
+# unless it exits 0, prints every table, skins on the GL path within 1e-4 of the character's size for every
+# method and path, and writes every picture. Variables: DEMO (the executable), OUT (a scratch folder).
+file(REMOVE_RECURSE "${OUT}")
+execute_process(COMMAND "${DEMO}" --frames 4 --out "${OUT}" RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cga-demo exited with ${rc}\n${out}\n${err}")
+endif()
+foreach(want "us/pose" "Mvertices/s" "cga-points vs lbs" "middle ring radius" "GPU skinning of the mid-fade pose")
+  string(FIND "${out}" "${want}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "cga-demo printed no '${want}'\n${out}")
+  endif()
+endforeach()
+# The GL table: one row per method, two cells "DEVIATION (T ms)"; a deviation of 1e-4 or more fails.
+foreach(method lbs dqs cga-points cga-motors)
+  if(NOT out MATCHES "\n  ${method} +([0-9.e+-]+) \\([0-9.]+ ms\\) +([0-9.e+-]+) \\([0-9.]+ ms\\)\n")
+    message(FATAL_ERROR "no GPU row for ${method}\n${out}")
+  endif()
+  foreach(value "${CMAKE_MATCH_1}" "${CMAKE_MATCH_2}")
+    if(NOT value MATCHES "^(0|[0-9.]+e-(0[5-9]|[1-9][0-9]))$")
+      message(FATAL_ERROR "GPU skinning of ${method} is ${value} of the size away from the CPU job\n${out}")
+    endif()
+  endforeach()
+endforeach()
+foreach(png character-lbs character-dqs character-cga-points character-cga-motors twist-strip
+            gpu-character-lbs gpu-character-dqs gpu-character-cga-points gpu-character-cga-motors gpu-twist-strip)
+  if(NOT EXISTS "${OUT}/${png}.png")
+    message(FATAL_ERROR "cga-demo wrote no ${OUT}/${png}.png\n${out}")
+  endif()
+endforeach()
