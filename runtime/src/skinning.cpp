@@ -662,8 +662,8 @@ CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, con
 // 8). The sign fix puts the three rotor-part products <q0, qk> in the 128-bit lanes 0-2 of one register and
 // sums within the lanes by two in-lane swaps, instead of three hadd chains; the signed weight is a bitwise
 // select of the dot's sign bit and the weight's other bits (the AVX2 path's copysign). 16 blended vertices
-// are transposed into the rows in registers, and pass 2 runs on 16 lanes (the generated kernel's ~170
-// operations per vertex dominate it).
+// are transposed into the rows in registers, and pass 2 (the generated kernel's ~146 operations per vertex)
+// runs on 16 lanes.
 #define CGA_AVX512 __attribute__((target("arch=x86-64-v4,prefer-vector-width=512")))
 
 // rows[c][b .. b + 16) = coefficient c of z[0..16), c < 12: 16x16 transpose (unpack, in-lane shuffle, then

@@ -6,6 +6,8 @@
 
 #include "../kernels/hand_kernels.hpp"
 #include "emit/emit.hpp"
+#include "expand/expand.hpp"
+#include "front/parser.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
 
@@ -130,6 +132,26 @@ TEST_CASE("pragma'd blades are emitted as literal 0 even when the pragma lists t
   }
   // -O0 returns every pragma'd blade too.
   CHECK(opt::optimize(vanishing_blade_kernel(true), Level::O0).outputs[0].slots.size() == 2);
+}
+
+TEST_CASE("O2 factors a numeric factor that several terms of a sum share", "[opt]") {
+  // 2ab + 2cd - 2ef: three products and one factor 2 (4 mul), not 6; 3gh keeps its own factor; halves too.
+  front::SourceFile file("t.clu", "?y = 2*a*b + 2*c*d - 2*e*f + 3*g*h;\n?z = 0.5*a*c + 0.5*b*d + a;\n");
+  Kernel k = expand(front::parse(file), "t");
+  const opt::Program p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
+  const auto s1 = opt::program_stats(p1).total, s2 = opt::program_stats(p2).total;
+  INFO("O1 " << opt::format_counts(s1) << " | O2 " << opt::format_counts(s2));
+  CHECK(s1.mul == 8 + 4);
+  CHECK(s2.mul == 6 + 3);
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    auto in = random_inputs(k, rng);
+    auto v1 = values(p1, in), v2 = values(p2, in);
+    for (const auto& [key, val] : v1) {
+      INFO(key);
+      CHECK(v2.at(key) == Approx(val).margin(1e-12));
+    }
+  }
 }
 
 TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
