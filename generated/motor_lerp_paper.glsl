@@ -9,28 +9,33 @@
 
 void motor_lerp_paper(in float A[8], in float B[8], float d1, float d2, float alpha, out mat3x4 M) {
   float t0 = 1.0 / (1.0 + d1);
-  float t1 = d1 * t0 - t0;
-  float t2 = 1.0 / (1.0 + d2);
-  float t3 = A[0] * alpha - B[0] * alpha - A[0];
-  float t4 = A[1] * alpha - B[1] * alpha - A[1];
-  float t5 = A[2] * alpha - B[2] * alpha - A[2];
-  float t6 = A[3] * alpha - B[3] * alpha - A[3];
-  float t7 = A[4] * alpha - B[4] * alpha - A[4];
-  float t8 = A[5] * alpha - B[5] * alpha - A[5];
-  float t9 = A[6] * alpha - B[6] * alpha - A[6];
-  float t10 = A[7] * alpha - B[7] * alpha - A[7];
-  float t11 = (d2 * t2 - t2) * alpha + t1 - alpha * t1;
-  M[0][0] = -t3;  // 1
-  M[0][1] = -t4;  // e1^e2
-  M[0][2] = -t5;  // e1^e3
-  M[0][3] = t11 * t6 - t6;  // e1^einf
-  M[1][0] = -t7;  // e2^e3
-  M[1][1] = t11 * t8 - t8;  // e2^einf
-  M[1][2] = t11 * t9 - t9;  // e3^einf
-  M[1][3] = t11 * t3;  // einf^e0
-  M[2][0] = t10 * t11 - t10;  // e1^e2^e3^einf
-  M[2][1] = t11 * t4;  // e1^e2^einf^e0
-  M[2][2] = t11 * t5;  // e1^e3^einf^e0
-  M[2][3] = t11 * t7;  // e2^e3^einf^e0
+  float t1 = 1.0 - d1;
+  float t2 = t0 * t1;
+  float t3 = 1.0 / (1.0 + d2);
+  float t4 = 1.0 - alpha;
+  float t5 = A[0] * t4 + B[0] * alpha;
+  float t6 = A[1] * t4 + B[1] * alpha;
+  float t7 = A[2] * t4 + B[2] * alpha;
+  float t8 = A[3] * t4 + B[3] * alpha;
+  float t9 = A[4] * t4 + B[4] * alpha;
+  float t10 = A[5] * t4 + B[5] * alpha;
+  float t11 = A[6] * t4 + B[6] * alpha;
+  float t12 = A[7] * t4 + B[7] * alpha;
+  float t13 = 1.0 - d2;
+  float t14 = t13 * t3 - t2;
+  float t15 = alpha * t14 + t2;
+  float t16 = 1.0 + t15;
+  M[0][0] = t5;  // 1
+  M[0][1] = t6;  // e1^e2
+  M[0][2] = t7;  // e1^e3
+  M[0][3] = t16 * t8;  // e1^einf
+  M[1][0] = t9;  // e2^e3
+  M[1][1] = t10 * t16;  // e2^einf
+  M[1][2] = t11 * t16;  // e3^einf
+  M[1][3] = t15 * t5;  // einf^e0
+  M[2][0] = t12 * t16;  // e1^e2^e3^einf
+  M[2][1] = t15 * t6;  // e1^e2^einf^e0
+  M[2][2] = t15 * t7;  // e1^e3^einf^e0
+  M[2][3] = t15 * t9;  // e2^e3^einf^e0
 }
 

@@ -13,38 +13,46 @@ namespace cga::kernels {
 inline constexpr std::array<std::string_view, 12> motor_mul_C_blades = {"1", "e1^e2", "e1^e3", "e1^einf", "e2^e3", "e2^einf", "e3^einf", "einf^e0", "e1^e2^e3^einf", "e1^e2^einf^e0", "e1^e3^einf^e0", "e2^e3^einf^e0"};
 
 __host__ __device__ __forceinline__ void motor_mul(const float A[12], const float B[12], float C[12]) {
-  const float t0 = B[1] + B[9];
-  const float t1 = B[2] + B[10];
-  const float t2 = B[4] + B[11];
-  const float t3 = B[7] + B[0];
+  const float t0 = B[4] + B[11];
+  const float t1 = B[7] + B[0];
+  const float t2 = B[1] + B[9];
+  const float t3 = B[2] + B[10];
+  const float t4 = A[4] - A[11];
+  const float t5 = A[7] - A[0];
+  const float t6 = A[1] - A[9];
+  const float t7 = A[2] - A[10];
   C[0] = A[7] * B[7] + A[0] * B[0] - A[1] * B[1] - A[9] * B[9] - A[2] * B[2] - A[10] * B[10] - A[4] * B[4] - A[11] * B[11];  // 1
   C[1] = A[1] * B[0] + A[9] * B[7] + A[4] * B[2] + A[11] * B[10] + A[7] * B[9] + A[0] * B[1] - A[2] * B[4] - A[10] * B[11];  // e1^e2
   C[2] = A[1] * B[4] + A[9] * B[11] + A[2] * B[0] + A[10] * B[7] + A[7] * B[10] + A[0] * B[2] - A[4] * B[1] - A[11] * B[9];  // e1^e3
-  C[3] = A[1] * B[5] + A[2] * B[6] + A[3] * t3 + A[11] * B[8] + A[0] * B[3] - A[8] * t2 - A[9] * B[5] - A[10] * B[6] - A[4] * B[8] - A[5] * t0 - A[6] * t1 - A[7] * B[3];  // e1^einf
+  C[3] = A[3] * t1 + B[5] * t6 + B[6] * t7 - A[8] * t0 - A[5] * t2 - A[6] * t3 - B[8] * t4 - B[3] * t5;  // e1^einf
   C[4] = A[2] * B[1] + A[10] * B[9] + A[4] * B[0] + A[11] * B[7] + A[7] * B[11] + A[0] * B[4] - A[1] * B[2] - A[9] * B[10];  // e2^e3
-  C[5] = A[8] * t1 + A[9] * B[3] + A[2] * B[8] + A[3] * t0 + A[4] * B[6] + A[5] * t3 + A[0] * B[5] - A[1] * B[3] - A[10] * B[8] - A[11] * B[6] - A[6] * t2 - A[7] * B[5];  // e2^einf
-  C[6] = A[9] * B[8] + A[10] * B[3] + A[3] * t1 + A[11] * B[5] + A[5] * t2 + A[6] * t3 + A[0] * B[6] - A[1] * B[8] - A[8] * t0 - A[2] * B[3] - A[4] * B[5] - A[7] * B[6];  // e3^einf
+  C[5] = A[8] * t3 + A[3] * t2 + A[5] * t1 + B[8] * t7 + B[6] * t4 - A[6] * t0 - B[3] * t6 - B[5] * t5;  // e2^einf
+  C[6] = A[3] * t3 + A[5] * t0 + A[6] * t1 - A[8] * t2 - B[8] * t6 - B[3] * t7 - B[5] * t4 - B[6] * t5;  // e3^einf
   C[7] = A[7] * B[0] + A[0] * B[7] - A[1] * B[9] - A[9] * B[1] - A[2] * B[10] - A[10] * B[2] - A[4] * B[11] - A[11] * B[4];  // einf^e0
-  C[8] = A[1] * B[6] + A[8] * t3 + A[10] * B[5] + A[3] * t2 + A[4] * B[3] + A[6] * t0 + A[0] * B[8] - A[9] * B[6] - A[2] * B[5] - A[11] * B[3] - A[5] * t1 - A[7] * B[8];  // e1^e2^e3^einf
+  C[8] = A[8] * t1 + A[3] * t0 + A[6] * t2 + B[3] * t4 + B[6] * t6 - A[5] * t3 - B[8] * t5 - B[5] * t7;  // e1^e2^e3^einf
   C[9] = A[1] * B[7] + A[9] * B[0] + A[4] * B[10] + A[11] * B[2] + A[7] * B[1] + A[0] * B[9] - A[2] * B[11] - A[10] * B[4];  // e1^e2^einf^e0
   C[10] = A[1] * B[11] + A[9] * B[4] + A[2] * B[7] + A[10] * B[0] + A[7] * B[2] + A[0] * B[10] - A[4] * B[9] - A[11] * B[1];  // e1^e3^einf^e0
   C[11] = A[2] * B[9] + A[10] * B[1] + A[4] * B[7] + A[11] * B[0] + A[7] * B[4] + A[0] * B[11] - A[1] * B[10] - A[9] * B[2];  // e2^e3^einf^e0
 }
 
 __host__ __device__ __forceinline__ void motor_mul(const double A[12], const double B[12], double C[12]) {
-  const double t0 = B[1] + B[9];
-  const double t1 = B[2] + B[10];
-  const double t2 = B[4] + B[11];
-  const double t3 = B[7] + B[0];
+  const double t0 = B[4] + B[11];
+  const double t1 = B[7] + B[0];
+  const double t2 = B[1] + B[9];
+  const double t3 = B[2] + B[10];
+  const double t4 = A[4] - A[11];
+  const double t5 = A[7] - A[0];
+  const double t6 = A[1] - A[9];
+  const double t7 = A[2] - A[10];
   C[0] = A[7] * B[7] + A[0] * B[0] - A[1] * B[1] - A[9] * B[9] - A[2] * B[2] - A[10] * B[10] - A[4] * B[4] - A[11] * B[11];  // 1
   C[1] = A[1] * B[0] + A[9] * B[7] + A[4] * B[2] + A[11] * B[10] + A[7] * B[9] + A[0] * B[1] - A[2] * B[4] - A[10] * B[11];  // e1^e2
   C[2] = A[1] * B[4] + A[9] * B[11] + A[2] * B[0] + A[10] * B[7] + A[7] * B[10] + A[0] * B[2] - A[4] * B[1] - A[11] * B[9];  // e1^e3
-  C[3] = A[1] * B[5] + A[2] * B[6] + A[3] * t3 + A[11] * B[8] + A[0] * B[3] - A[8] * t2 - A[9] * B[5] - A[10] * B[6] - A[4] * B[8] - A[5] * t0 - A[6] * t1 - A[7] * B[3];  // e1^einf
+  C[3] = A[3] * t1 + B[5] * t6 + B[6] * t7 - A[8] * t0 - A[5] * t2 - A[6] * t3 - B[8] * t4 - B[3] * t5;  // e1^einf
   C[4] = A[2] * B[1] + A[10] * B[9] + A[4] * B[0] + A[11] * B[7] + A[7] * B[11] + A[0] * B[4] - A[1] * B[2] - A[9] * B[10];  // e2^e3
-  C[5] = A[8] * t1 + A[9] * B[3] + A[2] * B[8] + A[3] * t0 + A[4] * B[6] + A[5] * t3 + A[0] * B[5] - A[1] * B[3] - A[10] * B[8] - A[11] * B[6] - A[6] * t2 - A[7] * B[5];  // e2^einf
-  C[6] = A[9] * B[8] + A[10] * B[3] + A[3] * t1 + A[11] * B[5] + A[5] * t2 + A[6] * t3 + A[0] * B[6] - A[1] * B[8] - A[8] * t0 - A[2] * B[3] - A[4] * B[5] - A[7] * B[6];  // e3^einf
+  C[5] = A[8] * t3 + A[3] * t2 + A[5] * t1 + B[8] * t7 + B[6] * t4 - A[6] * t0 - B[3] * t6 - B[5] * t5;  // e2^einf
+  C[6] = A[3] * t3 + A[5] * t0 + A[6] * t1 - A[8] * t2 - B[8] * t6 - B[3] * t7 - B[5] * t4 - B[6] * t5;  // e3^einf
   C[7] = A[7] * B[0] + A[0] * B[7] - A[1] * B[9] - A[9] * B[1] - A[2] * B[10] - A[10] * B[2] - A[4] * B[11] - A[11] * B[4];  // einf^e0
-  C[8] = A[1] * B[6] + A[8] * t3 + A[10] * B[5] + A[3] * t2 + A[4] * B[3] + A[6] * t0 + A[0] * B[8] - A[9] * B[6] - A[2] * B[5] - A[11] * B[3] - A[5] * t1 - A[7] * B[8];  // e1^e2^e3^einf
+  C[8] = A[8] * t1 + A[3] * t0 + A[6] * t2 + B[3] * t4 + B[6] * t6 - A[5] * t3 - B[8] * t5 - B[5] * t7;  // e1^e2^e3^einf
   C[9] = A[1] * B[7] + A[9] * B[0] + A[4] * B[10] + A[11] * B[2] + A[7] * B[1] + A[0] * B[9] - A[2] * B[11] - A[10] * B[4];  // e1^e2^einf^e0
   C[10] = A[1] * B[11] + A[9] * B[4] + A[2] * B[7] + A[10] * B[0] + A[7] * B[2] + A[0] * B[10] - A[4] * B[9] - A[11] * B[1];  // e1^e3^einf^e0
   C[11] = A[2] * B[9] + A[10] * B[1] + A[4] * B[7] + A[11] * B[0] + A[7] * B[4] + A[0] * B[11] - A[1] * B[10] - A[9] * B[2];  // e2^e3^einf^e0

@@ -43,9 +43,13 @@ void motor_to_matrix(in mat3x4 M, out vec3 c1, out vec3 c2, out vec3 c3, out vec
   float t33 = t26 + t29 - t27 - t28;
   float t34 = t22 + t25 - t23 - t24;
   float t35 = t26 + t28 - t27 - t29;
-  float t36 = M[2][0] * t6 + M[2][0] * t7 + M[0][3] * t8 + M[0][3] * t9 + M[1][1] * t2 + M[1][1] * t3 + M[1][2] * t4 + M[1][2] * t5;
-  float t37 = M[2][0] * t4 + M[2][0] * t5 + M[0][3] * t2 + M[0][3] * t3 - M[1][1] * t8 - M[1][1] * t9 - M[1][2] * t6 - M[1][2] * t7;
-  float t38 = M[2][0] * t2 + M[2][0] * t3 + M[1][2] * t8 + M[1][2] * t9 - M[0][3] * t4 - M[0][3] * t5 - M[1][1] * t6 - M[1][1] * t7;
+  float t36 = t6 + t7;
+  float t37 = t8 + t9;
+  float t38 = t2 + t3;
+  float t39 = t4 + t5;
+  float t40 = M[2][0] * t36 + M[0][3] * t37 + M[1][1] * t38 + M[1][2] * t39;
+  float t41 = M[2][0] * t39 + M[0][3] * t38 - M[1][1] * t37 - M[1][2] * t36;
+  float t42 = M[2][0] * t38 + M[1][2] * t37 - M[0][3] * t39 - M[1][1] * t36;
   c1[0] = t11 + t13 + t14 + t17 - t10 - t12 - t15 - t16;  // e1
   c1[1] = -2.0 * t30;  // e2
   c1[2] = 2.0 * t31;  // e3
@@ -55,8 +59,8 @@ void motor_to_matrix(in mat3x4 M, out vec3 c1, out vec3 c2, out vec3 c3, out vec
   c3[0] = 2.0 * t34;  // e1
   c3[1] = -2.0 * t35;  // e2
   c3[2] = t10 + t13 + t15 + t17 - t11 - t12 - t14 - t16;  // e3
-  t[0] = -2.0 * t36;  // e1
-  t[1] = 2.0 * t37;  // e2
-  t[2] = -2.0 * t38;  // e3
+  t[0] = -2.0 * t40;  // e1
+  t[1] = 2.0 * t41;  // e2
+  t[2] = -2.0 * t42;  // e3
 }
 

@@ -51,9 +51,13 @@ inline void motor_to_matrix(const float M[12], float c1[3], float c2[3], float c
   const float t33 = t26 + t29 - t27 - t28;
   const float t34 = t22 + t25 - t23 - t24;
   const float t35 = t26 + t28 - t27 - t29;
-  const float t36 = M[8] * t6 + M[8] * t7 + M[3] * t8 + M[3] * t9 + M[5] * t2 + M[5] * t3 + M[6] * t4 + M[6] * t5;
-  const float t37 = M[8] * t4 + M[8] * t5 + M[3] * t2 + M[3] * t3 - M[5] * t8 - M[5] * t9 - M[6] * t6 - M[6] * t7;
-  const float t38 = M[8] * t2 + M[8] * t3 + M[6] * t8 + M[6] * t9 - M[3] * t4 - M[3] * t5 - M[5] * t6 - M[5] * t7;
+  const float t36 = t6 + t7;
+  const float t37 = t8 + t9;
+  const float t38 = t2 + t3;
+  const float t39 = t4 + t5;
+  const float t40 = M[8] * t36 + M[3] * t37 + M[5] * t38 + M[6] * t39;
+  const float t41 = M[8] * t39 + M[3] * t38 - M[5] * t37 - M[6] * t36;
+  const float t42 = M[8] * t38 + M[6] * t37 - M[3] * t39 - M[5] * t36;
   c1[0] = t11 + t13 + t14 + t17 - t10 - t12 - t15 - t16;  // e1
   c1[1] = -2.0f * t30;  // e2
   c1[2] = 2.0f * t31;  // e3
@@ -63,9 +67,9 @@ inline void motor_to_matrix(const float M[12], float c1[3], float c2[3], float c
   c3[0] = 2.0f * t34;  // e1
   c3[1] = -2.0f * t35;  // e2
   c3[2] = t10 + t13 + t15 + t17 - t11 - t12 - t14 - t16;  // e3
-  t[0] = -2.0f * t36;  // e1
-  t[1] = 2.0f * t37;  // e2
-  t[2] = -2.0f * t38;  // e3
+  t[0] = -2.0f * t40;  // e1
+  t[1] = 2.0f * t41;  // e2
+  t[2] = -2.0f * t42;  // e3
 }
 
 inline void motor_to_matrix(const double M[12], double c1[3], double c2[3], double c3[3], double t[3]) {
@@ -105,9 +109,13 @@ inline void motor_to_matrix(const double M[12], double c1[3], double c2[3], doub
   const double t33 = t26 + t29 - t27 - t28;
   const double t34 = t22 + t25 - t23 - t24;
   const double t35 = t26 + t28 - t27 - t29;
-  const double t36 = M[8] * t6 + M[8] * t7 + M[3] * t8 + M[3] * t9 + M[5] * t2 + M[5] * t3 + M[6] * t4 + M[6] * t5;
-  const double t37 = M[8] * t4 + M[8] * t5 + M[3] * t2 + M[3] * t3 - M[5] * t8 - M[5] * t9 - M[6] * t6 - M[6] * t7;
-  const double t38 = M[8] * t2 + M[8] * t3 + M[6] * t8 + M[6] * t9 - M[3] * t4 - M[3] * t5 - M[5] * t6 - M[5] * t7;
+  const double t36 = t6 + t7;
+  const double t37 = t8 + t9;
+  const double t38 = t2 + t3;
+  const double t39 = t4 + t5;
+  const double t40 = M[8] * t36 + M[3] * t37 + M[5] * t38 + M[6] * t39;
+  const double t41 = M[8] * t39 + M[3] * t38 - M[5] * t37 - M[6] * t36;
+  const double t42 = M[8] * t38 + M[6] * t37 - M[3] * t39 - M[5] * t36;
   c1[0] = t11 + t13 + t14 + t17 - t10 - t12 - t15 - t16;  // e1
   c1[1] = -2.0 * t30;  // e2
   c1[2] = 2.0 * t31;  // e3
@@ -117,9 +125,9 @@ inline void motor_to_matrix(const double M[12], double c1[3], double c2[3], doub
   c3[0] = 2.0 * t34;  // e1
   c3[1] = -2.0 * t35;  // e2
   c3[2] = t10 + t13 + t15 + t17 - t11 - t12 - t14 - t16;  // e3
-  t[0] = -2.0 * t36;  // e1
-  t[1] = 2.0 * t37;  // e2
-  t[2] = -2.0 * t38;  // e3
+  t[0] = -2.0 * t40;  // e1
+  t[1] = 2.0 * t41;  // e2
+  t[2] = -2.0 * t42;  // e3
 }
 
 }  // namespace cga::kernels

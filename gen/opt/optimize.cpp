@@ -423,7 +423,10 @@ class Cse {
     { PhaseTimer t("  cse orient"); orient_all(roots); }
     { PhaseTimer t("  cse negations"); fold_negations(roots); }
     { PhaseTimer t("  cse inline"); inline_single_use(roots); }
-    { PhaseTimer t("  cse numeric factors"); factor_numeric_content(roots); }
+    { PhaseTimer t("  cse factors"); factor_numeric_content(roots); }
+    drop_aliases(roots);
+    { PhaseTimer t("  cse orient"); orient_all(roots); }
+    { PhaseTimer t("  cse negations"); fold_negations(roots); }
   }
 
   std::vector<Temp> temps() const { return in_temps_; }
@@ -768,6 +771,22 @@ class Cse {
     in_temps_ = std::move(kept);
   }
 
+  // A temporary whose value is a lone symbol or number (a form can leave `t1 = t0`) is replaced by that value.
+  void drop_aliases(std::vector<ex>& roots) {
+    exmap alias;
+    std::vector<Temp> kept;
+    for (auto t : in_temps_) {
+      if (!alias.empty()) t.value = t.value.subs(alias, subs_options::no_pattern);
+      if (is_atomic(t.value))
+        alias[t.sym] = t.value;
+      else
+        kept.push_back(t);
+    }
+    in_temps_ = std::move(kept);
+    if (!alias.empty())
+      for (auto& r : roots) r = orient_sums(r.subs(alias, subs_options::no_pattern), keys_);
+  }
+
   // Terms of one sum that carry the same numeric factor c (|c| != 1) become c times a temporary of their sum:
   // 2ab + 2cd - 2ef costs 6 mul, 2 t with t = ab + cd - ef 4. GiNaC distributes a number over a bare sum
   // (2 (a + b) is 2a + 2b to it), hence the temporary. Runs last, on the sums the other passes left.
@@ -805,7 +824,95 @@ class Cse {
     } f;
     f.done = &done;
     ex r = e.map(f);
-    if (is_a<add>(r)) {
+    if (is_a<add>(r)) r = factor_sum(r, out);
+    memo[e] = r;
+    return r;
+  }
+
+  // The symbols that are direct factors of a product term (not under a power).
+  static std::vector<ex> direct_symbols(const ex& term) {
+    std::vector<ex> out;
+    if (is_a<mul>(term))
+      for (size_t i = 0; i < term.nops(); ++i)
+        if (is_a<symbol>(term.op(i))) out.push_back(term.op(i));
+    return out;
+  }
+
+  // One sum: first a symbol that is a direct factor of several terms is taken out of them (greedy, the most
+  // shared first: ab + ac + ad -> a (b + c + d), 2 mul fewer), the inner sums treated the same way; then the
+  // terms sharing a numeric factor are grouped.
+  ex factor_sum(const ex& sum, std::vector<Temp>& out) {
+    const ex r = factor_symbols(sum, out);
+    return is_a<add>(r) ? group_numeric_factors(r, out) : r;
+  }
+
+  // A sum with the symbols that several terms share taken out (see factor_sum).
+  ex factor_symbols(const ex& sum, std::vector<Temp>& out) {
+    std::vector<ex> terms = ordered_children(sum, keys_);
+    ex factored = 0;
+    for (;;) {
+      std::map<ex, int, ex_is_less> uses;
+      for (const ex& t : terms)
+        for (const ex& a : direct_symbols(t)) ++uses[a];
+      ex best;
+      int best_uses = 1;
+      for (const auto& [a, n] : uses)  // ties: the smaller key, so the choice does not depend on GiNaC's order
+        if (n > best_uses || (n == best_uses && n > 1 && keys_.less(a, best))) best = a, best_uses = n;
+      if (best_uses < 2) break;
+      ex inner = 0;
+      std::vector<ex> rest;
+      for (const ex& t : terms) {
+        const auto syms = direct_symbols(t);
+        if (std::any_of(syms.begin(), syms.end(), [&](const ex& a) { return a.is_equal(best); }))
+          inner += t / best;
+        else
+          rest.push_back(t);
+      }
+      if (is_a<add>(inner)) {
+        // The inner sum factored the same way; a numeric factor all its terms share goes in front of the
+        // product (c a (b + d) rather than a (c b + c d)), where GiNaC keeps it undistributed.
+        inner = factor_symbols(orient_sums(inner, keys_), out);
+        const numeric c = is_a<add>(inner) ? common_numeric_factor(inner) : numeric(1);
+        factored += c * best * inner_sum(orient_sums(inner / c, keys_), out);
+      } else {
+        factored += best * inner;
+      }
+      terms = std::move(rest);
+    }
+    ex r = factored;
+    for (const ex& t : terms) r += t;
+    return orient_sums(r, keys_);
+  }
+
+  // An inner sum of factor_symbols as a temporary, one per distinct sum (by canonical key): the same
+  // (a + b) c comes out of several outputs. Keyed by text, not by GiNaC's structural order, so that which
+  // sums are shared cannot depend on hash order.
+  ex inner_sum(const ex& sum, std::vector<Temp>& out) {
+    if (!is_a<add>(sum)) return sum;
+    ex oriented = sum;
+    int sign = 1;
+    if (keys_.sign(oriented) < 0) oriented = -oriented, sign = -1;
+    const std::string& key = keys_.key(oriented);
+    auto it = inner_sums_.find(key);
+    if (it == inner_sums_.end()) {
+      Temp t = make_temp(oriented);
+      out.push_back(t);
+      it = inner_sums_.emplace(key, t.sym).first;
+    }
+    return sign * it->second;
+  }
+
+  // |c| when every term of the sum has the numeric factor +-c, else 1.
+  static numeric common_numeric_factor(const ex& sum) {
+    numeric c = abs(numeric_factor(sum.op(0)));
+    for (size_t i = 1; i < sum.nops(); ++i)
+      if (!abs(numeric_factor(sum.op(i))).is_equal(c)) return 1;
+    return c.is_zero() ? numeric(1) : c;
+  }
+
+  ex group_numeric_factors(const ex& sum, std::vector<Temp>& out) {
+    ex r = sum;
+    {
       // Terms grouped by |numeric factor|, groups in the order of their first term by key.
       std::vector<std::pair<numeric, std::vector<ex>>> groups;
       ex rest = 0;
@@ -839,10 +946,10 @@ class Cse {
       }
       if (changed) r = orient_sums(rest, keys_);
     }
-    memo[e] = r;
     return r;
   }
 
+  std::map<std::string, ex> inner_sums_;  // inner_sum's temporaries by key
   Namer namer_;
   SymbolNames names_;
   CanonicalKeys keys_;

@@ -662,7 +662,7 @@ CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, con
 // 8). The sign fix puts the three rotor-part products <q0, qk> in the 128-bit lanes 0-2 of one register and
 // sums within the lanes by two in-lane swaps, instead of three hadd chains; the signed weight is a bitwise
 // select of the dot's sign bit and the weight's other bits (the AVX2 path's copysign). 16 blended vertices
-// are transposed into the rows in registers, and pass 2 (the generated kernel's ~146 operations per vertex)
+// are transposed into the rows in registers, and pass 2 (the generated kernel's ~126 operations per vertex)
 // runs on 16 lanes.
 #define CGA_AVX512 __attribute__((target("arch=x86-64-v4,prefer-vector-width=512")))
 

@@ -154,6 +154,27 @@ TEST_CASE("O2 factors a numeric factor that several terms of a sum share", "[opt
   }
 }
 
+TEST_CASE("O2 takes a symbol that several terms of a sum share out of them, and shares the inner sums", "[opt]") {
+  // a b + a c + a d + e f: a (b + c + d) + e f, 2 mul instead of 4; the two outputs share (b + c + d).
+  front::SourceFile file("t.clu", "?y = a*b + a*c + a*d + e*f;\n?z = g*b + g*c + g*d;\n");
+  Kernel k = expand(front::parse(file), "t");
+  const opt::Program p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
+  const auto s1 = opt::program_stats(p1).total, s2 = opt::program_stats(p2).total;
+  INFO("O1 " << opt::format_counts(s1) << " | O2 " << opt::format_counts(s2));
+  CHECK(s1.mul == 4 + 3);
+  CHECK(s2.mul == 2 + 1);
+  CHECK(s2.add == 1 + 2);  // b + c + d once, then + e f
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 20; ++trial) {
+    auto in = random_inputs(k, rng);
+    auto v1 = values(p1, in), v2 = values(p2, in);
+    for (const auto& [key, val] : v1) {
+      INFO(key);
+      CHECK(v2.at(key) == Approx(val).margin(1e-12));
+    }
+  }
+}
+
 TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
   auto k = cga_test::normalize_kernel();
   auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
