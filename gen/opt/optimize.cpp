@@ -423,7 +423,7 @@ class Cse {
     { PhaseTimer t("  cse orient"); orient_all(roots); }
     { PhaseTimer t("  cse negations"); fold_negations(roots); }
     { PhaseTimer t("  cse inline"); inline_single_use(roots); }
-    { PhaseTimer t("  cse factors"); factor_numeric_content(roots); }
+    { PhaseTimer t("  cse factors"); factor_all_sums(roots); }
     drop_aliases(roots);
     { PhaseTimer t("  cse orient"); orient_all(roots); }
     { PhaseTimer t("  cse negations"); fold_negations(roots); }
@@ -787,10 +787,9 @@ class Cse {
       for (auto& r : roots) r = orient_sums(r.subs(alias, subs_options::no_pattern), keys_);
   }
 
-  // Terms of one sum that carry the same numeric factor c (|c| != 1) become c times a temporary of their sum:
-  // 2ab + 2cd - 2ef costs 6 mul, 2 t with t = ab + cd - ef 4. GiNaC distributes a number over a bare sum
-  // (2 (a + b) is 2a + 2b to it), hence the temporary. Runs last, on the sums the other passes left.
-  void factor_numeric_content(std::vector<ex>& roots) {
+  // Every sum of the program factored (factor_sum), innermost first. Runs last, on the sums the sharing
+  // passes left: a factored form hides products from them.
+  void factor_all_sums(std::vector<ex>& roots) {
     ExMap memo;
     std::vector<Temp> out;
     for (auto t : in_temps_) {
@@ -910,43 +909,42 @@ class Cse {
     return c.is_zero() ? numeric(1) : c;
   }
 
+  // Terms of the sum that carry the same numeric factor c (|c| != 1) become c times a temporary of their sum:
+  // 2ab + 2cd - 2ef costs 6 mul, 2 t with t = ab + cd - ef 4. GiNaC distributes a number over a bare sum
+  // (2 (a + b) is 2a + 2b to it), hence the temporary.
   ex group_numeric_factors(const ex& sum, std::vector<Temp>& out) {
-    ex r = sum;
-    {
-      // Terms grouped by |numeric factor|, groups in the order of their first term by key.
-      std::vector<std::pair<numeric, std::vector<ex>>> groups;
-      ex rest = 0;
-      for (const ex& term : ordered_children(r, keys_)) {
-        const numeric c = abs(numeric_factor(term));
-        if (c.is_equal(numeric(1)) || c.is_zero()) {
-          rest += term;
-          continue;
-        }
-        auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& x) { return x.first.is_equal(c); });
-        if (g == groups.end())
-          groups.push_back({c, {term}});
-        else
-          g->second.push_back(term);
+    // Terms grouped by |numeric factor|, groups in the order of their first term by key.
+    std::vector<std::pair<numeric, std::vector<ex>>> groups;
+    ex rest = 0;
+    for (const ex& term : ordered_children(sum, keys_)) {
+      const numeric c = abs(numeric_factor(term));
+      if (c.is_equal(numeric(1)) || c.is_zero()) {
+        rest += term;
+        continue;
       }
-      bool changed = false;
-      for (const auto& [c, terms] : groups) {
-        if (terms.size() < 2) {
-          rest += terms.front();
-          continue;
-        }
-        ex inner = 0;
-        for (const ex& term : terms) inner += term / c;
-        inner = orient_sums(inner, keys_);
-        ex factor = c;
-        if (keys_.sign(inner) < 0) inner = -inner, factor = -c;
-        Temp t = make_temp(inner);
-        out.push_back(t);
-        rest += factor * t.sym;
-        changed = true;
-      }
-      if (changed) r = orient_sums(rest, keys_);
+      auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& x) { return x.first.is_equal(c); });
+      if (g == groups.end())
+        groups.push_back({c, {term}});
+      else
+        g->second.push_back(term);
     }
-    return r;
+    bool changed = false;
+    for (const auto& [c, terms] : groups) {
+      if (terms.size() < 2) {
+        rest += terms.front();
+        continue;
+      }
+      ex inner = 0;
+      for (const ex& term : terms) inner += term / c;
+      inner = orient_sums(inner, keys_);
+      ex factor = c;
+      if (keys_.sign(inner) < 0) inner = -inner, factor = -c;
+      Temp t = make_temp(inner);
+      out.push_back(t);
+      rest += factor * t.sym;
+      changed = true;
+    }
+    return changed ? orient_sums(rest, keys_) : sum;
   }
 
   std::map<std::string, ex> inner_sums_;  // inner_sum's temporaries by key
