@@ -32,6 +32,19 @@ std::map<std::string, double> values(const opt::Program& p, const opt::InputValu
 
 GiNaC::symbol sym(const std::string& n) { return GiNaC::symbol(n); }
 
+// a and b (two levels of kernel k) give the same outputs on 20 random inputs.
+void check_same_values(const Kernel& k, const opt::Program& a, const opt::Program& b) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    auto in = random_inputs(k, rng);
+    auto va = values(a, in), vb = values(b, in);
+    for (const auto& [key, val] : va) {
+      INFO(key);
+      CHECK(vb.at(key) == Approx(val).margin(1e-12));
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("all levels compute the same values", "[opt]") {
@@ -143,15 +156,7 @@ TEST_CASE("O2 factors a numeric factor that several terms of a sum share", "[opt
   INFO("O1 " << opt::format_counts(s1) << " | O2 " << opt::format_counts(s2));
   CHECK(s1.mul == 8 + 4);
   CHECK(s2.mul == 6 + 3);
-  std::mt19937 rng(11);
-  for (int trial = 0; trial < 20; ++trial) {
-    auto in = random_inputs(k, rng);
-    auto v1 = values(p1, in), v2 = values(p2, in);
-    for (const auto& [key, val] : v1) {
-      INFO(key);
-      CHECK(v2.at(key) == Approx(val).margin(1e-12));
-    }
-  }
+  check_same_values(k, p1, p2);
 }
 
 TEST_CASE("O2 takes a symbol that several terms of a sum share out of them, and shares the inner sums", "[opt]") {
@@ -164,15 +169,7 @@ TEST_CASE("O2 takes a symbol that several terms of a sum share out of them, and 
   CHECK(s1.mul == 4 + 3);
   CHECK(s2.mul == 2 + 1);
   CHECK(s2.add == 1 + 2);  // b + c + d once, then + e f
-  std::mt19937 rng(12);
-  for (int trial = 0; trial < 20; ++trial) {
-    auto in = random_inputs(k, rng);
-    auto v1 = values(p1, in), v2 = values(p2, in);
-    for (const auto& [key, val] : v1) {
-      INFO(key);
-      CHECK(v2.at(key) == Approx(val).margin(1e-12));
-    }
-  }
+  check_same_values(k, p1, p2);
 }
 
 TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
