@@ -11,9 +11,10 @@ export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
 corpus=build-fuzz/corpus
 mkdir -p "$corpus"
 for f in runtime/scripts/*.clu tests/gen/scripts/*.clu; do [ -f "$f" ] && cp "$f" "$corpus/"; done
-# Crashes found earlier live in fuzz/regressions and are replayed first (they are also regression tests).
-if compgen -G "fuzz/regressions/*" >/dev/null; then
-  ./build-fuzz/fuzz_script fuzz/regressions/*
-fi
+# The bad scripts of the test suite (fuzzer finds among them: abs_of_quotient.clu was a timeout) and any
+# crash kept in fuzz/regressions are replayed first, under the same time limit as the fuzzing run.
+replay=(tests/gen/scripts/bad/*.clu)
+if compgen -G "fuzz/regressions/*" >/dev/null; then replay+=(fuzz/regressions/*); fi
+./build-fuzz/fuzz_script -timeout=10 -rss_limit_mb=2048 "${replay[@]}"
 ./build-fuzz/fuzz_script "$corpus" -max_total_time="$seconds" -max_len=2048 -timeout=10 -rss_limit_mb=2048 \
   -artifact_prefix=build-fuzz/ -print_final_stats=1

@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "opt/program.hpp"
+#include "symbolic/multivector.hpp"
 
 namespace cgagen::opt {
 
@@ -71,35 +72,9 @@ struct Rat {
   ex value() const { return den.is_equal(1) ? num : num / den; }
 };
 
-// Whether x (with denominators) is identically zero: cheap numeric probes first, then exact normal().
-bool is_zero_rational(const ex& x) {
-  ExSet found;
-  collect_symbols(x, found);
-  // Probe values by symbol name, not by the set's (hash-dependent) order.
-  std::vector<std::pair<std::string, ex>> syms;
-  for (const auto& s : found) syms.push_back({ex_to<symbol>(s).get_name(), s});
-  std::sort(syms.begin(), syms.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  // Irregular points: evenly spaced values would put e.g. three points on one line (a pole of circle3).
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
-  for (int probe = 0; probe < 2; ++probe) {
-    exmap at;
-    for (const auto& s : syms) {
-      state = state * 6364136223846793005ull + 1442695040888963407ull;
-      at[s.second] = numeric(static_cast<long>(300 + (state >> 33) % 1400), 1000);  // in [0.3, 1.7)
-    }
-    try {
-      ex v = x.subs(at, subs_options::no_pattern).evalf();
-      if (is_a<numeric>(v) && abs(ex_to<numeric>(v)) > numeric(1, 1000000)) return false;
-    } catch (const std::exception&) {
-      // a pole at the probe: decide exactly
-    }
-  }
-  return x.normal().is_zero();
-}
-
 Rat canonical(const ex& e) {
   ex x = expand(e);
-  if (has_denominator(x) && is_zero_rational(x)) return {0, 1};
+  if (has_denominator(x) && symbolic::is_zero_rational(x)) return {0, 1};
   return {x, 1};
 }
 

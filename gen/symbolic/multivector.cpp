@@ -2,6 +2,10 @@
 #include "symbolic/multivector.hpp"
 
 #include <array>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
 #include <sstream>
 #include <vector>
 
@@ -25,13 +29,73 @@ GiNaC::ex to_ex(const algebra::Rational& r) { return GiNaC::numeric(r.num) / GiN
 // Canonical form of a coefficient: expanded, and 0 when it normalizes to 0.
 GiNaC::ex canonical(const GiNaC::ex& c) {
   GiNaC::ex e = c.expand();
-  if (!e.is_zero() && has_denominator(e) && GiNaC::normal(e).is_zero()) return 0;
+  if (!e.is_zero() && has_denominator(e) && is_zero_rational(e)) return 0;
   return e;
 }
 
 }  // namespace
 
-bool is_identically_zero(const GiNaC::ex& e) { return canonical(e).is_zero(); }
+namespace {
+
+// Two fixed irregular points for the symbols of x, by symbol name (the same in every process). Evenly spaced
+// values would put e.g. three points on one line (a pole of circle3).
+std::vector<GiNaC::exmap> probe_points(const GiNaC::ex& x) {
+  using namespace GiNaC;
+  std::set<ex, ex_is_less> symbols;
+  for (auto it = x.preorder_begin(); it != x.preorder_end(); ++it)
+    if (is_a<symbol>(*it)) symbols.insert(*it);
+  std::map<std::string, ex> by_name;
+  for (const ex& s : symbols) by_name.emplace(ex_to<symbol>(s).get_name(), s);
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  std::vector<exmap> points(2);
+  for (exmap& at : points)
+    for (const auto& [name, s] : by_name) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      at[s] = numeric(static_cast<long>(300 + (state >> 33) % 1400), 1000);  // in [0.3, 1.7)
+    }
+  return points;
+}
+
+// True when x evaluates in floats far from 0 at a probe point: then it is not identically zero (values of a
+// few units cannot cancel to that). Cheap on an unexpanded x, which is where it pays.
+bool clearly_nonzero(const GiNaC::ex& x, const std::vector<GiNaC::exmap>& points) {
+  using namespace GiNaC;
+  for (const exmap& at : points) {
+    exmap approx;
+    for (const auto& [s, v] : at) approx[s] = ex_to<numeric>(v).evalf();
+    try {
+      const ex f = x.subs(approx, subs_options::no_pattern).evalf();
+      if (is_a<numeric>(f) && abs(ex_to<numeric>(f)) > numeric(1, 1000)) return true;
+    } catch (const std::exception&) {
+      // a pole at the probe
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+bool is_zero_rational(const GiNaC::ex& x) {
+  using namespace GiNaC;
+  const std::vector<exmap> points = probe_points(x);
+  if (clearly_nonzero(x, points)) return false;
+  // Exact arithmetic at the same points: a nonzero value is a proof.
+  for (const exmap& at : points) {
+    try {
+      const ex v = x.subs(at, subs_options::no_pattern);
+      if (is_a<numeric>(v) && ex_to<numeric>(v).is_rational() && !v.is_zero()) return false;
+    } catch (const std::exception&) {
+      // a pole at the probe: decide exactly
+    }
+  }
+  return normal(x).is_zero();
+}
+
+bool is_identically_zero(const GiNaC::ex& e) {
+  // Probing the unexpanded form first spares expanding large inlined values that are plainly not zero.
+  if (clearly_nonzero(e, probe_points(e))) return false;
+  return canonical(e).is_zero();
+}
 
 Multivector::Multivector(const GiNaC::ex& scalar) { set(0, scalar); }
 

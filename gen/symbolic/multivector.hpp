@@ -81,7 +81,15 @@ class Multivector {
   std::map<BladeIndex, GiNaC::ex> terms_;
 };
 
-// True when e expands to 0, normalizing it first if it has a denominator.
+// True when e expands to 0, normalizing it first if it has a denominator. A float probe of the unexpanded
+// e comes first: most coefficients asked about are plainly nonzero, and expanding large inlined values
+// (a division by a multivector) used to take tens of seconds.
 bool is_identically_zero(const GiNaC::ex& e);
+
+// Whether x, a rational expression, is identically zero. Probes at two fixed irregular points (by symbol
+// name, so the same in every process) first: a value clearly away from 0 in floats, or any nonzero exact
+// value, decides "no" at once; only otherwise is x normalized (GiNaC's normal(), whose gcds take seconds
+// on large quotients).
+bool is_zero_rational(const GiNaC::ex& x);
 
 }  // namespace cgagen::symbolic
