@@ -75,11 +75,12 @@ bool clearly_nonzero(const GiNaC::ex& x, const std::vector<GiNaC::exmap>& points
 
 }  // namespace
 
-bool is_zero_rational(const GiNaC::ex& x) {
+namespace {
+
+// After clearly_nonzero found nothing: exact arithmetic at the same points (a nonzero value is a proof),
+// then normal().
+bool zero_after_float_probes(const GiNaC::ex& x, const std::vector<GiNaC::exmap>& points) {
   using namespace GiNaC;
-  const std::vector<exmap> points = probe_points(x);
-  if (clearly_nonzero(x, points)) return false;
-  // Exact arithmetic at the same points: a nonzero value is a proof.
   for (const exmap& at : points) {
     try {
       const ex v = x.subs(at, subs_options::no_pattern);
@@ -91,10 +92,21 @@ bool is_zero_rational(const GiNaC::ex& x) {
   return normal(x).is_zero();
 }
 
+}  // namespace
+
+bool is_zero_rational(const GiNaC::ex& x) {
+  const std::vector<GiNaC::exmap> points = probe_points(x);
+  return !clearly_nonzero(x, points) && zero_after_float_probes(x, points);
+}
+
 bool is_identically_zero(const GiNaC::ex& e) {
-  // Probing the unexpanded form first spares expanding large inlined values that are plainly not zero.
-  if (clearly_nonzero(e, probe_points(e))) return false;
-  return canonical(e).is_zero();
+  // The float probes run on the unexpanded form: that spares expanding large inlined values that are
+  // plainly not zero. Expanding cannot bring in symbols, so the same points serve the exact checks.
+  const std::vector<GiNaC::exmap> points = probe_points(e);
+  if (clearly_nonzero(e, points)) return false;
+  const GiNaC::ex x = e.expand();
+  if (x.is_zero()) return true;
+  return has_denominator(x) && zero_after_float_probes(x, points);
 }
 
 Multivector::Multivector(const GiNaC::ex& scalar) { set(0, scalar); }
