@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -12,7 +13,9 @@
 #include <set>
 #include <sstream>
 
+#include "symbolic/budget.hpp"
 #include "symbolic/multivector.hpp"
+#include "symbolic/probes.hpp"
 
 namespace cgagen {
 namespace {
@@ -138,16 +141,22 @@ class Expander {
   explicit Expander(std::string name) { kernel_.name = std::move(name); }
 
   Kernel run(const front::Script& script) {
+    symbolic::WorkBudget budget;
     for (const auto& s : script.statements) {
       // GiNaC's own faults (a pole, an overflow) anywhere in a statement become a diagnostic, not a crash.
       try {
         exec_top(*s);
       } catch (const CompileError&) {
         throw;
+      } catch (const symbolic::BudgetExceeded& ex) {
+        std::string what = s->kind == Stmt::Kind::Assign ? "statement '" + s->name + "'" : "this statement";
+        throw CompileError(s->loc, what + " is over cgagen's work budget: " + ex.what() +
+                                       "; split it into smaller statements or give fewer blades");
       } catch (const std::exception& ex) {
         throw CompileError(s->loc, std::string("cannot evaluate: ") + ex.what());
       }
     }
+    if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", budget.spent());
     finish_outputs();
     return std::move(kernel_);
   }
@@ -174,8 +183,11 @@ class Expander {
   std::map<std::string, int> last_value_;          // index of the last assignment that may be an output
   std::set<std::string> symbol_names_;
   std::vector<Frame> frames_;                      // active macro calls, innermost last
+  // Every input and value symbol at fixed exact points: zero tests of a coefficient without inlining it.
+  symbolic::ProbePoints probes_;
   // Each value symbol's coefficient expression (over inputs and earlier symbols), and, computed on demand,
-  // that expression with every value symbol inlined down to the inputs: only for zero tests.
+  // that expression with every value symbol inlined down to the inputs: the exact zero test where the
+  // probes give no verdict (coefficients with abs, sqrt, sin, ...).
   GiNaC::exmap definitions_;
   GiNaC::exmap inlined_;
   // Every input and value symbol at one fixed pseudo-random point (inputs drawn from [0.3, 1.7)): a cheap
@@ -247,6 +259,7 @@ class Expander {
       if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::symbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
       samples_[sym] = *at_sample;
+      probes_.define(sym, c);
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
       kv.symbols.push_back(sym);
@@ -328,6 +341,7 @@ class Expander {
       for (auto b : blades) {
         GiNaC::symbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
         samples_[sym] = next_sample();
+        probes_.add_input(sym);
         in.symbols.push_back(sym);
         ref.set(b, sym);
       }
@@ -380,8 +394,18 @@ class Expander {
     }
     if (!GiNaC::is_a<GiNaC::numeric>(v)) return v;
     if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > GiNaC::numeric(1e-8)) return v;
-    if (symbolic::is_identically_zero(inline_values(c))) return std::nullopt;
+    if (vanishes(c)) return std::nullopt;
     return v;
+  }
+
+  // Is c (over inputs and value symbols) identically zero once the values are inlined?
+  bool vanishes(const ex& c) {
+    switch (probes_.test(c)) {
+      case symbolic::ProbePoints::Verdict::Zero: return true;
+      case symbolic::ProbePoints::Verdict::Nonzero: return false;
+      case symbolic::ProbePoints::Verdict::Unknown: break;
+    }
+    return symbolic::is_identically_zero(inline_values(c));
   }
 
   // e with every value symbol replaced by its definition, recursively, down to the inputs.
@@ -410,7 +434,7 @@ class Expander {
   Multivector drop_vanishing(const Multivector& m, MustVanish must_vanish) {
     Multivector r = m;
     for (const auto& [b, c] : m.terms())
-      if (must_vanish(b) && symbolic::is_identically_zero(inline_values(c))) r.set(b, 0);
+      if (must_vanish(b) && vanishes(c)) r.set(b, 0);
     return r;
   }
 
@@ -436,6 +460,7 @@ class Expander {
     in.blades = {0};
     GiNaC::symbol sym(unique_symbol_name(n));
     samples_[sym] = next_sample();
+    probes_.add_input(sym);
     in.symbols = {sym};
     kernel_.inputs.push_back(in);
     Multivector v(sym);
@@ -508,6 +533,8 @@ class Expander {
       return f();
     } catch (const CompileError&) {
       throw;
+    } catch (const symbolic::BudgetExceeded&) {
+      throw;  // reported for the whole statement
     } catch (const std::exception& ex) {
       throw CompileError(loc, std::string("cannot evaluate: ") + ex.what());
     }

@@ -53,6 +53,12 @@ class PhaseTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+size_t tree_size(const ex& e) {
+  size_t n = 0;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) ++n;
+  return n;
+}
+
 bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
 
 bool has_denominator(const ex& e) {
@@ -206,6 +212,9 @@ ex collect_in(const ex& e, const std::vector<ex>& xs) {
 
 // Above this estimated size a value is not substituted into its users but kept as a temporary.
 constexpr double kMaxInlineTerms = 4000;
+// Above this many expression nodes in the -O1 form, -O2 optimizes only the script's statement form. The
+// bundled runtime kernels stay below 3500; paper A.1 has 25000 and circle3 440000.
+constexpr size_t kMaxExpandedNodes = 10000;
 
 // Unique identifier generation, avoiding the inputs' names.
 class Namer {
@@ -363,9 +372,67 @@ std::vector<std::vector<SlotPlan>> plan_slots(const Kernel& k, const Substituted
   return plans;
 }
 
+// The script's own statements as temporaries (each value expanded over earlier values, only those the
+// outputs need), and the outputs as the values' symbols. A coefficient that is one input or one number (a
+// point's x, its e0 coefficient 1) is substituted into its users instead: as a temporary it would leave
+// products like 1*z that nothing folds later.
+struct StatementForm {
+  std::vector<Temp> temps;
+  std::vector<ex> roots;  // one per output slot, in plan order
+};
+
+StatementForm statement_form(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+  StatementForm f;
+  exmap atomic;
+  Namer namer(k.inputs);
+  for (const auto& v : k.values)
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      if (s.needed.count(v.symbols[i])) {
+        ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, subs_options::no_pattern)).value();
+        if (is_atomic(c))
+          atomic[v.symbols[i]] = c;
+        else
+          f.temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                             v.symbols[i], c});
+      }
+  for (const auto& slots : plans)
+    for (const auto& sp : slots) {
+      auto it = atomic.find(sp.value_sym);
+      f.roots.push_back(it == atomic.end() ? sp.value_sym : it->second);
+    }
+  return f;
+}
+
+// Expression nodes of the expanded (-O1) form: what the CSE passes and the printer would work through.
+size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vector<SlotPlan>>& plans) {
+  size_t n = 0;
+  for (const auto& slots : plans)
+    for (const auto& sp : slots) n += tree_size(sp.value.num) + tree_size(sp.value.den);
+  for (const auto& t : kept) n += tree_size(t.value);
+  return n;
+}
+
+std::string over_budget_note(const char* level, size_t size) {
+  return std::string(level) + " kept the script's statement form: the expanded form has " + std::to_string(size) +
+         " expression nodes (budget " + std::to_string(kMaxExpandedNodes) + ")";
+}
+
 Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
   Program p = skeleton(k, Level::O1);
   p.temps = materialized_temps(k, s);
+  const size_t size = expanded_size(p.temps, plans);
+  if (size > kMaxExpandedNodes) {
+    StatementForm f = statement_form(k, s, plans);
+    p.temps = std::move(f.temps);
+    p.notes.push_back(over_budget_note("-O1", size));
+    size_t ri = 0;
+    for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
+      ProgramOutput po{k.outputs[oi].name, {}};
+      for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, f.roots.at(ri++)});
+      p.outputs.push_back(std::move(po));
+    }
+    return p;
+  }
   for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
     ProgramOutput po{k.outputs[oi].name, {}};
     for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, sp.value.value()});
@@ -959,53 +1026,43 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
       for (const auto& sp : slots) roots.push_back(f(sp));
     return roots;
   };
-  // 1. The expanded -O1 forms.
+  // 1. The expanded -O1 forms, and 2. the same collected in the inputs, unless the -O1 form is too large
+  //    for the CSE passes to finish in time; on such scripts the statement form (3) has always been far
+  //    cheaper anyway (paper A.1: 328 against 1516, circle3: 165 against 1402 weighted ops).
   const std::vector<Temp> kept = materialized_temps(k, s);
-  {
-    PhaseTimer t("variant expanded");
-    variants.push_back(finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
-  }
-  // 2. Collected in the scalar inputs, then in each multivector input's coefficients.
-  std::vector<std::vector<ex>> groups;
-  std::vector<ex> scalars;
-  for (const auto& in : k.inputs)
-    if (!in.is_multivector) scalars.push_back(in.symbols.at(0));
-  if (!scalars.empty()) groups.push_back(scalars);
-  for (const auto& in : k.inputs)
-    if (in.is_multivector) groups.emplace_back(in.symbols.begin(), in.symbols.end());
-  for (const auto& g : groups) {
-    std::vector<ex> roots;
-    PhaseTimer t("variant collected");
-    roots = roots_with([&](const SlotPlan& sp) {
-      ex n = collect_in(sp.value.num, g);
-      return sp.value.den.is_equal(1) ? n : n / collect_in(sp.value.den, g);
-    });
-    variants.push_back(finish_o2(k, kept, roots, plans));
+  const size_t size = expanded_size(kept, plans);
+  std::vector<std::string> notes;
+  if (size > kMaxExpandedNodes) {
+    notes.push_back(over_budget_note("-O2", size));
+  } else {
+    {
+      PhaseTimer t("variant expanded");
+      variants.push_back(
+          finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
+    }
+    std::vector<std::vector<ex>> groups;
+    std::vector<ex> scalars;
+    for (const auto& in : k.inputs)
+      if (!in.is_multivector) scalars.push_back(in.symbols.at(0));
+    if (!scalars.empty()) groups.push_back(scalars);
+    for (const auto& in : k.inputs)
+      if (in.is_multivector) groups.emplace_back(in.symbols.begin(), in.symbols.end());
+    for (const auto& g : groups) {
+      std::vector<ex> roots;
+      PhaseTimer t("variant collected");
+      roots = roots_with([&](const SlotPlan& sp) {
+        ex n = collect_in(sp.value.num, g);
+        return sp.value.den.is_equal(1) ? n : n / collect_in(sp.value.den, g);
+      });
+      variants.push_back(finish_o2(k, kept, roots, plans));
+    }
   }
   // 3. The script's own statements (each value expanded over earlier values), which keeps products like
   //    (M X) ~M factored.
   {
-    //    A coefficient that is one input or one number (a point's x, its e0 coefficient 1) is substituted
-    //    into its users instead: as a temporary it would leave products like 1*z that nothing folds later.
-    std::vector<Temp> temps;
-    exmap atomic;
-    Namer namer(k.inputs);
-    for (const auto& v : k.values)
-      for (size_t i = 0; i < v.blades.size(); ++i)
-        if (s.needed.count(v.symbols[i])) {
-          ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, subs_options::no_pattern)).value();
-          if (is_atomic(c))
-            atomic[v.symbols[i]] = c;
-          else
-            temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
-                             v.symbols[i], c});
-        }
+    StatementForm f = statement_form(k, s, plans);
     PhaseTimer t("variant statements");
-    variants.push_back(finish_o2(k, temps, roots_with([&](const SlotPlan& sp) {
-                                   auto it = atomic.find(sp.value_sym);
-                                   return it == atomic.end() ? sp.value_sym : it->second;
-                                 }),
-                                 plans));
+    variants.push_back(finish_o2(k, f.temps, f.roots, plans));
   }
   PhaseTimer tc("costs");
   size_t best = 0;
@@ -1014,6 +1071,7 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
     long c = program_cost(variants[i]);
     if (c < best_cost) best = i, best_cost = c;
   }
+  variants[best].notes = notes;
   return variants[best];
 }
 

@@ -43,6 +43,8 @@ struct Program {
   std::vector<KernelInput> inputs;
   std::vector<Temp> temps;  // in evaluation order
   std::vector<ProgramOutput> outputs;
+  // What the optimizer left out to stay within its work budget (--stats prints these as "note:" lines).
+  std::vector<std::string> notes;
 };
 
 // Kernel -> Program at the given level (see docs/generator.md for what each level does).

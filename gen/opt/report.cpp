@@ -21,6 +21,7 @@ std::string format_stats(const Program& p) {
   for (const auto& o : st.outputs) s += "output " + o.name + ": " + format_counts(o.ops) + "\n";
   s += "temporaries (" + std::to_string(st.temp_count) + "): " + format_counts(st.temps) + "\n";
   s += "total: " + format_counts(st.total) + "\n";
+  for (const auto& n : p.notes) s += "note: " + n + "\n";
   return s;
 }
 

@@ -1,6 +1,8 @@
 // Symbolic multivector operations (see multivector.hpp).
 #include "symbolic/multivector.hpp"
 
+#include "symbolic/budget.hpp"
+
 #include <array>
 #include <cstdint>
 #include <map>
@@ -23,6 +25,9 @@ bool has_denominator(const GiNaC::ex& e) {
     if (has_denominator(e.op(i))) return true;
   return false;
 }
+
+// Terms of an expanded coefficient (a sum's terms; anything else is one).
+std::size_t term_count(const GiNaC::ex& e) { return GiNaC::is_a<GiNaC::add>(e) ? e.nops() : 1; }
 
 GiNaC::ex to_ex(const algebra::Rational& r) { return GiNaC::numeric(r.num) / GiNaC::numeric(r.den); }
 
@@ -153,14 +158,21 @@ Multivector& Multivector::operator-=(const Multivector& b) {
 
 Multivector Multivector::product(algebra::ProductKind kind, const Multivector& a, const Multivector& b) {
   std::array<GiNaC::exvector, algebra::kBladeCount> acc;
+  std::array<std::size_t, algebra::kBladeCount> estimate{};  // terms of each coefficient once expanded
   for (const auto& [i, ca] : a.terms_) {
     for (const auto& [j, cb] : b.terms_) {
       const auto& terms = algebra::product(kind, i, j);
       if (terms.empty()) continue;
       GiNaC::ex ab = ca * cb;
-      for (const auto& t : terms) acc[t.blade].push_back(t.coeff == algebra::Rational(1) ? ab : to_ex(t.coeff) * ab);
+      const std::size_t n = term_count(ca) * term_count(cb);
+      for (const auto& t : terms) {
+        acc[t.blade].push_back(t.coeff == algebra::Rational(1) ? ab : to_ex(t.coeff) * ab);
+        estimate[t.blade] += n;
+      }
     }
   }
+  for (int k = 0; k < algebra::kBladeCount; ++k)
+    if (estimate[k]) WorkBudget::charge(estimate[k]);
   Multivector r;
   for (int k = 0; k < algebra::kBladeCount; ++k)
     if (!acc[k].empty()) r.set(k, GiNaC::add(acc[k]));
@@ -179,7 +191,10 @@ Multivector inner(const Multivector& a, const Multivector& b) {
 
 Multivector operator*(const GiNaC::ex& s, const Multivector& a) {
   Multivector r;
-  for (const auto& [b, c] : a.terms_) r.set(b, s * c);
+  for (const auto& [b, c] : a.terms_) {
+    WorkBudget::charge(term_count(s) * term_count(c));
+    r.set(b, s * c);
+  }
   return r;
 }
 

@@ -1,0 +1,49 @@
+// Zero tests through a chain of definitions by exact evaluation (polynomial identity testing).
+//
+// The expander sees each statement over the symbols of earlier statements, so "is this coefficient
+// identically zero?" is a question about the coefficient with every earlier value inlined down to the
+// inputs. Inlining and expanding that answers it exactly but can take seconds (a sandwich of an
+// interpolated motor inlines into thousands of rational terms). ProbePoints answers it instead by carrying
+// every symbol's value at a few fixed pseudo-random points: an input gets drawn values, a value gets its
+// definition evaluated at the values of the symbols it uses. Evaluating one coefficient is then linear in
+// the size of its own statement. Values are kept modulo the prime p = 2^61 - 1, so they stay one machine
+// word however deep the chain of statements (exact rationals would double in size with every product).
+//
+// A rational function of degree d that is not identically zero vanishes at a point drawn uniformly from
+// F_p^n with probability at most d/p (Schwartz–Zippel), and "zero" needs all kPoints points to vanish, so
+// a wrong "zero" needs (d/2^61)^3 luck. The points are fixed (the same in every process and every run), so
+// the verdict is deterministic.
+//
+// Only rational functions are probed (sums, products, integer powers, rational numbers): abs, sqrt, sin,
+// ... are not polynomial, and abs(a-b) - (a-b) vanishes on half of all points. Such coefficients, their
+// dependants, and coefficients with a pole at a point get no verdict: callers fall back to an exact
+// symbolic test.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <array>
+#include <cstdint>
+
+namespace cgagen::symbolic {
+
+class ProbePoints {
+ public:
+  static constexpr int kPoints = 3;
+  enum class Verdict { Zero, Nonzero, Unknown };
+
+  // A free symbol (an input): draws its value at every point, in order of calls.
+  void add_input(const GiNaC::symbol& s);
+  // A symbol standing for `definition` (over symbols added or defined before): its value at every point
+  // where the definition evaluates to a rational number.
+  void define(const GiNaC::symbol& s, const GiNaC::ex& definition);
+  // Zero when e evaluates to exactly 0 at every point, Nonzero when it is a nonzero rational at some point,
+  // Unknown otherwise.
+  Verdict test(const GiNaC::ex& e) const;
+
+ private:
+  std::array<GiNaC::exmap, kPoints> at_;  // symbol -> value in [0, p)
+  std::uint64_t state_ = 0x243F6A8885A308D3ull;  // fixed: the same points in every run
+};
+
+}  // namespace cgagen::symbolic
