@@ -7,7 +7,9 @@
 #                   [OPT -O2]                   # default: -O2
 #                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
 #                   [RETURN OUT]                # glsl only: --return OUT
-#                   [TEMPLATES <dir>])          # default: the tool's built-in templates/
+#                   [TEMPLATES <dir>]           # default: the tool's built-in templates/
+#                   [NO_WERROR])                # warnings stay warnings (default: --Werror, so a misspelt
+#                                               # name that silently became an input fails the build)
 #
 # For each script NAME.clu and each target it writes OUTPUT_DIR/NAME.hpp / NAME.glsl / NAME.cuh, plus
 # OUTPUT_DIR/NAME.stats (the --stats text), with dependencies on the script, the templates and the cgagen
@@ -19,7 +21,7 @@
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "" "OUTPUT_DIR;OPT;RETURN;TEMPLATES" "SCRIPTS;TARGETS;PACK" ${ARGN})
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES" "SCRIPTS;TARGETS;PACK" ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
   endif()
@@ -73,6 +75,9 @@ function(cgagen_generate target)
       endif()
       set(_out ${CG_OUTPUT_DIR}/${_name}${_ext})
       set(_args --target ${_t} ${CG_OPT} --name ${_name} ${_templates_arg})
+      if(NOT CG_NO_WERROR)
+        list(APPEND _args --Werror)
+      endif()
       if(_t STREQUAL "glsl")
         list(APPEND _args ${_glsl_args})
       endif()

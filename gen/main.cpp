@@ -38,6 +38,7 @@ options:
   --stats-out FILE        write op counts to FILE besides the code
   --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change
   --dump-ast              print the parsed script
+  --Werror                treat warnings (a misspelt name that became an input) as errors
   --eval NAME=VALUE ...   evaluate the optimized kernel (values before or after SCRIPT); a multivector input as NAME=v1,v2,...
                           (one value per declared blade); prints OUTPUT BLADE VALUE lines
   --help                  this text
@@ -59,6 +60,7 @@ struct Options {
   bool dump_ast = false;
   bool eval = false;
   opt::InputValues eval_inputs;
+  bool werror = false;
 };
 
 double parse_number(const std::string& text, const std::string& what) {
@@ -123,6 +125,8 @@ Options parse_args(int argc, char** argv) {
         o.diff = {x, y};
       } else if (a == "--dump-ast") {
         o.dump_ast = true;
+      } else if (a == "--Werror") {
+        o.werror = true;
       } else if (a == "--eval") {
         o.eval = true;
         while (i + 1 < args.size() && args[i + 1].find('=') != std::string::npos && args[i + 1][0] != '-')
@@ -231,6 +235,10 @@ int run(const Options& o) {
     }
     std::string name = o.name.empty() ? std::filesystem::path(o.script).stem().string() : o.name;
     Kernel kernel = expand(script, name);
+    for (const auto& w : kernel.warnings)
+      std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),
+                                            o.werror ? "error" : "warning");
+    if (o.werror && !kernel.warnings.empty()) return 1;
     emit::EmitOptions eo = o.emit;
     eo.script_name = std::filesystem::path(o.script).filename().string();
     if (o.diff) {
@@ -252,7 +260,7 @@ int run(const Options& o) {
       return 0;
     }
     if (o.stats) {
-      write_text(o.output, opt::format_stats(program));
+      write_text(o.output, opt::format_stats(program) + opt::format_inputs(program));
       return 0;
     }
     std::string code = emit::emit(program, eo);

@@ -125,6 +125,47 @@ bool is_basis_name(const std::string& n) {
   return names.count(n) > 0;
 }
 
+// The built-in functions: scalar functions of one scalar, and the others by their argument count.
+using Fn1 = std::function<ex(const ex&)>;
+const std::map<std::string, Fn1>& scalar_functions() {
+  static const std::map<std::string, Fn1> fns = {
+      {"abs", [](const ex& x) { return GiNaC::abs(x); }},   {"sqrt", [](const ex& x) { return GiNaC::sqrt(x); }},
+      {"sin", [](const ex& x) { return GiNaC::sin(x); }},   {"cos", [](const ex& x) { return GiNaC::cos(x); }},
+      {"tan", [](const ex& x) { return GiNaC::tan(x); }},   {"asin", [](const ex& x) { return GiNaC::asin(x); }},
+      {"acos", [](const ex& x) { return GiNaC::acos(x); }}, {"atan", [](const ex& x) { return GiNaC::atan(x); }},
+      {"log", [](const ex& x) { return GiNaC::log(x); }},
+  };
+  return fns;
+}
+const std::map<std::string, size_t>& builtin_arity() {
+  static const std::map<std::string, size_t> arity = {
+      {"atan2", 2}, {"exp", 1}, {"VecN3", 3}, {"createPoint", 3}, {"TranslatorN3", 3}, {"RotorN3", 4}};
+  return arity;
+}
+
+// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// Is `name` close enough to `known` to be a typo of it? Names of one or two characters (x1, e1, p2) are
+// too short to tell a typo from a different variable; longer ones may differ in one edit, from 8
+// characters on in two.
+bool looks_like_typo(const std::string& name, const std::string& known) {
+  if (name == known || name.size() < 3 || known.size() < 3) return false;
+  const size_t allowed = std::min(name.size(), known.size()) >= 8 ? 2 : 1;
+  const size_t lengths = name.size() > known.size() ? name.size() - known.size() : known.size() - name.size();
+  return lengths <= allowed && edit_distance(name, known) <= allowed;
+}
+
 Multivector basis(const std::string& n) {
   if (n == "e1") return Multivector::e1();
   if (n == "e2") return Multivector::e2();
@@ -142,6 +183,8 @@ class Expander {
 
   Kernel run(const front::Script& script) {
     symbolic::WorkBudget budget;
+    for (const auto& s : script.statements)
+      if (s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::MacroDef) script_names_.insert(s->name);
     for (const auto& s : script.statements) {
       // GiNaC's own faults (a pole, an overflow) anywhere in a statement become a diagnostic, not a crash.
       try {
@@ -195,6 +238,7 @@ class Expander {
   GiNaC::exmap samples_;
   std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
   std::vector<Mark> marks_;                        // in order of first marking
+  std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
   std::map<std::string, OutputPragma> output_pragmas_;
 
   // ---- statements --------------------------------------------------------------------------------
@@ -455,6 +499,7 @@ class Expander {
     if (it != globals_.end()) return it->second;
     if (macros_.count(n)) throw CompileError(e.loc, "'" + n + "' is a macro; call it as " + n + "(...)");
     // A free name: a new scalar input, in order of first use.
+    warn_if_typo(n, e.loc);
     KernelInput in;
     in.name = n;
     in.blades = {0};
@@ -466,6 +511,31 @@ class Expander {
     Multivector v(sym);
     globals_[n] = v;
     return v;
+  }
+
+  // A free name becomes an input; when it is one edit from a name the script or the language knows, that
+  // is more likely a typo (eiof for einf) than a new input, and silently wrong code: warn.
+  void warn_if_typo(const std::string& n, SourceLoc loc) {
+    std::vector<std::string> known = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
+    known.insert(known.end(), script_names_.begin(), script_names_.end());
+    for (const auto& f : scalar_functions()) known.push_back(f.first);
+    for (const auto& f : builtin_arity()) known.push_back(f.first);
+    if (auto k = closest(n, known))
+      kernel_.warnings.push_back({loc, "'" + n + "' is used before it is assigned and becomes an input; did you mean '" +
+                                           *k + "'?"});
+  }
+
+  // Of the names in `known` that look like a typo of n, the closest: fewest edits, then the nearest length
+  // (translationCGA4 is translationCGA2 mistyped rather than translationCGA extended), then the first.
+  static std::optional<std::string> closest(const std::string& n, const std::vector<std::string>& known) {
+    std::optional<std::string> best;
+    std::pair<size_t, size_t> best_rank;
+    for (const std::string& k : known)
+      if (looks_like_typo(n, k)) {
+        std::pair<size_t, size_t> rank{edit_distance(n, k), k.size() > n.size() ? k.size() - n.size() : n.size() - k.size()};
+        if (!best || rank < best_rank) best = k, best_rank = rank;
+      }
+    return best;
   }
 
   Multivector eval(const Expr& e) {
@@ -565,19 +635,17 @@ class Expander {
       for (const auto& a : e.args) args.push_back(eval(*a));
       return call_macro(*macro->second, std::move(args), e);
     }
-    using Fn1 = std::function<ex(const ex&)>;
-    static const std::map<std::string, Fn1> scalar1 = {
-        {"abs", [](const ex& x) { return GiNaC::abs(x); }},   {"sqrt", [](const ex& x) { return GiNaC::sqrt(x); }},
-        {"sin", [](const ex& x) { return GiNaC::sin(x); }},   {"cos", [](const ex& x) { return GiNaC::cos(x); }},
-        {"tan", [](const ex& x) { return GiNaC::tan(x); }},   {"asin", [](const ex& x) { return GiNaC::asin(x); }},
-        {"acos", [](const ex& x) { return GiNaC::acos(x); }}, {"atan", [](const ex& x) { return GiNaC::atan(x); }},
-        {"log", [](const ex& x) { return GiNaC::log(x); }},
-    };
-    static const std::map<std::string, size_t> arity = {
-        {"atan2", 2}, {"exp", 1}, {"VecN3", 3}, {"createPoint", 3}, {"TranslatorN3", 3}, {"RotorN3", 4}};
+    const auto& scalar1 = scalar_functions();
+    const auto& arity = builtin_arity();
     auto f1 = scalar1.find(fn);
     auto ar = arity.find(fn);
-    if (f1 == scalar1.end() && ar == arity.end()) throw CompileError(e.loc, "unknown function '" + fn + "'");
+    if (f1 == scalar1.end() && ar == arity.end()) {
+      std::vector<std::string> known(script_names_.begin(), script_names_.end());
+      for (const auto& f : scalar1) known.push_back(f.first);
+      for (const auto& f : arity) known.push_back(f.first);
+      auto k = closest(fn, known);
+      throw CompileError(e.loc, "unknown function '" + fn + "'" + (k ? "; did you mean '" + *k + "'?" : ""));
+    }
     check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
     for (const auto& a : e.args) args.push_back(eval(*a));
     return guarded(e.loc, [&]() -> Multivector {

@@ -14,6 +14,7 @@
 
 #include "algebra/blade.hpp"
 #include "front/ast.hpp"
+#include "front/diagnostics.hpp"
 
 namespace cgagen {
 
@@ -60,6 +61,7 @@ struct Kernel {
   std::vector<KernelValue> values;    // in script order
   std::vector<KernelOutput> outputs;  // in order of first marking as output
   std::vector<ScalarRange> ranges;
+  std::vector<front::Warning> warnings;  // in script order
 };
 
 }  // namespace cgagen

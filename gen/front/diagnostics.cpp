@@ -33,10 +33,11 @@ std::string SourceFile::line(int line_number) const {
   return text_.substr(begin, end - begin);
 }
 
-std::string format_diagnostic(const SourceFile& file, SourceLoc loc, const std::string& message) {
+std::string format_diagnostic(const SourceFile& file, SourceLoc loc, const std::string& message,
+                              const std::string& severity) {
   std::string out = file.path();
-  if (loc.line < 1) return out + ": error: " + message + "\n";
-  out += ":" + std::to_string(loc.line) + ":" + std::to_string(loc.col) + ": error: " + message + "\n";
+  if (loc.line < 1) return out + ": " + severity + ": " + message + "\n";
+  out += ":" + std::to_string(loc.line) + ":" + std::to_string(loc.col) + ": " + severity + ": " + message + "\n";
   std::string text = file.line(loc.line);
   out += text + "\n";
   // The caret line copies tabs so that it lines up under any tab width, and counts a UTF-8 sequence as

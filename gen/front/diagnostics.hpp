@@ -1,4 +1,5 @@
-// Compile errors with a location, and their rendering as `file:line:col: error: message`, the line, a caret.
+// Compile errors and warnings with a location, and their rendering as `file:line:col: error: message` (or
+// `warning:`), the line, a caret.
 // Every stage that finds a fault in the user's script throws CompileError; the tool catches it, prints
 // format_diagnostic(...) to stderr and exits 1.
 #pragma once
@@ -33,7 +34,14 @@ class CompileError : public std::runtime_error {
   SourceLoc loc_;
 };
 
-// "path:line:col: error: message\n<the source line>\n<spaces>^\n"
-std::string format_diagnostic(const SourceFile& file, SourceLoc loc, const std::string& message);
+// A warning: the script compiles, but probably not as meant (a misspelt name that became an input).
+struct Warning {
+  SourceLoc loc;
+  std::string message;
+};
+
+// "path:line:col: error: message\n<the source line>\n<spaces>^\n" (or "warning:" for severity "warning")
+std::string format_diagnostic(const SourceFile& file, SourceLoc loc, const std::string& message,
+                              const std::string& severity = "error");
 
 }  // namespace cgagen::front

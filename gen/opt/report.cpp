@@ -25,6 +25,20 @@ std::string format_stats(const Program& p) {
   return s;
 }
 
+std::string format_inputs(const Program& p) {
+  std::string s = "inputs:";
+  if (p.inputs.empty()) s += " (none)";
+  for (size_t i = 0; i < p.inputs.size(); ++i) {
+    const KernelInput& in = p.inputs[i];
+    s += (i ? ", " : " ") + in.name;
+    if (!in.is_multivector) continue;
+    s += " (";
+    for (size_t b = 0; b < in.blades.size(); ++b) s += (b ? ", " : "") + algebra::blade_name(in.blades[b]);
+    s += ")";
+  }
+  return s + "\n";
+}
+
 namespace {
 
 class Evaluator {

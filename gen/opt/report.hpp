@@ -12,6 +12,9 @@ namespace cgagen::opt {
 
 // "kernel NAME at -O2\noutput P: 9 add, 12 mul, 0 div, 0 call\n...total: ...\n"
 std::string format_stats(const Program& program);
+// "inputs: a, b, M (1, e1^e2)": the kernel's inputs in parameter order, so that a user sees what became an
+// input; a multivector input with its blades.
+std::string format_inputs(const Program& program);
 std::string format_counts(const OpCounts& c);
 
 // Input values by name: one value for a scalar input, one per declared blade for a multivector input.

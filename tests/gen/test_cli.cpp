@@ -115,3 +115,61 @@ TEST_CASE("dump-ast prints the statements", "[cli]") {
   CHECK(r.code == 0);
   CHECK(r.out.find("assign ?C = (* A B)") != std::string::npos);
 }
+
+// Issue 11: the fuzzer's find (the paper's A.1 with `einf` misspelt `eiof` and `translationCGA2` misspelt
+// `translationCGA4`) compiles at every level, warns about both names where they are used, lists them as
+// inputs in --stats, and fails under --Werror.
+TEST_CASE("misspelt names that became inputs are warned about; --Werror makes them errors", "[cli]") {
+  const std::string path = std::string(CGA_SOURCE_DIR) + "/fuzz/regressions/paper_a1_mutant_timeout.clu";
+  const std::string eiof = path + ":17:29: warning: 'eiof' is used before it is assigned and becomes an input; "
+                                  "did you mean 'einf'?\nDilation = 1+ (1-d1)/(1+d1)*eiof^e0;\n" +
+                           std::string(28, ' ') + "^\n";
+  const std::string cga4 = path + ":31:8: warning: 'translationCGA4' is used before it is assigned and becomes an "
+                                  "input; did you mean 'translationCGA2'?\nmotor2=translationCGA4*R2;\n       ^\n";
+  for (const char* level : {"-O0", "-O1", "-O2"}) {
+    auto r = run(std::string(level) + " -o /dev/null " + path);
+    INFO(level << "\n" << r.out);
+    CHECK(r.code == 0);
+    CHECK(r.out == eiof + cga4);
+  }
+  auto r = run("--Werror -o /dev/null " + path);
+  CHECK(r.code == 1);
+  CHECK(r.out.find(path + ":17:29: error: 'eiof' is used before it is assigned and becomes an input; did you mean "
+                          "'einf'? [-Werror]\n") != std::string::npos);
+  CHECK(r.out.find(path + ":31:8: error: 'translationCGA4'") != std::string::npos);
+  r = run("--stats " + path);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("\ninputs: transX, transY, transZ, axis1X, axis1Y, axis1Z, angle1, d1, eiof, trans2X, trans2Y, "
+                   "trans2Z, axis2X, axis2Y, axis2Z, angle2, d2, translationCGA4, alpha, X, Y, Z\n") !=
+        std::string::npos);
+  // The bundled scripts have no such names: cgagen_generate() builds them all with --Werror.
+  r = run("--Werror --stats " + script("transform_point.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out.find("warning") == std::string::npos);
+  CHECK(r.out.find("\ninputs: M (1, e1^e2, e1^e3, e1^einf, e2^e3, e2^einf, e3^einf, einf^e0, e1^e2^e3^einf, "
+                   "e1^e2^einf^e0, e1^e3^einf^e0, e2^e3^einf^e0), x, y, z\n") != std::string::npos);
+}
+
+TEST_CASE("work budget: an over-budget statement fails fast with a located error; large forms fall back", "[cli]") {
+  const std::string bad = std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/bad/over_budget.clu";
+  for (const char* level : {"-O0", "-O2"}) {
+    auto r = run(std::string(level) + " " + bad);
+    INFO(r.out);
+    CHECK(r.code == 1);
+    CHECK(r.out.rfind(bad + ":5:2: error: statement 'v' is over cgagen's work budget: a product would expand one "
+                            "coefficient to about 100000 terms (limit 20000); split it into smaller statements or "
+                            "give fewer blades\n",
+                      0) == 0);
+  }
+  // circle3's fully expanded -O1 form has ~460000 expression nodes: -O1 and -O2 keep the statement form and
+  // say so; a small kernel gets no note.
+  const std::string circle3 = std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/circle3.clu";
+  for (const char* level : {"-O1", "-O2"}) {
+    auto r = run(std::string("--stats ") + level + " " + circle3);
+    CHECK(r.code == 0);
+    CHECK(r.out.find(std::string("\nnote: ") + level + " kept the script's statement form: the expanded form has ") !=
+          std::string::npos);
+  }
+  auto r = run("--stats " + script("transform_point.clu"));
+  CHECK(r.out.find("note:") == std::string::npos);
+}

@@ -474,3 +474,46 @@ TEST_CASE("outputs record whether their blades come from a pragma", "[expand]") 
   CHECK(k.outputs[1].name == "Q");
   CHECK_FALSE(k.outputs[1].from_pragma);
 }
+
+TEST_CASE("typo warnings: a free name one edit from a known name", "[expand]") {
+  auto warnings = [](const std::string& text) {
+    std::vector<std::string> out;
+    for (const auto& w : expand_text(text).warnings)
+      out.push_back(std::to_string(w.loc.line) + ":" + std::to_string(w.loc.col) + " " + w.message);
+    return out;
+  };
+  // Basis vectors, assigned names (also those assigned later), macros and built-ins are all candidates.
+  CHECK(warnings("?p = Einf + x*e1;") ==
+        std::vector<std::string>{"1:6 'Einf' is used before it is assigned and becomes an input; did you mean 'einf'?"});
+  CHECK(warnings("a = motro*e1;\nmotor = 1;\n?b = a;") ==
+        std::vector<std::string>{
+            "1:5 'motro' is used before it is assigned and becomes an input; did you mean 'motor'?"});
+  CHECK(warnings("Square = { _P(1)*_P(1) };\n?b = Squre + Square(x);") ==
+        std::vector<std::string>{
+            "2:6 'Squre' is used before it is assigned and becomes an input; did you mean 'Square'?"});
+  CHECK(warnings("?b = sqr*e1;") ==
+        std::vector<std::string>{"1:6 'sqr' is used before it is assigned and becomes an input; did you mean 'sqrt'?"});
+  // Short names (x1 against e1, p2 against p1) and ordinary inputs are no typos; one warning per name.
+  CHECK(warnings("p1 = VecN3(x1,y1,z1);\n?q = p1 + p2 + e0*x1 + radius + radius;").empty());
+  CHECK(warnings("?q = eiof + eiof;").size() == 1);
+  // An unknown function suggests the nearest built-in or macro.
+  CHECK(diagnostic("?v = VecN4(1,2,3);").find("unknown function 'VecN4'; did you mean 'VecN3'?") != std::string::npos);
+  CHECK(diagnostic("?v = frobnicate(1);").find("unknown function 'frobnicate'\n") != std::string::npos);
+}
+
+TEST_CASE("zero tests through the value chain: exact probes, no inlining", "[expand]") {
+  // b - a*a - 2a - 1 vanishes only once a and b are inlined: the blade is dropped.
+  Kernel k = expand_text("a = x + 1;\nb = a*a;\n?c = (b - x*x - 2*x - 1)*e1 + e2;");
+  REQUIRE(k.values.back().blades.size() == 1);
+  CHECK(k.values.back().blades[0] == 2);
+  // abs is no rational function: abs(y) - y vanishes for y > 0 only, and must not be taken for zero.
+  k = expand_text("a = abs(y);\n?c = (a - y)*e1;");
+  CHECK(k.values.back().blades.size() == 1);
+  // A chain of 60 squarings: degree 2^60, no expansion ever made, values kept modulo a prime.
+  std::string chain = "v0 = x + 1;\n";
+  for (int i = 1; i <= 60; ++i) chain += "v" + std::to_string(i) + " = v" + std::to_string(i - 1) + "*v" + std::to_string(i - 1) + ";\n";
+  chain += "?r = (v60 - v59*v59)*e1 + v60*e2;";
+  k = expand_text(chain);
+  REQUIRE(k.values.back().blades.size() == 1);
+  CHECK(k.values.back().blades[0] == 2);
+}
