@@ -606,7 +606,7 @@ class Cse {
           best_count = n, best = &pk;
       }
       if (!best) break;
-      const auto [ia, ib] = *best;
+      const auto ia = best->first, ib = best->second;  // not a structured binding: clang 14 cannot capture one
       const ex a = atom_ex[ia], b = atom_ex[ib];
       Temp t = make_temp(a * b);
       pair_temps.push_back(t);
