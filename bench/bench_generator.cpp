@@ -131,8 +131,20 @@ void register_generator_benchmarks() {
     for (const fs::directory_entry& e : fs::directory_iterator(scripts_dir(), ec))
       if (e.path().extension() == ".clu") scripts.push_back(e.path());
   std::sort(scripts.begin(), scripts.end());  // deterministic order
+#ifdef CGA_BENCH_WORST_SCRIPTS
+  // The generator's worst known inputs: a fuzzer find that once took 12 s, and circle3's 460000-node
+  // expansion. Both must stay under a second at every level (the work budget, docs/generator.md).
+  {
+    std::string list = CGA_BENCH_WORST_SCRIPTS;
+    for (std::size_t start = 0, end; start <= list.size(); start = end + 1) {
+      end = std::min(list.find(';', start), list.size());
+      if (end > start && fs::exists(list.substr(start, end - start))) scripts.push_back(list.substr(start, end - start));
+    }
+  }
+#endif
   for (const fs::path& script : scripts) {
-    const std::string name = "generator/" + script.stem().string();
+    const std::string name = "generator/" + script.stem().string() +
+                             (script.parent_path() == fs::path(scripts_dir()) ? "" : " (worst case)");
     // A run takes tens to hundreds of ms: a few iterations are enough and keep the whole bench short.
     benchmark::RegisterBenchmark(name.c_str(), bm_generate, script)
         ->Unit(benchmark::kMillisecond)
