@@ -131,15 +131,16 @@ void register_generator_benchmarks() {
     for (const fs::directory_entry& e : fs::directory_iterator(scripts_dir(), ec))
       if (e.path().extension() == ".clu") scripts.push_back(e.path());
   std::sort(scripts.begin(), scripts.end());  // deterministic order
-#ifdef CGA_BENCH_WORST_SCRIPTS
-  // The generator's worst known inputs: a fuzzer find that once took 12 s, and circle3's 460000-node
-  // expansion. Both must stay under a second at every level (the work budget, docs/generator.md).
+#if defined(CGA_BENCH_FUZZ_REGRESSIONS_DIR) && defined(CGA_BENCH_CIRCLE3)
+  // The generator's worst known inputs: the fuzzer's finds (one took 12 s before the work budget) and
+  // circle3's 460000-node expansion. All must stay under a second at every level (docs/generator.md).
   {
-    std::string list = CGA_BENCH_WORST_SCRIPTS;
-    for (std::size_t start = 0, end; start <= list.size(); start = end + 1) {
-      end = std::min(list.find(';', start), list.size());
-      if (end > start && fs::exists(list.substr(start, end - start))) scripts.push_back(list.substr(start, end - start));
-    }
+    std::vector<fs::path> worst;
+    for (const fs::directory_entry& e : fs::directory_iterator(CGA_BENCH_FUZZ_REGRESSIONS_DIR, ec))
+      if (e.path().extension() == ".clu") worst.push_back(e.path());
+    std::sort(worst.begin(), worst.end());
+    worst.push_back(CGA_BENCH_CIRCLE3);
+    scripts.insert(scripts.end(), worst.begin(), worst.end());
   }
 #endif
   for (const fs::path& script : scripts) {

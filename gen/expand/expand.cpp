@@ -301,7 +301,7 @@ class Expander {
     for (const auto& [b, c] : v.terms()) {
       std::optional<ex> at_sample = sample(c);
       if (!at_sample) continue;  // identically zero once earlier values are inlined
-      GiNaC::symbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
+      GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
       samples_[sym] = *at_sample;
       probes_.define(sym, c);
       kv.blades.push_back(b);
@@ -339,6 +339,7 @@ class Expander {
       auto p = output_pragmas_.find(m.name);
       out.from_pragma = p != output_pragmas_.end();
       out.blades = out.from_pragma ? p->second.blades : kernel_.values[it->second].blades;
+      if (out.blades.empty()) out.blades = {0};  // an output that is identically 0: one scalar 0, never a[0]
       kernel_.outputs.push_back(std::move(out));
     }
   }
@@ -383,7 +384,7 @@ class Expander {
       in.blades = blades;
       Multivector ref;
       for (auto b : blades) {
-        GiNaC::symbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
+        GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
         samples_[sym] = next_sample();
         probes_.add_input(sym);
         in.symbols.push_back(sym);
@@ -503,7 +504,7 @@ class Expander {
     KernelInput in;
     in.name = n;
     in.blades = {0};
-    GiNaC::symbol sym(unique_symbol_name(n));
+    GiNaC::realsymbol sym(unique_symbol_name(n));  // real: abs(a)^2 is a^2, not a*conjugate(a)
     samples_[sym] = next_sample();
     probes_.add_input(sym);
     in.symbols = {sym};
@@ -680,6 +681,19 @@ class Expander {
     b = drop_vanishing(b, [](algebra::BladeIndex i) { return algebra::blade_grade(i) != 2; });
     if (!b.is_homogeneous(2))
       throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got " + describe(b));
+    if (b.terms().size() == 1) {
+      // c * blade: B*B = c^2 * blade^2, and blade^2 is a number (+1, -1 or 0 for a blade of orthogonal
+      // vectors), so the sign needs nothing of c; cos, sinh(c)/c, ... are even in c, so c serves as theta.
+      const auto& [k, c] = *b.terms().begin();
+      const Multivector unit = Multivector::blade(k) * Multivector::blade(k);
+      if (unit.is_scalar() && GiNaC::is_a<GiNaC::numeric>(unit.scalar())) {
+        const GiNaC::numeric u = GiNaC::ex_to<GiNaC::numeric>(unit.scalar());
+        const Multivector unit_blade = Multivector::blade(k);
+        if (u.is_zero()) return Multivector(ex(1)) + b;
+        if (u.is_negative()) return Multivector(GiNaC::cos(c)) + GiNaC::sin(c) * unit_blade;
+        return Multivector(GiNaC::cosh(c)) + GiNaC::sinh(c) * unit_blade;
+      }
+    }
     Multivector sq = scalar_part_if_scalar(b * b);
     if (!sq.is_scalar())
       throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
@@ -694,14 +708,9 @@ class Expander {
       ex theta = root_of_square(s);
       return Multivector(GiNaC::cosh(theta)) + (GiNaC::sinh(theta) / theta) * b;
     }
-    throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument (B*B = " +
-                               to_text(s) + ")");
-  }
-
-  static std::string to_text(const ex& s) {
-    std::ostringstream os;
-    os << s;
-    return os.str();
+    // (The square is not printed: GiNaC's term order differs between processes, and messages must not.)
+    throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument B: B*B must be "
+                           "visibly <= 0 (a rotation) or >= 0 (a boost)");
   }
 
   Multivector call_macro(const Stmt& def, std::vector<Multivector> args, const Expr& e) {

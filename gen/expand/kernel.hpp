@@ -26,7 +26,7 @@ struct KernelInput {
   // symbol per blade, named NAME_<blade_ident>.
   bool is_multivector = false;
   std::vector<algebra::BladeIndex> blades;
-  std::vector<GiNaC::symbol> symbols;
+  std::vector<GiNaC::realsymbol> symbols;  // real: abs(a)^2 is a^2; GiNaC keeps the domain in the type
 };
 
 // One assignment `name = expr;` of the script. A name assigned twice gives two values.
@@ -35,7 +35,7 @@ struct KernelValue {
   front::SourceLoc loc;
   std::vector<algebra::BladeIndex> blades;  // Gaalop order; blades whose coefficient is not identically 0
   std::vector<GiNaC::ex> coeffs;            // one per blade, over inputs' and earlier values' symbols
-  std::vector<GiNaC::symbol> symbols;       // one per blade: how later values refer to this coefficient
+  std::vector<GiNaC::realsymbol> symbols;   // one per blade: how later values refer to this coefficient
 };
 
 struct KernelOutput {

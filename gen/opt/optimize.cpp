@@ -121,7 +121,10 @@ Rat combine_fractions(const Rat& r) {
   // so only a common factor of the numerator and D can make the form shorter: one gcd instead of
   // numer_denom's gcd per term (seconds on circle3).
   if (auto split = split_common_denominator(r.num)) {
-    if (is_a<numeric>(gcd(split->first, split->second))) return r;
+    // gcd takes polynomials over the rationals: function calls and roots become temporary symbols first.
+    exmap repl;
+    const ex n = split->first.to_polynomial(repl), d = split->second.to_polynomial(repl);
+    if (is_a<numeric>(gcd(n, d))) return r;
   }
   ex nd = r.num.numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
@@ -506,7 +509,7 @@ class Cse {
   }
 
   Temp make_temp(const ex& value) {
-    symbol s("t" + std::to_string(counter_++));
+    realsymbol s("t" + std::to_string(counter_++));
     std::string name = namer_.fresh(s.get_name());
     names_[s] = name;
     return Temp{name, s, value};
@@ -1077,7 +1080,28 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
 
 }  // namespace
 
+namespace {
+Program optimize_level(const Kernel& kernel, Level level);
+}  // namespace
+
 Program optimize(const Kernel& kernel, Level level) {
+  // A fault of GiNaC's inside the optimizer is a bug of cgagen's, but the user still gets a located error
+  // (at the first output), never a library's message without a location.
+  try {
+    return optimize_level(kernel, level);
+  } catch (const front::CompileError&) {
+    throw;
+  } catch (const std::exception& e) {
+    const front::SourceLoc at = kernel.outputs.empty() ? front::SourceLoc{1, 1} : kernel.outputs.front().loc;
+    throw front::CompileError(at, std::string("cgagen could not optimize this kernel at -O") +
+                                      std::to_string(static_cast<int>(level)) + " (" + e.what() +
+                                      "); -O0 still works; please report the script");
+  }
+}
+
+namespace {
+
+Program optimize_level(const Kernel& kernel, Level level) {
   if (level == Level::O0) return optimize_o0(kernel);
   PhaseTimer all("optimize");
   Substituted s = [&] { PhaseTimer t("substitute"); return substitute(kernel); }();
@@ -1085,6 +1109,8 @@ Program optimize(const Kernel& kernel, Level level) {
   if (level == Level::O1) return optimize_o1(kernel, s, plans);
   return optimize_o2(kernel, s, plans);
 }
+
+}  // namespace
 
 ProgramStats program_stats(const Program& p) {
   SymbolNames names = symbol_names(p);

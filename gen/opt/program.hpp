@@ -23,7 +23,7 @@ Level parse_level(const std::string& text);
 
 struct Temp {
   std::string name;   // a C/GLSL identifier, unique in the program, never an input's name
-  GiNaC::symbol sym;  // how later expressions refer to it
+  GiNaC::realsymbol sym;  // how later expressions refer to it (real, as every kernel symbol: expand/kernel.hpp)
   GiNaC::ex value;
 };
 

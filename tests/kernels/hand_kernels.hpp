@@ -27,12 +27,12 @@ inline std::vector<int> motor_blades() {
 }
 
 inline KernelInput scalar_input(const std::string& name) {
-  return KernelInput{name, false, {0}, {GiNaC::symbol(name)}};
+  return KernelInput{name, false, {0}, {GiNaC::realsymbol(name)}};
 }
 
 inline KernelInput mv_input(const std::string& name, const std::vector<int>& blades) {
   KernelInput in{name, true, blades, {}};
-  for (int b : blades) in.symbols.push_back(GiNaC::symbol(name + "_" + cgagen::algebra::blade_ident(b)));
+  for (int b : blades) in.symbols.push_back(GiNaC::realsymbol(name + "_" + cgagen::algebra::blade_ident(b)));
   return in;
 }
 
@@ -50,7 +50,7 @@ inline Multivector add_value(Kernel& k, const std::string& name, const Multivect
   for (const auto& [b, c] : value.terms()) {
     v.blades.push_back(b);
     v.coeffs.push_back(c);
-    v.symbols.push_back(GiNaC::symbol("val" + std::to_string(k.values.size()) + "_" + cgagen::algebra::blade_ident(b)));
+    v.symbols.push_back(GiNaC::realsymbol("val" + std::to_string(k.values.size()) + "_" + cgagen::algebra::blade_ident(b)));
     ref = ref + Multivector::blade(b, v.symbols.back());
   }
   k.values.push_back(v);
