@@ -54,7 +54,6 @@ void pose_palette(const Character& ch, const Clip& clip, float t, Interpolation 
 }  // namespace
 
 TEST_CASE("motor palette equals matrix palette on every key frame") {
-  REQUIRE(kHaveMotorKernels);
   for (const char* file : {"X/BCN_Epileptic.X", "X/Testwuson.X"}) {
     const Character ch = load_character(model(file));
     const float size = character_size(ch);

@@ -1,6 +1,6 @@
 // Skinning the real characters (Debian assimp-testmodels: X/BCN_Epileptic.X, X/Testwuson.X) at every key
 // frame of their first clip, with palettes from the runtime's own loader and pose jobs: cga-points must equal
-// lbs and cga-motors must equal dqs within 1e-5 of the character size, on the SIMD and the portable loops.
+// lbs and cga-motors must equal dqs within 1e-6 of the character size, on the SIMD and the portable loops.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -93,7 +93,6 @@ float max_normal_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
 }  // namespace
 
 TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == dqs", "[skinning][characters]") {
-  REQUIRE(cga_skinning_kernels_available());
   for (const char* file : {"X/BCN_Epileptic.X", "X/Testwuson.X"}) {
     INFO(file);
     const Character ch = load_character(model(file));
@@ -106,6 +105,7 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
     std::vector<InverseBind> binds;
     for (const SkinnedMesh& mesh : ch.meshes) binds.push_back(make_inverse_bind(mesh));
     std::size_t skinned = 0;
+    float worst_points = 0.0f, worst_motors = 0.0f;  // max distances cga-points vs lbs, cga-motors vs dqs
     float linear_vs_motor = 0.0f;  // how far lbs and dqs get apart somewhere: the comparisons must be able to fail
     for (const float time : times) {
       INFO("time " << time);
@@ -120,8 +120,8 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
           const SkinnedOutput points = skin(SkinningMethod::cga_points, mesh, pal, simd);
           const SkinnedOutput dqs = skin(SkinningMethod::dqs, mesh, pal, simd);
           const SkinnedOutput motors = skin(SkinningMethod::cga_motors, mesh, pal, simd);
-          REQUIRE(max_distance(points, lbs) <= 1e-5f * size);
-          REQUIRE(max_distance(motors, dqs) <= 1e-5f * size);
+          worst_points = std::max(worst_points, max_distance(points, lbs));
+          worst_motors = std::max(worst_motors, max_distance(motors, dqs));
           if (mesh.has_normals()) {
             REQUIRE(max_normal_distance(points, lbs) <= 1e-4f);
             REQUIRE(max_normal_distance(motors, dqs) <= 1e-4f);
@@ -132,6 +132,12 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
       }
     }
     CHECK(skinned > 0);
+    // README's figure: within 1e-6 of the character's size (measured: BCN_Epileptic 6.4e-7 and 4.4e-7,
+    // Testwuson 3.9e-7 and 2.5e-7).
+    INFO("cga-points vs lbs " << worst_points / size << ", cga-motors vs dqs " << worst_motors / size
+                              << " of the size");
+    CHECK(worst_points <= 1e-6f * size);
+    CHECK(worst_motors <= 1e-6f * size);
     // Real animation has blended, rotated joints somewhere: linear and motor blending differ visibly.
     CHECK(linear_vs_motor > 1e-4f * size);
   }
