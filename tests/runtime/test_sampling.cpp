@@ -9,6 +9,7 @@
 
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
+#include "cga/testing/nan_max.hpp"
 
 using namespace cga;
 
@@ -289,7 +290,7 @@ Transform random_transform(std::mt19937& rng, bool scaled) {
 
 float max_diff(const Motor& a, const Motor& b) {
   float d = 0.0f;
-  for (int c = 0; c < 12; ++c) d = std::max(d, std::abs(a.c[c] - b.c[c]));
+  for (int c = 0; c < 12; ++c) d = testing::nan_max(d, std::abs(a.c[c] - b.c[c]));
   return d;
 }
 

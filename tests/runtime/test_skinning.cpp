@@ -14,6 +14,7 @@
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
+#include "cga/testing/nan_max.hpp"
 
 using namespace cga;
 
@@ -92,14 +93,14 @@ glm::vec3 rest_normal(const SkinnedMesh& m, std::size_t i) { return {m.nx[i], m.
 
 float max_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
   float worst = 0.0f;
-  for (std::size_t i = 0; i < a.px.size(); ++i) worst = std::max(worst, glm::distance(at(a, i), at(b, i)));
+  for (std::size_t i = 0; i < a.px.size(); ++i) worst = testing::nan_max(worst, glm::distance(at(a, i), at(b, i)));
   return worst;
 }
 
 float max_normal_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
   float worst = 0.0f;
   for (std::size_t i = 0; i < a.nx.size(); ++i)
-    worst = std::max(worst, glm::distance(normal_at(a, i), normal_at(b, i)));
+    worst = testing::nan_max(worst, glm::distance(normal_at(a, i), normal_at(b, i)));
   return worst;
 }
 
@@ -327,8 +328,8 @@ std::pair<float, float> middle_radius(const TwistCylinder& cyl, const SkinnedOut
   float lo = std::numeric_limits<float>::max(), hi = 0.0f;
   for (std::uint32_t i : cyl.middle_ring) {
     const float r = std::hypot(out.px[i], out.py[i]);
-    lo = std::min(lo, r);
-    hi = std::max(hi, r);
+    lo = testing::nan_min(lo, r);
+    hi = testing::nan_max(hi, r);
   }
   return {lo, hi};
 }

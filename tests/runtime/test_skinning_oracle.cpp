@@ -13,6 +13,7 @@
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
+#include "cga/testing/nan_max.hpp"
 
 using namespace cga;
 using MV = oracle::MV<double>;
@@ -73,7 +74,7 @@ Motor motor_from_oracle(const Transform& x) {
     if (slot >= 0)
       m.c[slot] = static_cast<float>(c[k]);
     else
-      outside = std::max(outside, std::abs(c[k]));
+      outside = testing::nan_max(outside, std::abs(c[k]));
   }
   REQUIRE(outside < 1e-12);
   return m;
