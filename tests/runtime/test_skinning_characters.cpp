@@ -105,7 +105,7 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
     REQUIRE(times.size() >= 2);
     std::vector<InverseBind> binds;
     for (const SkinnedMesh& mesh : ch.meshes) binds.push_back(make_inverse_bind(mesh));
-    std::size_t skinned = 0;
+    std::size_t skinned = 0, normal_checks = 0;
     float worst_points = 0.0f, worst_motors = 0.0f;  // max distances cga-points vs lbs, cga-motors vs dqs
     float linear_vs_motor = 0.0f;  // how far lbs and dqs get apart somewhere: the comparisons must be able to fail
     for (const float time : times) {
@@ -124,6 +124,7 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
           worst_points = testing::nan_max(worst_points, max_distance(points, lbs));
           worst_motors = testing::nan_max(worst_motors, max_distance(motors, dqs));
           if (mesh.has_normals()) {
+            ++normal_checks;
             REQUIRE(max_normal_distance(points, lbs) <= 1e-4f);
             REQUIRE(max_normal_distance(motors, dqs) <= 1e-4f);
           }
@@ -133,6 +134,7 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
       }
     }
     CHECK(skinned > 0);
+    CHECK(normal_checks > 0);  // the characters have normals: the normal comparisons ran
     // README's figure: within 1e-6 of the character's size (measured: BCN_Epileptic 6.4e-7 and 4.4e-7,
     // Testwuson 3.9e-7 and 2.5e-7).
     INFO("cga-points vs lbs " << worst_points / size << ", cga-motors vs dqs " << worst_motors / size
