@@ -74,7 +74,6 @@ struct Io {
 
 inline __attribute__((always_inline)) void transform_point_loop(const Motor& motor, const Io& io) {
   CGA_BENCH_UNPACK(io);
-#if CGA_RUNTIME_HAVE_KERNELS
   float m[12];  // a local copy: the compiler may hoist the motor-only products, as it would for any caller
   for (int e = 0; e < 12; ++e) m[e] = motor.c[e];
 #pragma GCC ivdep
@@ -86,9 +85,6 @@ inline __attribute__((always_inline)) void transform_point_loop(const Motor& mot
     oy[i] = p[1] * inv;
     oz[i] = p[2] * inv;
   }
-#else
-  (void)motor, (void)px, (void)py, (void)pz, (void)ox, (void)oy, (void)oz, (void)n;
-#endif
 }
 
 // The row-major 3x4 map p' = R p + t applied to every point (the per-point work of the hoisted variant
@@ -133,10 +129,6 @@ CGA_BENCH_CLONES __attribute__((flatten)) void apply_glm(const glm::mat3x4& matr
 enum class Variant { transform_point, motor_to_matrix, glm };
 
 void bm_apply(benchmark::State& state, Variant variant) {
-  if (variant != Variant::glm && !kHaveMotorKernels) {
-    state.SkipWithError("this build has no generated motor kernels");
-    return;
-  }
   static const Points in(kPoints, 99);
   Points out(kPoints);
   const Io io{in.x.data(), in.y.data(), in.z.data(), out.x.data(), out.y.data(), out.z.data(), kPoints};

@@ -17,7 +17,7 @@
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
 #include "summary.hpp"
 
 namespace cga::bench {
@@ -46,7 +46,7 @@ void add_palettes(SkinScene& scene, std::size_t palette_size, std::uint32_t seed
   for (const Transform& x : pose) {
     m.push_back(to_skinning_matrix(x));
     d.push_back(to_dual_quat(x));
-    if (kHaveMotorKernels) mo.push_back(motor_from_transform(x));
+    mo.push_back(motor_from_transform(x));
   }
   scene.matrices.push_back(std::move(m));
   scene.dual_quats.push_back(std::move(d));
@@ -115,7 +115,7 @@ const CharacterScene& character_scene_data() {
     }
     if (d->scene.meshes.empty()) throw std::runtime_error(std::string(kCharacter) + " has no skinned mesh");
     const float time = ch.clips.empty() ? 0.0f : ch.clips.front().duration / 3.0f;
-    if (kHaveMotorKernels && !ch.clips.empty() && add_pose_palettes(ch, time, d->scene)) {
+    if (!ch.clips.empty() && add_pose_palettes(ch, time, d->scene)) {
       d->palette = fmt::format("clip '{}' at t = {:.2f} s", ch.clips.front().name, time);
     } else {
       d->scene.matrices.clear();
@@ -161,11 +161,6 @@ void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), Skinni
     scene = &scene_fn();
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
-    return;
-  }
-  if ((method == SkinningMethod::cga_points || method == SkinningMethod::cga_motors) &&
-      !cga_skinning_kernels_available()) {
-    state.SkipWithError("this build has no generated motor kernels");
     return;
   }
   if (normals && !scene->meshes.front().has_normals()) {

@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,7 +24,8 @@
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
+#include "cga/testing/twist_strip.hpp"
 #include "options.hpp"
 #include "raster.hpp"
 
@@ -258,7 +258,7 @@ struct PosedCharacter {
 // cga-points / cga-motors <- generated motor kernels), at key frames of the first clip, where every mode
 // reproduces the keys: what differs is only the representation and the skinning method.
 void key_frame_deviations(const Character& ch, const Fade& fade, const std::vector<SkinningMethod>& methods,
-                          const std::vector<InverseBind>& inverse_binds, float size, bool kernels) {
+                          const std::vector<InverseBind>& inverse_binds, float size) {
   const Clip& clip = *fade.a;
   std::vector<float> times;
   for (const JointKeys& k : clip.keys)
@@ -270,19 +270,17 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
   }
   PosePipeline mat(Interpolation::glm_matrix, ch.skeleton, ch.meshes, inverse_binds);
   PosePipeline dq(Interpolation::glm_dualquat, ch.skeleton, ch.meshes, inverse_binds);
-  std::optional<PosePipeline> mot;
-  if (kernels) mot.emplace(Interpolation::nlerp, ch.skeleton, ch.meshes, inverse_binds);
+  PosePipeline mot(Interpolation::nlerp, ch.skeleton, ch.meshes, inverse_binds);
   auto has = [&](SkinningMethod m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
   float points_vs_lbs = 0.0f, motors_vs_dqs = 0.0f;
   for (float t : times) {
     Fade at = fade;
     at.b = at.a, at.a0 = at.a1 = at.b0 = at.b1 = t;
-    mat.run(at, 0.0f), dq.run(at, 0.0f);
-    if (mot) mot->run(at, 0.0f);
+    mat.run(at, 0.0f), dq.run(at, 0.0f), mot.run(at, 0.0f);
     for (std::size_t m = 0; m < ch.meshes.size(); ++m) {
       MethodPalettes pal;
       pal.matrices = mat.matrix_palettes[m], pal.dual_quats = dq.dq_palettes[m];
-      if (mot) pal.motors = mot->motor_palettes[m];
+      pal.motors = mot.motor_palettes[m];
       std::map<SkinningMethod, SkinnedOutput> out;
       for (SkinningMethod method : methods)
         run_job(job_for(method, ch.meshes[m], pal, out[method]), std::string(to_string(method)));
@@ -308,16 +306,8 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
 
 int run(const demo::Options& opt) {
   Progress progress;
-  const bool kernels = kHaveMotorKernels && cga_skinning_kernels_available();
-  std::vector<Interpolation> modes;
-  std::vector<SkinningMethod> methods;
-  for (Interpolation m : opt.modes)
-    if (kernels || !uses_motors(m)) modes.push_back(m);
-  for (SkinningMethod m : opt.methods)
-    if (kernels || m == SkinningMethod::lbs || m == SkinningMethod::dqs) methods.push_back(m);
-  if (!kernels)
-    fmt::print("note: this build has no generated CGA kernels; motor modes and cga methods are left out\n");
-  if (modes.empty()) throw std::runtime_error("none of the chosen interpolation modes can run in this build");
+  const std::vector<Interpolation>& modes = opt.modes;
+  const std::vector<SkinningMethod>& methods = opt.methods;
 
   progress.stage("loading " + opt.model);
   const Character ch = load_character(opt.model);
@@ -375,20 +365,13 @@ int run(const demo::Options& opt) {
   if (ch.meshes.empty()) {
     fmt::print("skinning: the file has no skinned mesh, nothing to skin\n\n");
   } else {
-    const Interpolation pose_mode = kernels ? Interpolation::screw : Interpolation::glm_matrix;
+    const Interpolation pose_mode = Interpolation::screw;
     progress.stage(fmt::format("skinning {} vertices with {} methods", vertices, methods.size()));
     PosePipeline p(pose_mode, sk, ch.meshes, inverse_binds);
     int scaled = 0;
-    if (kernels) {
-      p.run(fade, 0.5f);
-      for (const MotorPalette& mp : p.motor_palettes) palettes.push_back(palettes_from_motors(mp));
-      for (const MethodPalettes& mp : palettes) scaled += mp.scaled;
-    } else {
-      PosePipeline dq(Interpolation::glm_dualquat, sk, ch.meshes, inverse_binds);
-      p.run(fade, 0.5f), dq.run(fade, 0.5f);
-      for (std::size_t m = 0; m < ch.meshes.size(); ++m)
-        palettes.push_back({{}, p.matrix_palettes[m], dq.dq_palettes[m], 0});
-    }
+    p.run(fade, 0.5f);
+    for (const MotorPalette& mp : p.motor_palettes) palettes.push_back(palettes_from_motors(mp));
+    for (const MethodPalettes& mp : palettes) scaled += mp.scaled;
     const bool normals = std::any_of(ch.meshes.begin(), ch.meshes.end(), [](const SkinnedMesh& m) { return m.has_normals(); });
     fmt::print("skinning: {} vertices{}, pose = middle of the fade ({}), one core\n", vertices,
                normals ? " with normals" : "", to_string(pose_mode));
@@ -404,7 +387,7 @@ int run(const demo::Options& opt) {
       fmt::print("  {:<11} {:>12.1f}\n", name, 1e-6 * double(vertices) / seconds);
     }
     fmt::print("\n");
-    key_frame_deviations(ch, fade, methods, inverse_binds, size, kernels);
+    key_frame_deviations(ch, fade, methods, inverse_binds, size);
     // On the blended pose itself: how much the method changes the skin (not an error; lbs loses volume).
     if (posed.count(SkinningMethod::cga_motors) && posed.count(SkinningMethod::lbs)) {
       float worst = 0.0f;
@@ -425,7 +408,7 @@ int run(const demo::Options& opt) {
   for (const Transform& x : twist) {
     twist_pal.matrices.push_back(to_skinning_matrix(x));
     twist_pal.dual_quats.push_back(to_dual_quat(x));
-    if (kernels) twist_pal.motors.push_back(motor_from_transform(x));
+    twist_pal.motors.push_back(motor_from_transform(x));
   }
   std::map<SkinningMethod, SkinnedOutput> twisted;
   fmt::print("twist strip: joint 1 of a two-bone cylinder turned 180 degrees (candy-wrapper test)\n");

@@ -89,15 +89,13 @@ void build_joint_keys(Clip& clip) {
     k.dual_quats.resize(times.size());
     for (std::size_t i = 0; i < times.size(); ++i)
       k.dual_quats[i] = glm::dualquat(k.transforms[i].rotation, k.transforms[i].translation);
-    if constexpr (kHaveMotorKernels) {
-      k.motors.resize(times.size());
-      k.rigid.resize(times.size());
-      for (std::size_t i = 0; i < times.size(); ++i) {
-        k.motors[i] = motor_from_transform(k.transforms[i]);
-        Transform rigid = k.transforms[i];
-        rigid.scale = 1.0f;
-        k.rigid[i] = rigid_blades(motor_from_transform(rigid));
-      }
+    k.motors.resize(times.size());
+    k.rigid.resize(times.size());
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      k.motors[i] = motor_from_transform(k.transforms[i]);
+      Transform rigid = k.transforms[i];
+      rigid.scale = 1.0f;
+      k.rigid[i] = rigid_blades(motor_from_transform(rigid));
     }
   }
   build_clip_intervals(clip);
@@ -126,7 +124,7 @@ void build_clip_intervals(Clip& clip) {
   iv.inv_span.assign(n_iv * w, 0.0f);
   iv.scale0.assign(n_iv * w, 1.0f);
   iv.scale1.assign(n_iv * w, 1.0f);
-  const bool motors = kHaveMotorKernels && std::all_of(clip.keys.begin(), clip.keys.end(), [](const JointKeys& k) {
+  const bool motors = std::all_of(clip.keys.begin(), clip.keys.end(), [](const JointKeys& k) {
     return k.motors.size() == k.size() && k.rigid.size() == k.size();
   });
   if (motors) {

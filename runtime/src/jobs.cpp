@@ -156,7 +156,6 @@ CGA_JOBS_CLONES void sample_paper(std::size_t n, std::size_t w, float t, const f
                                   const float* __restrict inv, const float* __restrict r0,
                                   const float* __restrict r1, const float* __restrict s0,
                                   const float* __restrict s1, Motor* __restrict out) {
-#if CGA_RUNTIME_HAVE_KERNELS
   for (std::size_t j0 = 0; j0 < n; j0 += kB) {
     Block res;
     for (std::size_t l = 0; l < kB; ++l) {
@@ -169,9 +168,6 @@ CGA_JOBS_CLONES void sample_paper(std::size_t n, std::size_t w, float t, const f
     }
     store_block(res, std::min(kB, n - j0), out + j0);
   }
-#else
-  (void)n, (void)w, (void)t, (void)t0, (void)inv, (void)r0, (void)r1, (void)s0, (void)s1, (void)out;
-#endif
 }
 
 // nlerp of every joint: key i plus alpha times the (sign-matched) difference, normalized; 8 joints per step
@@ -303,7 +299,7 @@ CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const M
                              std::size_t joints, const Motor* __restrict ib, Motor* __restrict out) {
   if (all_rigid(model, joints) && all_rigid(ib, n)) {
     std::size_t k = 0;
-#if CGA_RUNTIME_HAVE_KERNELS && defined(__GNUC__)
+#if defined(__GNUC__)
     // Blocks of 8 entries as structure of arrays: the generated 8-blade product vectorized across entries.
     constexpr int kRigidBlade[kR] = {0, 1, 2, 3, 4, 5, 6, 8};
     for (; k + kB <= n; k += kB) {
@@ -637,15 +633,13 @@ InverseBind make_inverse_bind(const SkinnedMesh& mesh) {
     ib.dual_quats[k] = glm::dualquat(mesh.inverse_bind[k].rotation, mesh.inverse_bind[k].translation);
     ib.scales[k] = mesh.inverse_bind[k].scale;
   }
-  if constexpr (kHaveMotorKernels) {
-    ib.motors.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      // A scale within float rounding of 1 (what decomposing a rigid offset matrix leaves) is taken as 1,
-      // so that rigid characters get exactly rigid inverse binds and the palette its 8-blade product.
-      Transform x = mesh.inverse_bind[k];
-      if (std::abs(x.scale - 1.0f) <= kRigidScaleTolerance) x.scale = 1.0f;
-      ib.motors[k] = motor_from_transform(x);
-    }
+  ib.motors.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    // A scale within float rounding of 1 (what decomposing a rigid offset matrix leaves) is taken as 1,
+    // so that rigid characters get exactly rigid inverse binds and the palette its 8-blade product.
+    Transform x = mesh.inverse_bind[k];
+    if (std::abs(x.scale - 1.0f) <= kRigidScaleTolerance) x.scale = 1.0f;
+    ib.motors[k] = motor_from_transform(x);
   }
   return ib;
 }

@@ -57,10 +57,6 @@ SkinningMethod parse_skinning_method(std::string_view text) {
       fmt::format("unknown skinning method '{}' (choose lbs, dqs, cga-points or cga-motors)", text));
 }
 
-// Always true: skinning_palettes.hpp includes the generated kernel unconditionally (kept for callers that
-// still ask).
-bool cga_skinning_kernels_available() { return true; }
-
 void SkinnedOutput::resize_for(const SkinnedMesh& mesh) {
   const std::size_t n = mesh.vertex_count();
   px.assign(n, 0.0f);

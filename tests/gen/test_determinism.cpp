@@ -3,7 +3,9 @@
 // GiNaC's hash values, and with them its term order, move with the address-space layout (ASLR), so a
 // generator that leaks GiNaC's order into its choices prints a different (equivalent) kernel from run to
 // run. Each script is generated in many processes, the targets taking turns, and every target's texts must
-// be equal. A leak typically shows in a third of the runs or more, so 20 runs catch it with near certainty.
+// be equal. A leak typically shows in a third of the runs or more, so 21 runs (7 per target; 9 runs, 3 per
+// target, for the two slow scripts) catch it with near certainty. Without ASLR every process would get the
+// same layout and the test could not fail, so it first checks that ASLR is on for the processes it starts.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -11,6 +13,8 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <fstream>
+#include <sys/personality.h>
 #include <sys/wait.h>
 #include <vector>
 
@@ -44,7 +48,21 @@ int runs_for(const std::filesystem::path& script) {
   return stem == "circle3" || stem == "paper_a1" ? 9 : 21;
 }
 
+// ASLR is on for this process and the ones it starts (they inherit its personality).
+void require_aslr() {
+  std::ifstream in("/proc/sys/kernel/randomize_va_space");
+  int mode = -1;
+  in >> mode;
+  INFO("/proc/sys/kernel/randomize_va_space = " << mode << " (0: ASLR off; the test needs it on)");
+  REQUIRE(mode > 0);
+  const int persona = personality(0xffffffff);
+  INFO("personality " << persona << " (ADDR_NO_RANDOMIZE set, e.g. by setarch -R, turns ASLR off)");
+  REQUIRE(persona != -1);
+  REQUIRE((persona & ADDR_NO_RANDOMIZE) == 0);
+}
+
 void check_scripts(const std::filesystem::path& dir) {
+  require_aslr();
   const auto scripts = scripts_in(dir);
   REQUIRE(scripts.size() >= 5);
   const char* targets[] = {"cpp", "glsl", "cuda"};

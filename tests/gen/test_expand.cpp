@@ -87,15 +87,18 @@ std::map<std::string, Coeffs> evaluate(const Kernel& k, const std::map<std::stri
 
 Coeffs null_coeffs(const OMV& m) { return oracle::to_null_basis(m); }
 
+// Running maximum that keeps a NaN (std::max(d, NaN) is d, and a NaN would pass every bound).
+double nan_max(double a, double b) { return std::isnan(a) || std::isnan(b) ? std::nan("") : std::max(a, b); }
+
 double max_diff(const Coeffs& a, const Coeffs& b) {
   double d = 0;
-  for (int i = 0; i < algebra::kBladeCount; ++i) d = std::max(d, std::abs(a[i] - b[i]));
+  for (int i = 0; i < algebra::kBladeCount; ++i) d = nan_max(d, std::abs(a[i] - b[i]));
   return d;
 }
 
 double max_abs(const Coeffs& a) {
   double d = 0;
-  for (double x : a) d = std::max(d, std::abs(x));
+  for (double x : a) d = nan_max(d, std::abs(x));
   return d;
 }
 

@@ -20,7 +20,7 @@
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
 
 using namespace cga;
 namespace fs = std::filesystem;

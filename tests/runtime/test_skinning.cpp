@@ -13,7 +13,8 @@
 
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
+#include "cga/testing/nan_max.hpp"
 
 using namespace cga;
 
@@ -92,14 +93,14 @@ glm::vec3 rest_normal(const SkinnedMesh& m, std::size_t i) { return {m.nx[i], m.
 
 float max_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
   float worst = 0.0f;
-  for (std::size_t i = 0; i < a.px.size(); ++i) worst = std::max(worst, glm::distance(at(a, i), at(b, i)));
+  for (std::size_t i = 0; i < a.px.size(); ++i) worst = testing::nan_max(worst, glm::distance(at(a, i), at(b, i)));
   return worst;
 }
 
 float max_normal_distance(const SkinnedOutput& a, const SkinnedOutput& b) {
   float worst = 0.0f;
   for (std::size_t i = 0; i < a.nx.size(); ++i)
-    worst = std::max(worst, glm::distance(normal_at(a, i), normal_at(b, i)));
+    worst = testing::nan_max(worst, glm::distance(normal_at(a, i), normal_at(b, i)));
   return worst;
 }
 
@@ -260,6 +261,7 @@ TEST_CASE("dqs equals GLM's dual-quaternion blend and is rigid for single-bone v
   // antipodality fix must make the result independent of these signs.
   for (std::size_t k = 0; k < pal.dual_quats.size(); k += 2) pal.dual_quats[k] = -pal.dual_quats[k];
   const SkinnedOutput out = skin(SkinningMethod::dqs, mesh, pal);
+  std::size_t single_bone = 0;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
     const auto& j = mesh.joints[i];
     const auto& w = mesh.weights[i];
@@ -273,20 +275,15 @@ TEST_CASE("dqs equals GLM's dual-quaternion blend and is rigid for single-bone v
     REQUIRE(glm::distance(at(out, i), expected) < 1e-5f * 4.0f);
     REQUIRE(glm::length(normal_at(out, i)) == Approx(1.0f).margin(1e-5));
     if (w[0] == 1.0f) {
+      ++single_bone;
       REQUIRE(glm::distance(at(out, i), reference_transform(xs[j[0]], rest(mesh, i))) < 1e-5f * 4.0f);
       REQUIRE(glm::distance(normal_at(out, i), xs[j[0]].rotation * rest_normal(mesh, i)) < 1e-5f);
     }
   }
-}
-
-TEST_CASE("the CGA methods need the generated motor kernels", "[skinning][cga]") {
-  INFO("cga-points / cga-motors run on the generated motor_to_matrix kernel (target cga::kernels, from "
-       "runtime/scripts/motor_to_matrix.clu); this build has none");
-  REQUIRE(cga_skinning_kernels_available());
+  CHECK(single_bone > 0);  // the rigidity checks above ran
 }
 
 TEST_CASE("cga-points equals lbs and cga-motors equals dqs on random rigid palettes", "[skinning][cga]") {
-  REQUIRE(cga_skinning_kernels_available());
   const float size = 3.0f;  // positions in [-1, 1]^3 moved by up to 2: the character's extent
   for (std::uint32_t seed = 1; seed <= 5; ++seed) {
     const SkinnedMesh mesh = make_random_skinned_mesh(2000, 32, 100 + seed);
@@ -305,7 +302,6 @@ TEST_CASE("cga-points equals lbs and cga-motors equals dqs on random rigid palet
 }
 
 TEST_CASE("cga-points equals lbs with scaled bones", "[skinning][cga]") {
-  REQUIRE(cga_skinning_kernels_available());
   const SkinnedMesh mesh = make_random_skinned_mesh(2000, 32, 300);
   const Palettes pal = make_palettes(make_random_transforms(32, 301, 2.0f, 0.7f));
   CHECK(max_distance(skin(SkinningMethod::cga_points, mesh, pal), skin(SkinningMethod::lbs, mesh, pal)) <
@@ -313,7 +309,6 @@ TEST_CASE("cga-points equals lbs with scaled bones", "[skinning][cga]") {
 }
 
 TEST_CASE("cga-motors scales single-bone vertices exactly (dilation 1.7 on one bone)", "[skinning][cga]") {
-  REQUIRE(cga_skinning_kernels_available());
   const TwistCylinder cyl = make_twist_cylinder();
   const std::vector<Transform> xs = twist_cylinder_skinning_transforms(cyl.spec, 0.6f, 1.7f);
   const Palettes pal = make_palettes(xs);
@@ -336,8 +331,8 @@ std::pair<float, float> middle_radius(const TwistCylinder& cyl, const SkinnedOut
   float lo = std::numeric_limits<float>::max(), hi = 0.0f;
   for (std::uint32_t i : cyl.middle_ring) {
     const float r = std::hypot(out.px[i], out.py[i]);
-    lo = std::min(lo, r);
-    hi = std::max(hi, r);
+    lo = testing::nan_min(lo, r);
+    hi = testing::nan_max(hi, r);
   }
   return {lo, hi};
 }
@@ -351,20 +346,17 @@ TEST_CASE("twist cylinder: the linear methods collapse at 180 degrees, motor/dua
   const Palettes pal = make_palettes(twist_cylinder_skinning_transforms(cyl.spec, std::numbers::pi_v<float>));
 
   const auto [lbs_lo, lbs_hi] = middle_radius(cyl, skin(SkinningMethod::lbs, cyl.mesh, pal));
-  CHECK(lbs_hi < 1e-3f * cyl.spec.radius);  // half of p plus half of -p: the axis
+  // README's figures (0.000 and 1.000 of the radius, three decimals): within 5e-4 of them.
+  CHECK(lbs_hi < 5e-4f * cyl.spec.radius);  // half of p plus half of -p: the axis
   const auto [dqs_lo, dqs_hi] = middle_radius(cyl, skin(SkinningMethod::dqs, cyl.mesh, pal));
-  CHECK(dqs_lo > 0.99f * cyl.spec.radius);
-  CHECK(dqs_hi < 1.01f * cyl.spec.radius);
+  CHECK(dqs_lo > 0.9995f * cyl.spec.radius);
+  CHECK(dqs_hi < 1.0005f * cyl.spec.radius);
 
-  if (cga_skinning_kernels_available()) {
-    const auto [pts_lo, pts_hi] = middle_radius(cyl, skin(SkinningMethod::cga_points, cyl.mesh, pal));
-    CHECK(pts_hi < 1e-3f * cyl.spec.radius);
-    const auto [mot_lo, mot_hi] = middle_radius(cyl, skin(SkinningMethod::cga_motors, cyl.mesh, pal));
-    CHECK(mot_lo > 0.99f * cyl.spec.radius);
-    CHECK(mot_hi < 1.01f * cyl.spec.radius);
-  } else {
-    FAIL("cga-points / cga-motors need the generated motor_to_matrix kernel");
-  }
+  const auto [pts_lo, pts_hi] = middle_radius(cyl, skin(SkinningMethod::cga_points, cyl.mesh, pal));
+  CHECK(pts_hi < 5e-4f * cyl.spec.radius);
+  const auto [mot_lo, mot_hi] = middle_radius(cyl, skin(SkinningMethod::cga_motors, cyl.mesh, pal));
+  CHECK(mot_lo > 0.9995f * cyl.spec.radius);
+  CHECK(mot_hi < 1.0005f * cyl.spec.radius);
 }
 
 TEST_CASE("the twist cylinder's weights and rings", "[skinning]") {

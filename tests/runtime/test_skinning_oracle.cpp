@@ -12,7 +12,8 @@
 
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
+#include "cga/testing/nan_max.hpp"
 
 using namespace cga;
 using MV = oracle::MV<double>;
@@ -73,7 +74,7 @@ Motor motor_from_oracle(const Transform& x) {
     if (slot >= 0)
       m.c[slot] = static_cast<float>(c[k]);
     else
-      outside = std::max(outside, std::abs(c[k]));
+      outside = testing::nan_max(outside, std::abs(c[k]));
   }
   REQUIRE(outside < 1e-12);
   return m;
@@ -98,7 +99,6 @@ TEST_CASE("oracle motors move points like GLM's TRS matrices and have exactly th
 }
 
 TEST_CASE("every skinning method agrees with the oracle's M X ~M", "[skinning][oracle]") {
-  REQUIRE(cga_skinning_kernels_available());
   const bool rigid = GENERATE(true, false);
   const int bones = 8;
   const std::vector<Transform> xs = make_random_transforms(bones, rigid ? 31 : 32, 2.0f, rigid ? 0.0f : 0.7f);

@@ -12,7 +12,7 @@
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
 
 namespace {
 
@@ -63,7 +63,6 @@ glm::vec3 reference_lbs(const SkinnedMesh& mesh, const std::vector<Transform>& x
 }  // namespace
 
 TEST_CASE("SIMD and portable skinning loops agree at every remainder and block edge", "[skinning][simd]") {
-  REQUIRE(cga_skinning_kernels_available());
   const std::vector<Transform> rigid = make_random_transforms(24, 41, 2.0f);
   const std::vector<Transform> scaled = make_random_transforms(24, 42, 2.0f, 0.5f);
   const Palettes pal_rigid = make_palettes(rigid);
@@ -150,7 +149,6 @@ TEST_CASE("large meshes (prefetching, non-temporal output stores) skin as the po
 }
 
 TEST_CASE("the SIMD loops leave outputs past the vertex count alone", "[skinning][simd]") {
-  REQUIRE(cga_skinning_kernels_available());
   const Palettes pal = make_palettes(make_random_transforms(8, 51, 1.0f));
   const SkinnedMesh mesh = make_random_skinned_mesh(13, 8, 52);
   for (SkinningMethod method : kAllSkinningMethods) {

@@ -17,7 +17,6 @@
 #include "cga/gpu/skinning.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
-#include "cga/runtime/skinning_test_meshes.hpp"
 
 namespace cga::gpu {
 namespace {
@@ -244,31 +243,23 @@ Image render_posed_character(const Context& context, const Character& character,
   return render_meshes(context, draws, Camera{}, width, height);
 }
 
-Image render_twist_strip(const Context& context, float angle, int panel_width, int height) {
-  const TwistCylinder cylinder = make_twist_cylinder();
-  const std::vector<Transform> bones = twist_cylinder_skinning_transforms(cylinder.spec, angle);
+Image render_method_strip(const Context& context, const SkinnedMesh& mesh,
+                          std::span<const Transform> skinning_transforms, const Camera& camera, int panel_width,
+                          int height) {
   MeshPalette palette;
-  for (const Transform& x : bones) {
+  for (const Transform& x : skinning_transforms) {
     palette.matrices.push_back(to_skinning_matrix(x));
     palette.dual_quats.push_back(to_dual_quat(x));
     palette.motors.push_back(motor_from_transform(x));
   }
-  // One camera for all four panels: the rest cylinder's box, seen from the side and a little above, axis up.
-  Camera camera;
-  camera.fit_axes = false;
-  camera.up = {0.0f, 0.0f, 1.0f};
-  camera.direction = glm::normalize(glm::vec3(-1.0f, -0.35f, -0.25f));
-  camera.fit_box = false;
-  camera.box_min = {-cylinder.spec.radius, -cylinder.spec.radius, 0.0f};
-  camera.box_max = {cylinder.spec.radius, cylinder.spec.radius, cylinder.spec.length};
   std::vector<Image> panels;
   for (SkinningMethod method : kAllSkinningMethods) {
     Skinner skinner(context, method);
-    skinner.set_mesh(cylinder.mesh);
+    skinner.set_mesh(mesh);
     std::vector<float> packed;
     append_palette(method, palette.matrices, palette.dual_quats, palette.motors, packed);
-    const SkinnedVertices v = skinner.run(SkinPath::vertex_feedback, packed, bones.size(), 1, true);
-    const DrawMesh draw{v.positions, v.normals, cylinder.mesh.indices, method_colour(method)};
+    const SkinnedVertices v = skinner.run(SkinPath::vertex_feedback, packed, skinning_transforms.size(), 1, true);
+    const DrawMesh draw{v.positions, v.normals, mesh.indices, method_colour(method)};
     panels.push_back(render_meshes(context, std::span<const DrawMesh>(&draw, 1), camera, panel_width, height));
   }
   return side_by_side(panels);

@@ -19,9 +19,6 @@
 
 #include "cga/runtime/types.hpp"
 
-#if __has_include(<motor_from_trs.hpp>) && __has_include(<motor_mul.hpp>) && __has_include(<motor_reverse.hpp>) && \
-    __has_include(<motor_lerp_paper.hpp>) && __has_include(<transform_point.hpp>) &&                             \
-    __has_include(<motor_to_matrix.hpp>) && __has_include(<motor_mul_rigid.hpp>)
 #include <motor_from_trs.hpp>
 #include <motor_mul_rigid.hpp>
 #include <motor_lerp_paper.hpp>
@@ -29,26 +26,12 @@
 #include <motor_reverse.hpp>
 #include <motor_to_matrix.hpp>
 #include <transform_point.hpp>
-#define CGA_RUNTIME_HAVE_KERNELS 1
-#else
-#define CGA_RUNTIME_HAVE_KERNELS 0
-#endif
 
 namespace cga {
-
-// True when this build has the kernels generated from runtime/scripts (cgagen built and ran).
-inline constexpr bool kHaveMotorKernels = CGA_RUNTIME_HAVE_KERNELS != 0;
 
 // The rigid part T*R of a motor in motor_lerp_paper's 8-blade order:
 // 1 e1^e2 e1^e3 e1^einf e2^e3 e2^einf e3^einf e1^e2^e3^einf.
 using RigidMotor = std::array<float, 8>;
-
-namespace detail {
-[[noreturn]] inline void no_kernels(const char* what) {
-  throw std::logic_error(std::string(what) +
-                         ": this build has no generated CGA kernels (cgagen did not run on runtime/scripts)");
-}
-}  // namespace detail
 
 // Rotor coefficients (rs, r12, r13, r23) of a unit quaternion: R = w - x e23 - y e31 - z e12.
 inline std::array<float, 4> rotor_from_quat(const glm::quat& q) { return {q.w, -q.z, q.y, -q.x}; }
@@ -63,78 +46,48 @@ inline glm::quat quat_from_rotor(float rs, float r12, float r13, float r23) {
 
 // M = T*R*D of a transform (generated motor_from_trs).
 inline Motor motor_from_transform(const Transform& x) {
-#if CGA_RUNTIME_HAVE_KERNELS
   const auto r = rotor_from_quat(x.rotation);
   Motor m;
   kernels::motor_from_trs(x.translation.x, x.translation.y, x.translation.z, r[0], r[1], r[2], r[3], x.scale,
                           m.c.data());
   return m;
-#else
-  (void)x;
-  detail::no_kernels("motor_from_transform");
-#endif
 }
 
 // C = A*B: apply B, then A (generated motor_mul).
 inline Motor motor_mul(const Motor& a, const Motor& b) {
-#if CGA_RUNTIME_HAVE_KERNELS
   Motor out;
   kernels::motor_mul(a.c.data(), b.c.data(), out.c.data());
   return out;
-#else
-  (void)a, (void)b;
-  detail::no_kernels("motor_mul");
-#endif
 }
 
 // ~A (generated motor_reverse).
 inline Motor motor_reverse(const Motor& a) {
-#if CGA_RUNTIME_HAVE_KERNELS
   Motor out;
   kernels::motor_reverse(a.c.data(), out.c.data());
   return out;
-#else
-  (void)a;
-  detail::no_kernels("motor_reverse");
-#endif
 }
 
 // The paper's eq. 25 + dilator lerp + eq. 27 (generated motor_lerp_paper).
 inline Motor motor_lerp_paper(const RigidMotor& a, const RigidMotor& b, float d1, float d2, float alpha) {
-#if CGA_RUNTIME_HAVE_KERNELS
   Motor out;
   kernels::motor_lerp_paper(a.data(), b.data(), d1, d2, alpha, out.c.data());
   return out;
-#else
-  (void)a, (void)b, (void)d1, (void)d2, (void)alpha;
-  detail::no_kernels("motor_lerp_paper");
-#endif
 }
 
 // M X ~M of a Euclidean point, divided by its weight (generated transform_point).
 inline glm::vec3 motor_transform_point(const Motor& m, const glm::vec3& p) {
-#if CGA_RUNTIME_HAVE_KERNELS
   float out[4];
   kernels::transform_point(m.c.data(), p.x, p.y, p.z, out);
   return glm::vec3(out[0], out[1], out[2]) / out[3];
-#else
-  (void)m, (void)p;
-  detail::no_kernels("motor_transform_point");
-#endif
 }
 
 // The weight-normalized point transform of a motor as a row-major 3x4 matrix (generated motor_to_matrix).
 inline glm::mat3x4 motor_matrix(const Motor& m) {
-#if CGA_RUNTIME_HAVE_KERNELS
   float c1[3], c2[3], c3[3], t[3];
   kernels::motor_to_matrix(m.c.data(), c1, c2, c3, t);
   glm::mat3x4 out;
   for (int r = 0; r < 3; ++r) out[r] = glm::vec4(c1[r], c2[r], c3[r], t[r]);
   return out;
-#else
-  (void)m;
-  detail::no_kernels("motor_matrix");
-#endif
 }
 
 // The 8 rigid blades of a motor whose dilation is 1 (or the T*R factor as built by rigid_from_transform).
@@ -278,16 +231,11 @@ inline bool motor_is_rigid(const Motor& m) {
 
 // C = A*B for rigid motors (generated motor_mul_rigid on the 8 rigid blades; the b group of C is zero).
 inline void motor_mul_rigid(const Motor& a, const Motor& b, Motor& out) {
-#if CGA_RUNTIME_HAVE_KERNELS
   const float x[8] = {a.c[0], a.c[1], a.c[2], a.c[3], a.c[4], a.c[5], a.c[6], a.c[8]};
   const float y[8] = {b.c[0], b.c[1], b.c[2], b.c[3], b.c[4], b.c[5], b.c[6], b.c[8]};
   float z[8];
   kernels::motor_mul_rigid(x, y, z);
   out.c = {z[0], z[1], z[2], z[3], z[4], z[5], z[6], 0.0f, z[7], 0.0f, 0.0f, 0.0f};
-#else
-  (void)a, (void)b, (void)out;
-  detail::no_kernels("motor_mul_rigid");
-#endif
 }
 
 // Screw-linear interpolation between two similarities: the rigid parts by the motor logarithm/exponential

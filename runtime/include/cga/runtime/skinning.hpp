@@ -41,9 +41,6 @@ std::string_view to_string(SkinningMethod method);
 // Accepts the to_string() names and the enum spelling with '_'; throws std::invalid_argument naming the choices.
 SkinningMethod parse_skinning_method(std::string_view text);
 
-// True: the generated kernels that cga_points / cga_motors run on are a build dependency (kept for old callers).
-bool cga_skinning_kernels_available();
-
 // Largest palette a run takes: every method converts its palette once per run into the loop's layout (cga_points:
 // motors -> 3x4 matrices with the generated kernel), on Run()'s stack (64 KiB), since Run() never allocates.
 inline constexpr std::size_t kMaxConvertedPalette = 1024;

@@ -1,6 +1,7 @@
 // Pictures on the GL backend: skinned meshes drawn into an offscreen framebuffer (depth test, two-sided
 // Lambert shading, orthographic camera fitted to the meshes), read back as RGBA images and written as PNG.
-// render_posed_character() and render_twist_strip() are what the demo calls.
+// render_posed_character() and render_method_strip() are what the demo calls (the latter through
+// render_twist_strip() of tests/support).
 #pragma once
 
 #include <array>
@@ -67,10 +68,11 @@ glm::vec3 method_colour(SkinningMethod method);
 Image render_posed_character(const Context& context, const Character& character, const Clip& clip, float time,
                              SkinningMethod method, int width = 512, int height = 512);
 
-// The two-bone twist cylinder (cga::make_twist_cylinder) with joint 1 twisted by `angle` radians, skinned
-// on the GPU by each of the four methods, side by side in the order lbs, dqs, cga-points, cga-motors.
-// At 180 degrees lbs and cga-points collapse to a "candy wrapper" in the middle, dqs and cga-motors do not.
-Image render_twist_strip(const Context& context, float angle = 3.14159265f, int panel_width = 256,
-                         int height = 384);
+// `mesh` skinned on the GPU (vertex shader + transform feedback) with the mesh-space skinning transforms
+// `skinning_transforms` (one per palette entry) by each of the four methods, side by side in the order lbs,
+// dqs, cga-points, cga-motors, every panel seen by the same `camera`.
+Image render_method_strip(const Context& context, const SkinnedMesh& mesh,
+                          std::span<const Transform> skinning_transforms, const Camera& camera,
+                          int panel_width = 256, int height = 384);
 
 }  // namespace cga::gpu

@@ -1,5 +1,5 @@
 // The two-bone twist cylinder and the random meshes and poses of skinning_test_meshes.hpp.
-#include "cga/runtime/skinning_test_meshes.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
 
 #include <algorithm>
 #include <cmath>

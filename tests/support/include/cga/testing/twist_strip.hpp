@@ -1,0 +1,31 @@
+// The picture of the candy-wrapper test on the GL backend (tests/gpu and the demo; needs cga::gpu).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cga/gpu/render.hpp"
+#include "cga/testing/skinning_test_meshes.hpp"
+
+namespace cga::gpu {
+
+// The two-bone twist cylinder (cga::make_twist_cylinder) with joint 1 twisted by `angle` radians, skinned
+// on the GPU by each of the four methods, side by side in the order lbs, dqs, cga-points, cga-motors.
+// At 180 degrees lbs and cga-points collapse to a "candy wrapper" in the middle, dqs and cga-motors do not.
+inline Image render_twist_strip(const Context& context, float angle = 3.14159265f, int panel_width = 256,
+                                int height = 384) {
+  const TwistCylinder cylinder = make_twist_cylinder();
+  const std::vector<Transform> bones = twist_cylinder_skinning_transforms(cylinder.spec, angle);
+  // One camera for all four panels: the rest cylinder's box, seen from the side and a little above, axis up.
+  Camera camera;
+  camera.fit_axes = false;
+  camera.up = {0.0f, 0.0f, 1.0f};
+  camera.direction = glm::normalize(glm::vec3(-1.0f, -0.35f, -0.25f));
+  camera.fit_box = false;
+  camera.box_min = {-cylinder.spec.radius, -cylinder.spec.radius, 0.0f};
+  camera.box_max = {cylinder.spec.radius, cylinder.spec.radius, cylinder.spec.length};
+  return render_method_strip(context, cylinder.mesh, bones, camera, panel_width, height);
+}
+
+}  // namespace cga::gpu
