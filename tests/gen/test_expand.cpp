@@ -410,14 +410,10 @@ TEST_CASE("expander diagnostics") {
   CHECK(diagnostic("?x = exp(e1^e2 + e3^einf);\n") ==
         "t.clu:1:16: error: 'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
         "square has blades e1^e2^e3^einf\n?x = exp(e1^e2 + e3^einf);\n               ^\n");
-  {
-    // GiNaC's term order depends on symbol creation order, so the printed square is checked by its parts.
-    const std::string d = diagnostic("?x = exp(a*(e1^e2) + b*(e1^em));\n");
-    CHECK(d.rfind("t.clu:1:20: error: 'exp': cannot tell the sign of the square of its bivector argument (B*B = ", 0) == 0);
-    CHECK(d.find("-a^2") != std::string::npos);
-    CHECK(d.find("b^2") != std::string::npos);
-    CHECK(d.find(")\n?x = exp(a*(e1^e2) + b*(e1^em));\n                   ^\n") != std::string::npos);
-  }
+  // The square is not printed (GiNaC's term order differs between processes; messages must not).
+  CHECK(diagnostic("?x = exp(a*(e1^e2) + b*(e1^em));\n") ==
+        "t.clu:1:20: error: 'exp': cannot tell the sign of the square of its bivector argument B: B*B must be "
+        "visibly <= 0 (a rotation) or >= 0 (a boost)\n?x = exp(a*(e1^e2) + b*(e1^em));\n                   ^\n");
   CHECK(diagnostic("?x = e1/(1 + e1);\n") ==
         "t.clu:1:12: error: cannot divide by this multivector: d*~d is not a scalar (it has blades e1), so "
         "d is not a versor or blade\n?x = e1/(1 + e1);\n           ^\n");
