@@ -41,58 +41,73 @@ std::string format_inputs(const Program& p) {
 
 namespace {
 
+// Evaluates expressions in double precision in exactly the order the emitters print them (opt/lower.hpp:
+// sums in sum_terms order with negative terms subtracted, products left to right as c * f1 * f2 ... over
+// d1 * d2 ..., powers spelled out), so --eval gives the bits the emitted C++ gives, in every process.
 class Evaluator {
  public:
-  explicit Evaluator(std::map<ex, double, ex_is_less> env) : env_(std::move(env)) {}
+  explicit Evaluator(CanonicalKeys& keys) : keys_(keys) {}
   void bind(const ex& sym, double v) { env_[sym] = v; }
 
   double eval(const ex& e) {
-    if (is_a<numeric>(e)) {
-      const numeric& n = ex_to<numeric>(e);
-      if (!n.is_real()) throw std::runtime_error("complex constant in a kernel expression");
-      return n.to_double();
-    }
+    if (is_a<numeric>(e)) return real(ex_to<numeric>(e));
     if (is_a<symbol>(e)) {
       auto it = env_.find(e);
       if (it == env_.end()) throw std::logic_error("evaluate: unbound symbol " + ex_to<symbol>(e).get_name());
       return it->second;
     }
-    if (is_a<constant>(e)) return ex_to<numeric>(e.evalf()).to_double();
+    if (is_a<constant>(e)) return real(ex_to<numeric>(e.evalf()));
     if (is_a<add>(e)) {
       double s = 0;
-      for (size_t i = 0; i < e.nops(); ++i) s += eval(e.op(i));
+      bool first = true;
+      for (const ex& t : sum_terms(e, keys_)) {
+        const bool neg = is_negative_term(t, keys_);
+        const double a = eval(neg ? ex(-t) : t);
+        s = first ? (neg ? -a : a) : (neg ? s - a : s + a);
+        first = false;
+      }
       return s;
     }
-    if (is_a<mul>(e)) {
-      double num = 1, den = 1;
-      for (size_t i = 0; i < e.nops(); ++i) {
-        const ex& f = e.op(i);
-        if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative())
-          den *= eval(pow(f.op(0), -f.op(1)));
-        else
-          num *= eval(f);
-      }
-      return num / den;
+    return product(e);
+  }
+
+ private:
+  static double real(const numeric& n) {
+    if (!n.is_real()) throw std::runtime_error("complex constant in a kernel expression");
+    return n.to_double();
+  }
+
+  double product(const ex& e) {
+    const ProductParts p = split_product(e, keys_);
+    const numeric c = abs(p.coeff);
+    double num = 0, den = 1;
+    bool any = false;
+    auto times = [&](double& acc, bool& started, double v) {
+      acc = started ? acc * v : v;
+      started = true;
+    };
+    if (c != 1 || p.num.empty()) times(num, any, real(c));
+    for (const auto& f : p.num) {
+      const double a = atom(f.base);
+      for (int k = 0; k < f.exponent; ++k) times(num, any, a);
     }
-    if (is_a<power>(e)) {
-      double b = eval(e.op(0));
-      if (is_a<numeric>(e.op(1))) {
-        const numeric& n = ex_to<numeric>(e.op(1));
-        if (n.is_integer()) {
-          int k = n.to_int();
-          double r = 1;
-          for (int i = 0; i < std::abs(k); ++i) r *= b;
-          return k < 0 ? 1 / r : r;
-        }
-        if (n == numeric(1, 2)) return std::sqrt(b);
-        if (n == numeric(-1, 2)) return 1 / std::sqrt(b);
-      }
-      return std::pow(b, eval(e.op(1)));
+    bool any_den = false;
+    for (const auto& f : p.den) {
+      const double a = atom(f.base);
+      for (int k = 0; k < f.exponent; ++k) times(den, any_den, a);
     }
-    if (is_a<function>(e)) {
-      std::string f = ex_to<function>(e).get_name();
+    const double r = any_den ? num / den : num;
+    return p.coeff.is_negative() ? -r : r;
+  }
+
+  double atom(const ex& b) {
+    if (is_a<symbol>(b) || is_a<numeric>(b) || is_a<constant>(b) || is_a<add>(b) || is_a<mul>(b)) return eval(b);
+    if (is_sqrt(b)) return std::sqrt(eval(b.op(0)));
+    if (is_a<power>(b)) return std::pow(eval(b.op(0)), eval(b.op(1)));
+    if (is_a<function>(b)) {
+      std::string f = ex_to<function>(b).get_name();
       std::vector<double> a;
-      for (size_t i = 0; i < e.nops(); ++i) a.push_back(eval(e.op(i)));
+      for (size_t i = 0; i < b.nops(); ++i) a.push_back(eval(b.op(i)));
       if (f == "sin") return std::sin(a.at(0));
       if (f == "cos") return std::cos(a.at(0));
       if (f == "tan") return std::tan(a.at(0));
@@ -111,14 +126,16 @@ class Evaluator {
     throw std::runtime_error("evaluate: unsupported expression");
   }
 
- private:
+  CanonicalKeys& keys_;
   std::map<ex, double, ex_is_less> env_;
 };
 
 }  // namespace
 
 std::vector<EvalLine> evaluate(const Program& p, const InputValues& inputs) {
-  Evaluator ev({});
+  const SymbolNames names = symbol_names(p);
+  CanonicalKeys keys(names);
+  Evaluator ev(keys);
   for (const auto& [name, vals] : inputs) {
     bool known = false;
     for (const auto& in : p.inputs) known |= in.name == name;
