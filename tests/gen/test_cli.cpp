@@ -242,7 +242,7 @@ TEST_CASE("regressions: abs of real inputs, gcd with functions, zero outputs, ex
 
 // --eval follows the printed code's order of operations (sums in canonical term order, products left to
 // right), not GiNaC's process-dependent term order: the same bits in every process (issue 14, bug 6).
-TEST_CASE("--eval gives the same bits in every process", "[cli]") {
+TEST_CASE("eval gives the same bits in every process", "[cli]") {
   const std::string args = " --eval " + std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/paper_a1.clu "
                            "transX=1 transY=2 transZ=3 axis1X=0.1 axis1Y=0.2 axis1Z=0.9 angle1=0.7 d1=1.3 "
                            "trans2X=-1 trans2Y=0.5 trans2Z=2 axis2X=0.3 axis2Y=-0.2 axis2Z=0.4 angle2=1.1 d2=0.8 "
