@@ -38,13 +38,13 @@ std::string script(const std::string& name) { return std::string(CGA_SOURCE_DIR)
 
 }  // namespace
 
-TEST_CASE("--version prints the project version", "[cli]") {
+TEST_CASE("version: --version prints the project version", "[cli]") {
   auto r = run("--version");
   CHECK(r.code == 0);
   CHECK(r.out == std::string("cgagen ") + CGAGEN_VERSION + "\n");
 }
 
-TEST_CASE("--target list prints every target, one per line, each of them accepted", "[cli]") {
+TEST_CASE("target list: --target list prints every target, one per line, each of them accepted", "[cli]") {
   auto r = run("--target list");
   CHECK(r.code == 0);
   CHECK(r.out == "cpp\nglsl\ncuda\n");
@@ -56,7 +56,7 @@ TEST_CASE("--target list prints every target, one per line, each of them accepte
   }
 }
 
-TEST_CASE("- reads the script from standard input, diagnostics name <stdin>", "[cli]") {
+TEST_CASE("stdin: - reads the script from standard input, diagnostics name <stdin>", "[cli]") {
   std::string good = write_temp("cli_stdin_good.clu", "?c = (a*e1) ^ (b*e2);\n");
   auto from_file = run("--name kernel " + good);
   auto r = run("- < " + good);
@@ -83,7 +83,7 @@ TEST_CASE("script errors keep GCC's file:line:col: error: form", "[cli]") {
   CHECK(std::regex_search(r.out, form));
 }
 
-TEST_CASE("--help documents the exit codes and the new options", "[cli]") {
+TEST_CASE("help: --help documents the exit codes and the new options", "[cli]") {
   auto r = run("--help");
   CHECK(r.code == 0);
   for (const char* s : {"--version", "--target list", "standard input", "exit status", "0 success", "2 bad usage"})
