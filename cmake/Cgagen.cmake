@@ -16,7 +16,9 @@
 # tool. <target> is an INTERFACE library whose include directory is OUTPUT_DIR; linking it builds the files
 # first. Call it several times with the same <target> to give scripts different options (packing differs
 # per script); the files of every call are listed in the target's CGAGEN_OUTPUTS property.
-# The tool must be a target named `cgagen` (this project) or given as CGAGEN_EXECUTABLE.
+# The tool is CGAGEN_EXECUTABLE when set, else the target `cgagen` (this project), else the imported
+# `cgagen::cgagen` of an installed cgagen (find_package(cgagen), which includes this file from
+# <prefix>/share/cgagen/cmake; the default templates are then <prefix>/share/cgagen/templates).
 
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
@@ -45,9 +47,14 @@ function(cgagen_generate target)
   if(CGAGEN_EXECUTABLE)
     set(_tool ${CGAGEN_EXECUTABLE})
     set(_tool_dep ${CGAGEN_EXECUTABLE})
-  else()
+  elseif(TARGET cgagen)
     set(_tool $<TARGET_FILE:cgagen>)
     set(_tool_dep cgagen)
+  elseif(TARGET cgagen::cgagen)
+    set(_tool $<TARGET_FILE:cgagen::cgagen>)
+    set(_tool_dep $<TARGET_FILE:cgagen::cgagen>)
+  else()
+    message(FATAL_ERROR "cgagen_generate(${target}): no cgagen: find_package(cgagen) or set CGAGEN_EXECUTABLE")
   endif()
   set(_glsl_args)
   foreach(_p ${CG_PACK})
@@ -106,7 +113,7 @@ function(cgagen_generate target)
   add_custom_target(${target}_files_${_calls} ALL DEPENDS ${_outputs})
   if(NOT TARGET ${target})
     add_library(${target} INTERFACE)
-    target_include_directories(${target} INTERFACE ${CG_OUTPUT_DIR})
+    target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${CG_OUTPUT_DIR}>)
     target_compile_features(${target} INTERFACE cxx_std_17)
   endif()
   add_dependencies(${target} ${target}_files_${_calls})

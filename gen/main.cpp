@@ -24,14 +24,16 @@ using namespace cgagen;
 
 const char* kUsage = R"(usage: cgagen [options] SCRIPT
 
-Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code.
+Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code. SCRIPT - reads the script from
+standard input (diagnostics then name <stdin>, the function is named kernel unless --name is given).
 
 options:
-  --target cpp|glsl|cuda  output language (default cpp)
+  --target cpp|glsl|cuda  output language (default cpp); --target list prints the targets, one per line
   -O0 | -O1 | -O2         optimization level (default -O2)
   -o FILE                 write the output to FILE (default: standard output)
   --name NAME             function name (default: the script's file stem)
-  --templates DIR         emitter templates (default: the installed templates/)
+  --templates DIR         emitter templates (default: ../share/cgagen/templates next to the cgagen
+                          executable when installed, else the source tree's templates/)
   --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float
   --return OUT            glsl: return output OUT instead of an out parameter
   --stats                 print op counts instead of code
@@ -41,7 +43,11 @@ options:
   --Werror                treat warnings (a misspelt name that became an input) as errors
   --eval NAME=VALUE ...   evaluate the optimized kernel (values before or after SCRIPT); a multivector input as NAME=v1,v2,...
                           (one value per declared blade); prints OUTPUT BLADE VALUE lines
+  --version               print the version (cgagen X.Y.Z)
   --help                  this text
+
+exit status: 0 success; 1 error in the script (FILE:LINE:COL: error: ...) or other failure
+(cgagen: error: ...); 2 bad usage.
 )";
 
 struct UsageError : std::runtime_error {
@@ -97,6 +103,12 @@ Options parse_args(int argc, char** argv) {
     try {
       if (a == "--help" || a == "-h") {
         std::cout << kUsage;
+        std::exit(0);
+      } else if (a == "--version") {
+        std::cout << "cgagen " << CGAGEN_VERSION << "\n";
+        std::exit(0);
+      } else if (a == "--target" && i + 1 < args.size() && args[i + 1] == "list") {
+        for (const auto& t : emit::targets()) std::cout << t.first << "\n";
         std::exit(0);
       } else if (a == "--target") {
         o.emit.target = emit::parse_target(value(i, a));
@@ -223,8 +235,17 @@ void write_text(const std::string& path, const std::string& text) {
   if (!out) throw std::runtime_error("error while writing " + path);
 }
 
+// SCRIPT "-": the script from standard input, named <stdin> in diagnostics.
+front::SourceFile load_script(const std::string& path) {
+  if (path != "-") return front::SourceFile::load(path);
+  std::ostringstream text;
+  text << std::cin.rdbuf();
+  return front::SourceFile("<stdin>", text.str());
+}
+
 int run(const Options& o) {
-  front::SourceFile file = front::SourceFile::load(o.script);
+  front::SourceFile file = load_script(o.script);
+  const bool from_stdin = o.script == "-";
   try {
     front::Script script = front::parse(file);
     if (o.dump_ast) {
@@ -233,14 +254,14 @@ int run(const Options& o) {
       write_text(o.output, out);
       return 0;
     }
-    std::string name = o.name.empty() ? std::filesystem::path(o.script).stem().string() : o.name;
+    std::string name = !o.name.empty() ? o.name : from_stdin ? "kernel" : std::filesystem::path(o.script).stem().string();
     Kernel kernel = expand(script, name);
     for (const auto& w : kernel.warnings)
       std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),
                                             o.werror ? "error" : "warning");
     if (o.werror && !kernel.warnings.empty()) return 1;
     emit::EmitOptions eo = o.emit;
-    eo.script_name = std::filesystem::path(o.script).filename().string();
+    eo.script_name = from_stdin ? "<stdin>" : std::filesystem::path(o.script).filename().string();
     if (o.diff) {
       opt::Program a = opt::optimize(kernel, o.diff->first);
       opt::Program b = opt::optimize(kernel, o.diff->second);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -16,10 +17,15 @@ namespace cgagen::emit {
 using namespace GiNaC;
 using opt::CanonicalKeys;
 
+const std::vector<std::pair<std::string, Target>>& targets() {
+  static const std::vector<std::pair<std::string, Target>> list{
+      {"cpp", Target::Cpp}, {"glsl", Target::Glsl}, {"cuda", Target::Cuda}};
+  return list;
+}
+
 Target parse_target(const std::string& t) {
-  if (t == "cpp") return Target::Cpp;
-  if (t == "glsl") return Target::Glsl;
-  if (t == "cuda") return Target::Cuda;
+  for (const auto& [name, target] : targets())
+    if (t == name) return target;
   throw std::invalid_argument("unknown target '" + t + "' (expected cpp, glsl or cuda)");
 }
 
@@ -40,7 +46,17 @@ Pack parse_pack(const std::string& t) {
   throw std::invalid_argument("unknown packing '" + t + "' (expected mat3x4, vec4, vec3 or float)");
 }
 
-std::string default_template_dir() { return CGAGEN_TEMPLATE_DIR; }
+// An installed cgagen (BINDIR/cgagen) finds its templates in BINDIR/../share/cgagen/templates, wherever the
+// prefix was moved; a cgagen run from the build tree, where that folder does not exist, uses the source tree's.
+std::string default_template_dir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "cgagen" / "templates";
+    if (std::filesystem::is_directory(installed, ec)) return installed.string();
+  }
+  return CGAGEN_TEMPLATE_DIR;
+}
 
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values,
                           const std::string& template_name) {

@@ -4,13 +4,16 @@
 
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "opt/program.hpp"
 
 namespace cgagen::emit {
 
 enum class Target { Cpp, Glsl, Cuda };
-Target parse_target(const std::string& text);  // "cpp" | "glsl" | "cuda"; throws std::invalid_argument
+const std::vector<std::pair<std::string, Target>>& targets();  // every target by its --target name, in order
+Target parse_target(const std::string& text);  // a name from targets(); throws std::invalid_argument
 std::string file_extension(Target t);          // ".hpp" | ".glsl" | ".cuh"
 
 // How a GLSL parameter is passed: as a float array (default) or packed in a vector/matrix type.
@@ -36,6 +39,8 @@ std::string fill_template(const std::string& text, const std::map<std::string, s
 // Numeric literal of an exact rational in the target's syntax ("0.5", "0.5f", "(1.0 / 3.0)").
 std::string literal(const GiNaC::numeric& value, Target target, bool single_precision);
 
+// BINDIR/../share/cgagen/templates next to the running executable (an installed cgagen, prefix relocatable),
+// else the source tree's templates/ (CGAGEN_TEMPLATE_DIR, a cgagen run from its build tree).
 std::string default_template_dir();
 
 }  // namespace cgagen::emit
