@@ -139,7 +139,9 @@ const std::map<std::string, Fn1>& scalar_functions() {
 }
 const std::map<std::string, size_t>& builtin_arity() {
   static const std::map<std::string, size_t> arity = {
-      {"atan2", 2}, {"exp", 1}, {"VecN3", 3}, {"createPoint", 3}, {"TranslatorN3", 3}, {"RotorN3", 4}};
+      {"atan2", 2},        {"exp", 1},     {"VecN3", 3},        {"createPoint", 3}, {"TranslatorN3", 3},
+      {"RotorN3", 4},      {"SphereN3", 4},  // also SphereN3(P, r), handled before the arity check
+      {"coefficient", 2}};
   return arity;
 }
 
@@ -207,6 +209,7 @@ class Expander {
  private:
   struct Frame {
     std::string macro;
+    const Stmt* def;  // which definition (macros overload by arity)
     std::vector<Multivector> args;
     std::map<std::string, Multivector> locals;
   };
@@ -221,7 +224,8 @@ class Expander {
 
   Kernel kernel_;
   std::map<std::string, Multivector> globals_;     // current value of every assigned or input name
-  std::map<std::string, const Stmt*> macros_;
+  // Macros by name, then by arity (the highest _P(n) they use): Gaalop overloads macros by argument count.
+  std::map<std::string, std::map<size_t, const Stmt*>> macros_;
   std::map<std::string, int> assignments_;         // times each name was assigned (symbol naming)
   std::map<std::string, int> last_value_;          // index of the last assignment that may be an output
   std::set<std::string> symbol_names_;
@@ -239,6 +243,7 @@ class Expander {
   std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
   std::vector<Mark> marks_;                        // in order of first marking
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
+  std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
   std::map<std::string, OutputPragma> output_pragmas_;
 
   // ---- statements --------------------------------------------------------------------------------
@@ -280,7 +285,8 @@ class Expander {
 
   void define_macro(const Stmt& s) {
     if (is_basis_name(s.name)) throw CompileError(s.loc, "cannot define a macro named '" + s.name + "'");
-    macros_[s.name] = &s;
+    macros_[s.name][macro_arity(s)] = &s;
+    latest_macro_[s.name] = &s;
   }
 
   std::string unique_symbol_name(const std::string& wanted) {
@@ -353,7 +359,8 @@ class Expander {
       throw CompileError(s.loc, "'#pragma " + what + "' needs a name and at least one blade");
     std::vector<algebra::BladeIndex> blades;
     for (size_t i = 2; i < s.words.size(); ++i) {
-      auto b = algebra::parse_blade(s.words[i]);
+      // Gaalop writes the scalar blade `1` as `1.0` in its pragmas.
+      auto b = algebra::parse_blade(s.words[i] == "1.0" ? std::string("1") : s.words[i]);
       if (!b) throw CompileError(word_loc(s, i), "unknown blade '" + s.words[i] + "' in '#pragma " + what + "'");
       if (b->sign < 0)
         throw CompileError(word_loc(s, i), "blade '" + s.words[i] + "' in '#pragma " + what +
@@ -634,7 +641,10 @@ class Expander {
     auto macro = macros_.find(fn);
     if (macro != macros_.end()) {
       for (const auto& a : e.args) args.push_back(eval(*a));
-      return call_macro(*macro->second, std::move(args), e);
+      // The definition for this many arguments, else the latest one (which may use fewer).
+      auto by_arity = macro->second.find(args.size());
+      const Stmt* def = by_arity != macro->second.end() ? by_arity->second : latest_macro_.at(fn);
+      return call_macro(*def, std::move(args), e);
     }
     const auto& scalar1 = scalar_functions();
     const auto& arity = builtin_arity();
@@ -647,11 +657,21 @@ class Expander {
       auto k = closest(fn, known);
       throw CompileError(e.loc, "unknown function '" + fn + "'" + (k ? "; did you mean '" + *k + "'?" : ""));
     }
-    check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
+    if (!(fn == "SphereN3" && e.args.size() == 2)) check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
     for (const auto& a : e.args) args.push_back(eval(*a));
     return guarded(e.loc, [&]() -> Multivector {
+      if (fn == "abs" && !scalar_part_if_scalar(args[0]).is_scalar()) {
+        // Gaalop's abs of a multivector: its magnitude sqrt(|<L ~L>_0|).
+        return Multivector(GiNaC::sqrt(GiNaC::abs((args[0] * args[0].reverse()).scalar())));
+      }
       if (f1 != scalar1.end()) return Multivector(f1->second(scalar_arg(fn, args, e, 0)));
       if (fn == "exp") return exp(args[0], e);
+      if (fn == "coefficient") return coefficient(args[0], args[1], *e.args[1]);
+      if (fn == "SphereN3" && args.size() == 2) {
+        // SphereN3(P, r): the dual sphere around the conformal point P, P - r^2/2 einf.
+        const ex r = scalar_arg(fn, args, e, 1);
+        return args[0] - Multivector::blade(4, r * r / 2);
+      }
       // The arguments of the remaining built-ins must all be scalars.
       std::vector<ex> s;
       for (size_t i = 0; i < args.size(); ++i) s.push_back(scalar_arg(fn, args, e, i));
@@ -659,6 +679,11 @@ class Expander {
       if (fn == "VecN3" || fn == "createPoint") {
         Multivector p = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
         p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2);
+        return p + Multivector::e0();
+      }
+      if (fn == "SphereN3") {  // SphereN3(x, y, z, r): the dual sphere VecN3(x, y, z) - r^2/2 einf
+        Multivector p = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
+        p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - s[3] * s[3]) / 2);
         return p + Multivector::e0();
       }
       if (fn == "TranslatorN3") {
@@ -671,6 +696,16 @@ class Expander {
       Multivector plane = Multivector::blade(10, -s[0]) + Multivector::blade(7, s[1]) + Multivector::blade(6, -s[2]);
       return Multivector(GiNaC::cos(half)) + (GiNaC::sin(half) / len) * plane;
     });
+  }
+
+  // coefficient(mv, blade): the scalar c with which mv holds c * blade, for a blade given as one basis
+  // blade (e1^e2, or e2^e1 = -e1^e2, or 1).
+  Multivector coefficient(const Multivector& mv, const Multivector& blade, const Expr& blade_expr) {
+    if (blade.terms().size() != 1 || !GiNaC::is_a<GiNaC::numeric>(blade.terms().begin()->second))
+      throw CompileError(blade_expr.loc, "'coefficient' takes a basis blade as its second argument (such as "
+                                         "e1^e2 or 1), got " + describe(blade));
+    const auto& [k, sign] = *blade.terms().begin();
+    return Multivector(mv.coeff(k) / sign);
   }
 
   // exp of a scalar, or closed form for a bivector B with scalar square.
@@ -713,14 +748,28 @@ class Expander {
                            "visibly <= 0 (a rotation) or >= 0 (a boost)");
   }
 
+  // The highest _P(n) a macro's body and result use.
+  static size_t macro_arity(const Stmt& def) {
+    size_t n = 0;
+    std::function<void(const Expr&)> walk = [&](const Expr& x) {
+      if (x.kind == Expr::Kind::MacroArg && x.index > 0) n = std::max(n, static_cast<size_t>(x.index));
+      for (const auto& a : x.args)
+        if (a) walk(*a);
+    };
+    for (const auto& st : def.body)
+      if (st->value) walk(*st->value);
+    if (def.result) walk(*def.result);
+    return n;
+  }
+
   Multivector call_macro(const Stmt& def, std::vector<Multivector> args, const Expr& e) {
     for (size_t i = 0; i < frames_.size(); ++i) {
-      if (frames_[i].macro != def.name) continue;
+      if (frames_[i].def != &def) continue;
       std::string chain;
       for (size_t j = i; j < frames_.size(); ++j) chain += "'" + frames_[j].macro + "' -> ";
       throw CompileError(e.loc, "recursive macro call " + chain + "'" + def.name + "'");
     }
-    frames_.push_back({def.name, std::move(args), {}});
+    frames_.push_back({def.name, &def, std::move(args), {}});
     for (const auto& s : def.body) exec_local(*s);
     Multivector r = def.result ? eval(*def.result) : Multivector();
     frames_.pop_back();

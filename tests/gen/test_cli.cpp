@@ -253,3 +253,50 @@ TEST_CASE("eval gives the same bits in every process", "[cli]") {
     for (int k = 0; k < 6; ++k) CHECK(run(level + args).out == first.out);
   }
 }
+
+// Gaalop compatibility (issue 14): forms Gaalop's CGA scripts use, each with its value.
+TEST_CASE("Gaalop forms: 1.0 as the scalar blade, abs of a multivector, coefficient, SphereN3, overloads", "[cli]") {
+  struct Case {
+    const char* script;
+    const char* inputs;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"#pragma output r 1.0\n?r = 2*x;", "x=3", "r 1 6\n"},
+      // abs(L) = sqrt(|<L ~L>_0|): |3 e1 + 4 e2| = 5
+      {"L = e1*a + e2*b;\n?m = abs(L);", "a=3 b=4", "m 1 5\n"},
+      // the scalar c with which the multivector holds c * blade; e2^e1 = -e1^e2
+      {"?c = coefficient(x*e1^e2 + y*e3, e2^e1); ?d = coefficient(x*e1^e2 + y*e3, e3);", "x=3 y=4",
+       "c 1 -3\nd 1 4\n"},
+      // the dual sphere around (1,2,3) of radius 2: VecN3(1,2,3) - 2 einf, in both of Gaalop's forms
+      {"?s = SphereN3(1,2,3,r); ?t = SphereN3(VecN3(1,2,3), r);", "r=2",
+       "s e1 1\ns e2 2\ns e3 3\ns einf 5\ns e0 1\nt e1 1\nt e2 2\nt e3 3\nt einf 5\nt e0 1\n"},
+      // a macro overloaded by argument count, one form calling the other (not a recursion)
+      {"S = {VecN3(_P(1),_P(2),_P(3)) - _P(4)*_P(4)/2*einf}\nS = {S(_P(1),0,0,_P(2))}\n?a = S(x, r);", "x=1 r=2",
+       "a e1 1\na einf -1.5\na e0 1\n"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = write_temp("gaalop.clu", c.script);
+    for (const char* level : {"-O0", "-O2"}) {
+      auto r = run(std::string(level) + " --eval " + path + " " + c.inputs);
+      INFO(c.script << " " << level << "\n" << r.out);
+      CHECK(r.code == 0);
+      CHECK(r.out == c.expected);
+    }
+  }
+  auto r = run("--eval " + write_temp("gaalop.clu", "?c = coefficient(x*e1, e1 + e2);") + " x=1");
+  CHECK(r.code == 1);
+  CHECK(r.out.find("'coefficient' takes a basis blade as its second argument") != std::string::npos);
+}
+
+TEST_CASE("fuzzer find: a quotient by exp(g) optimizes at every level", "[cli]") {
+  const std::string path = std::string(CGA_SOURCE_DIR) + "/fuzz/regressions/gcd_with_function.clu";
+  for (const char* level : {"-O0", "-O1", "-O2"}) {
+    auto r = run(std::string(level) + " --eval " + path + " g=0.5 d=0.25");
+    INFO(r.out);
+    REQUIRE(r.code == 0);
+    // *D = -(1-d)/exp(g) on the pseudoscalar (the dual of a scalar s is -s e1^e2^e3^einf^e0)
+    CHECK(r.out.rfind("M e1^e2^e3^einf^e0 ", 0) == 0);
+    CHECK(std::stod(r.out.substr(19)) == Approx(-0.75 * std::exp(-0.5)).epsilon(1e-14));
+  }
+}
