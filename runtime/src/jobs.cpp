@@ -307,8 +307,16 @@ inline void from_split(const float* __restrict s, Motor& m) {
   c[7] = 0.5f * (s[0] - s[4]), c[9] = 0.5f * (s[1] - s[5]), c[10] = 0.5f * (s[2] - s[6]), c[11] = 0.5f * (s[3] - s[7]);
   c[3] = s[8], c[5] = s[9], c[6] = s[10], c[8] = s[11];
 }
+// The product, scaled so that |G| + |H| = 2 (the normalization of motor_from_trs, where a = R): a product of
+// dilators 1 + k1 E and 1 + k2 E is (1 + k1 k2)(1 + k E), so without it every level of a scaled hierarchy
+// multiplies the magnitude by 1 + k1 k2 (0.04 for scales 100 and 0.01), and cga-motors, which blends the
+// palette's coefficients, would weight each bone by its magnitude as well as by its skin weight.
 inline void split_mul(const float* x, const float* y, float* out) {
   kernels::motor_split_mul(x, x + 4, x + 8, y, y + 4, y + 8, out, out + 4, out + 8);
+  const float gg = out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3];
+  const float hh = out[4] * out[4] + out[5] * out[5] + out[6] * out[6] + out[7] * out[7];
+  const float f = 2.0f / (std::sqrt(gg) + std::sqrt(hh));
+  for (int c = 0; c < 12; ++c) out[c] *= f;
 }
 
 // The hierarchy with dilations: the model motors are kept in split form in `model` while the parents are

@@ -4,9 +4,10 @@
 // make_centimetre_rig(): 8 joints in the layout an FBX export from Blender gives: the armature node scales by
 // 100 (metres to centimetres) and is turned -90 degrees about x, its child "hips" scales by 0.01 back and
 // holds translations in metres, and the bones below it are rigid with translations in centimetres. A
-// 1200-vertex mesh in centimetres around the bones, each vertex with 2 to 4 influences (some on the armature
-// itself, whose palette entry keeps the scale 100). Offset matrices are the inverse rest model matrices. One
-// clip of 5 keys that turns and moves every joint and keeps the scales.
+// 1200-vertex mesh around the bones, each vertex with 2 to 4 influences on neighbouring joints (some on the
+// armature itself). As in huesitos.fbx, the mesh node scales by 100 too: the mesh is stored in metres and each offset
+// matrix is the inverse rest model matrix of its joint times that scale, so every palette entry maps metres
+// to centimetres (scale 100). One clip of 5 keys that turns and moves every joint and keeps the scales.
 #pragma once
 
 #include <algorithm>
@@ -50,7 +51,7 @@ inline Character make_centimetre_rig() {
       {"Head", 3, {{0.0f, 24.3f, 2.1f}, q(8.0f, {1, 0, 0}), 1.0f}},
       {"UpperArm.L", 3, {{17.2f, 19.8f, -0.7f}, q(-80.0f, {0, 0, 1}), 1.0f}},
       {"Forearm.L", 5, {{0.0f, 27.6f, 0.0f}, q(10.0f, {1, 0, 0}), 1.0f}},
-      {"Thigh.R", 1, {{-9.6f, -4.2f, 0.8f}, q(178.0f, {0, 0.05f, 1}), 1.0f}},
+      {"Thigh.R", 1, {{-9.6f, -4.2f, 0.8f}, q(150.0f, {0, 0.05f, 1}), 1.0f}},
   };
   for (const J& j : joints) {
     sk.names.push_back(j.name);
@@ -66,7 +67,7 @@ inline Character make_centimetre_rig() {
   mesh.name = "body";
   for (int j = 0; j < n; ++j) {
     mesh.joint_remap.push_back(j);
-    const glm::dmat4 inv = glm::inverse(rest[j]);
+    const glm::dmat4 inv = glm::inverse(rest[j]) * glm::scale(glm::dmat4(1.0), glm::dvec3(100.0));
     mesh.inverse_bind_matrix.push_back(glm::mat4(inv));
     Transform ib;
     const double s = std::cbrt(glm::determinant(glm::dmat3(inv)));
@@ -75,18 +76,21 @@ inline Character make_centimetre_rig() {
     ib.translation = glm::vec3(inv[3]);
     mesh.inverse_bind.push_back(ib);
   }
-  // Vertices around each joint's rest position (model space, centimetres), bound to it and its neighbours.
+  // Vertices around each joint's rest position (mesh space, metres), bound to it and its neighbours.
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   const int per_joint = 150;
   for (int j = 0; j < n; ++j) {
-    const glm::dvec3 at(rest[j][3]);
+    const glm::dvec3 at = glm::dvec3(rest[j][3]) / 100.0;
     for (int v = 0; v < per_joint; ++v) {
-      mesh.px.push_back(float(at.x) + 12.0f * u(rng));
-      mesh.py.push_back(float(at.y) + 12.0f * u(rng));
-      mesh.pz.push_back(float(at.z) + 12.0f * u(rng));
-      std::array<std::uint16_t, 4> js{std::uint16_t(j), std::uint16_t(sk.parents[j] < 0 ? 1 : sk.parents[j]),
-                                      std::uint16_t((j + 3) % n), std::uint16_t((j + 5) % n)};
+      mesh.px.push_back(float(at.x) + 0.12f * u(rng));
+      mesh.py.push_back(float(at.y) + 0.12f * u(rng));
+      mesh.pz.push_back(float(at.z) + 0.12f * u(rng));
+      // The joint, its parent, grandparent and a child or sibling (the armature's neighbours: hips, spine).
+      const int p = sk.parents[j] < 0 ? 1 : sk.parents[j];
+      const int pp = sk.parents[p] < 0 ? 2 : sk.parents[p];
+      const int other = j + 1 < n ? j + 1 : 3;
+      std::array<std::uint16_t, 4> js{std::uint16_t(j), std::uint16_t(p), std::uint16_t(pp), std::uint16_t(other)};
       const int count = 2 + v % 3;
       std::array<float, 4> w{};
       float sum = 0.0f;
