@@ -205,6 +205,11 @@ Character load_character(const std::string& path, const LoadOptions& options) {
     for (unsigned m = 0; m < scene->mNumMeshes && !bone; ++m)
       for (unsigned b = 0; b < scene->mMeshes[m]->mNumBones && !bone; ++b)
         if (name == scene->mMeshes[m]->mBones[b]->mName.C_Str()) bone = scene->mMeshes[m]->mBones[b];
+    if (!bone) {  // no mesh has bones and an animation channel names a node the scene lacks
+      warn.add("channel without node", fmt::format("animated node '{}' is not in the scene; its channel is "
+                                                   "ignored", name));
+      continue;
+    }
     ch.skeleton.names.push_back(name);
     ch.skeleton.parents.push_back(-1);
     bool exact = true;

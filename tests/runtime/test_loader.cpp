@@ -248,6 +248,39 @@ TEST_CASE("a skinned bone without a node loads as a static joint, with a warning
   }
 }
 
+TEST_CASE("an animation channel of a node the scene lacks is ignored with a warning (no mesh bones)") {
+  const std::string x = R"(xof 0303txt 0032
+Frame Root {
+  FrameTransformMatrix {
+    1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0;;
+  }
+  Frame Bone {
+    FrameTransformMatrix {
+      1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,1.0,0.0,1.0;;
+    }
+  }
+}
+AnimationSet Clip {
+  Animation {
+    { Bone }
+    AnimationKey { 2; 2; 0;3;0.0,1.0,0.0;;, 10;3;0.0,2.0,0.0;;; }
+  }
+  Animation {
+    { Ghost }
+    AnimationKey { 2; 2; 0;3;0.0,1.0,0.0;;, 10;3;0.0,2.0,0.0;;; }
+  }
+}
+)";
+  const Character ch = load_character(temp_file("ghost.x", x));
+  check_character(ch);
+  CHECK(ch.skeleton.find("Bone") >= 0);
+  CHECK(ch.skeleton.find("Ghost") < 0);
+  bool named = false;
+  for (const std::string& w : ch.warnings)
+    if (w.find("'Ghost'") != std::string::npos) named = true;
+  CHECK(named);
+}
+
 TEST_CASE("bad files throw LoadError naming the path") {
   SECTION("missing file") {
     const std::string p = "/nonexistent/dir/character.x";
