@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <motor_split_mul.hpp>
+
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define CGA_JOBS_CLONES __attribute__((target_clones("arch=x86-64-v3", "default"), flatten))
 #else
@@ -283,16 +285,65 @@ CGA_JOBS_CLONES void local_to_model_rigid(std::size_t n, const int* __restrict p
       motor_mul_rigid_simd(model[parents[j]], local[j], model[j]);
   }
 }
+// Motors with a dilation are composed in split form (runtime/scripts/motor_split_mul.clu): G = a + b, H = a - b,
+// U the einf blades, in c[0..3], c[4..7], c[8..11]. The blade form's product cancels when scales s and 1/s
+// meet (1 - k^2 and k - k from terms of size 1, k = (1-s)/(1+s)): at s = 100 it loses about 6 bits per level
+// of the hierarchy; the split form's G = GA GB, H = HA HB, U = HA UB + UA GB are plain products (and fewer:
+// 64 mul + 52 add instead of 96 + 92). Forming G and H from a stored motor is exact for 1/3 <= s <= 3
+// (Sterbenz) and otherwise rounds once.
+inline void to_split(const Motor& m, float* __restrict s) {
+  const auto& c = m.c;
+  s[0] = c[0] + c[7], s[1] = c[1] + c[9], s[2] = c[2] + c[10], s[3] = c[4] + c[11];
+  s[4] = c[0] - c[7], s[5] = c[1] - c[9], s[6] = c[2] - c[10], s[7] = c[4] - c[11];
+  s[8] = c[3], s[9] = c[5], s[10] = c[6], s[11] = c[8];
+}
+inline void from_split(const float* __restrict s, Motor& m) {
+  auto& c = m.c;
+  c[0] = 0.5f * (s[0] + s[4]), c[1] = 0.5f * (s[1] + s[5]), c[2] = 0.5f * (s[2] + s[6]), c[4] = 0.5f * (s[3] + s[7]);
+  c[7] = 0.5f * (s[0] - s[4]), c[9] = 0.5f * (s[1] - s[5]), c[10] = 0.5f * (s[2] - s[6]), c[11] = 0.5f * (s[3] - s[7]);
+  c[3] = s[8], c[5] = s[9], c[6] = s[10], c[8] = s[11];
+}
+// The product, scaled so that |G| + |H| = 2 (the normalization of motor_from_trs, where a = R): a product of
+// dilators 1 + k1 E and 1 + k2 E is (1 + k1 k2)(1 + k E), so without it every level of a scaled hierarchy
+// multiplies the magnitude by 1 + k1 k2 (0.04 for scales 100 and 0.01), and cga-motors, which blends the
+// palette's coefficients, would weight each bone by its magnitude as well as by its skin weight.
+inline void split_mul(const float* x, const float* y, float* out) {
+  kernels::motor_split_mul(x, x + 4, x + 8, y, y + 4, y + 8, out, out + 4, out + 8);
+  const float gg = out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3];
+  const float hh = out[4] * out[4] + out[5] * out[5] + out[6] * out[6] + out[7] * out[7];
+  const float f = 2.0f / (std::sqrt(gg) + std::sqrt(hh));
+  for (int c = 0; c < 12; ++c) out[c] *= f;
+}
+
+// The hierarchy with dilations: the model motors are kept in split form in `model` while the parents are
+// read (parents[j] < j), and turned back into blades at the end, so each model motor is rounded into the
+// blade form once.
 CGA_JOBS_CLONES void local_to_model_general(std::size_t n, const int* __restrict parents,
                                             const Motor* __restrict local, Motor* __restrict model) {
-  for (std::size_t j = 0; j < n; ++j) model[j] = parents[j] < 0 ? local[j] : motor_mul(model[parents[j]], local[j]);
+  for (std::size_t j = 0; j < n; ++j) {
+    float l[12];
+    to_split(local[j], l);
+    if (parents[j] < 0)
+      std::copy(l, l + 12, model[j].c.data());
+    else
+      split_mul(model[parents[j]].c.data(), l, model[j].c.data());
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const Motor s = model[j];
+    from_split(s.c.data(), model[j]);
+  }
 }
 
 // palette[k] = model[remap[k]] * inverse_bind[k], by the 8-blade product where both factors are rigid.
 // The rigidity of every entry is checked first (OR of the b groups' bits), so that an all-rigid palette runs a
 // loop of nothing but rigid products: with the test and the 12-blade product in the same loop body, GCC
 // hoists parts of the 12-blade product above the branch and the loop costs twice as much.
-__attribute__((noinline)) void palette_general(const Motor& m, const Motor& ib, Motor& out) { out = motor_mul(m, ib); }
+__attribute__((noinline)) void palette_general(const Motor& m, const Motor& ib, Motor& out) {
+  float x[12], y[12], z[12];
+  to_split(m, x), to_split(ib, y);
+  split_mul(x, y, z);
+  from_split(z, out);
+}
 // The check reads every model motor (contiguous, vectorized), not only the remapped ones: a dilated joint
 // that no entry uses sends the palette to the per-entry loop, which is slower but equal.
 CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const Motor* __restrict model,

@@ -127,6 +127,8 @@ float character_size(const Character& character) {
 
 Character load_character(const std::string& path, const LoadOptions& options) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw LoadError(fmt::format("{}: cannot load character: is a directory", path));
   if (!std::filesystem::is_regular_file(path, ec))
     throw LoadError(fmt::format("{}: cannot load character: no such file", path));
 
@@ -167,8 +169,11 @@ Character load_character(const std::string& path, const LoadOptions& options) {
     }
     for (unsigned i = 0; i < n->mNumChildren; ++i) stack.push_back(n->mChildren[i]);
   }
+  // A mesh bone whose node the scene lacks (some exporters write such skins; Assimp's viewer shows them): it
+  // becomes a static root joint at its bind pose (the inverse of its offset matrix), added after the others.
+  std::vector<std::string> missing;
   for (const std::string& name : wanted)
-    if (!found.count(name)) throw LoadError(fmt::format("{}: bone '{}' has no node in the scene", path, name));
+    if (!found.count(name)) missing.push_back(name);
   const aiNode* root = scene->mRootNode;
   if (!wanted.count(root->mName.C_Str()) && root->mTransformation.IsIdentity()) keep.erase(root);
 
@@ -193,6 +198,25 @@ Character load_character(const std::string& path, const LoadOptions& options) {
                                                n->mName.C_Str()));
     }
     for (unsigned i = 0; i < n->mNumChildren; ++i) todo.push_back({n->mChildren[i], self});
+  }
+  std::vector<bool> static_joint(ch.skeleton.joint_count(), false);
+  for (const std::string& name : missing) {
+    const aiBone* bone = nullptr;
+    for (unsigned m = 0; m < scene->mNumMeshes && !bone; ++m)
+      for (unsigned b = 0; b < scene->mMeshes[m]->mNumBones && !bone; ++b)
+        if (name == scene->mMeshes[m]->mBones[b]->mName.C_Str()) bone = scene->mMeshes[m]->mBones[b];
+    if (!bone) {  // no mesh has bones and an animation channel names a node the scene lacks
+      warn.add("channel without node", fmt::format("animated node '{}' is not in the scene; its channel is "
+                                                   "ignored", name));
+      continue;
+    }
+    ch.skeleton.names.push_back(name);
+    ch.skeleton.parents.push_back(-1);
+    bool exact = true;
+    ch.skeleton.rest_local.push_back(decompose(glm::inverse(to_glm(bone->mOffsetMatrix)), exact));
+    static_joint.push_back(true);
+    warn.add("bone without node", fmt::format("bone '{}' has no node in the scene; its vertices stay at their "
+                                              "bind pose (a static joint)", name));
   }
   if (ch.skeleton.joint_count() == 0) throw LoadError(fmt::format("{}: no skeleton", path));
   if (ch.skeleton.joint_count() > 65535) throw LoadError(fmt::format("{}: too many joints", path));
@@ -292,6 +316,7 @@ Character load_character(const std::string& path, const LoadOptions& options) {
         const aiNodeAnim* na = an->mChannels[c];
         const int j = ch.skeleton.find(na->mNodeName.C_Str());
         if (j < 0) continue;  // an animated node outside the skeleton (e.g. a mesh's own node)
+        if (static_joint[j]) continue;  // a bone without node: kept at its bind pose
         animated[j] = true;
         JointTrack& tr = clip.tracks[j];
         for (unsigned k = 0; k < na->mNumPositionKeys; ++k) {

@@ -355,11 +355,10 @@ CGA_SKIN_CLONES bool dq_block_pn(const float* pal, const Streams& s, std::size_t
 // 1, e12, e13, e23), vectorized within the vertex, and store the 12 blended coefficients transposed (one row
 // per coefficient, kBlock vertices wide). 2: turn each blended motor into its weight-normalized point-transform
 // matrix with the generated kernel and apply it; this pass reads the rows contiguously and vectorizes across
-// vertices. A motor entry is the 12 coefficients in kMotorLaneBlade order (rotor part first, so the sign fix
-// reads lanes 0-3), padded to 16.
-constexpr int kMotorLaneBlade[12] = {blade::s,     blade::e12,     blade::e13,     blade::e23,
-                                     blade::e1inf, blade::e2inf,   blade::e3inf,   blade::einf0,
-                                     blade::e123inf, blade::e12inf0, blade::e13inf0, blade::e23inf0};
+// vertices. A motor entry is the motor in split form (skinning_palettes.hpp, motor_split): lanes 0-3 G = a + b
+// (the rotor part scaled by 1 + k > 0, so the sign fix reads lanes 0-3), 4-7 U (the einf blades), 8-11
+// H = a - b, padded to 16. The split form is linear in the blades, so the blend is the same; pass 2's kernel
+// on G, H, U has no cancellation for scaled motors (and fewer operations than on the blades).
 
 using MotorRows = float[12][kBlock];
 
@@ -369,10 +368,10 @@ CGA_ALWAYS_INLINE void motor_rows_apply(const MotorRows& rows, const Streams& s,
                                         std::size_t end) {
 #pragma GCC ivdep
   for (std::size_t i = begin; i < end; ++i) {
-    float motor[12];
-    for (int r = 0; r < 12; ++r) motor[kMotorLaneBlade[r]] = rows[r][i - begin];
+    float g[4], u[4], h[4];
+    for (int r = 0; r < 4; ++r) g[r] = rows[r][i - begin], u[r] = rows[4 + r][i - begin], h[r] = rows[8 + r][i - begin];
     float m[12];
-    detail::motor_matrix(motor, m);
+    detail::motor_split_matrix(g, h, u, m);
     const float x = s.px[i], y = s.py[i], z = s.pz[i];
     s.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
     s.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
@@ -826,7 +825,8 @@ bool SkinningJob::Run() const {
       break;
     case SkinningMethod::cga_motors:
       for (std::size_t k = 0; k < palette; ++k) {
-        for (int r = 0; r < 12; ++r) converted[kEntry * k + r] = motors[k].c[kMotorLaneBlade[r]];
+        float* e = converted + kEntry * k;
+        detail::motor_split(motors[k].c.data(), e, e + 8, e + 4);
         for (std::size_t r = 12; r < kEntry; ++r) converted[kEntry * k + r] = 0.0f;
       }
       block = normals ? motor_block_pn : motor_block_p;

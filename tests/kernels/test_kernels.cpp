@@ -28,6 +28,8 @@
 #include "motor_mul.hpp"
 #include "motor_mul_rigid.hpp"
 #include "motor_reverse.hpp"
+#include "motor_split_mul.hpp"
+#include "motor_split_to_matrix.hpp"
 #include "motor_to_matrix.hpp"
 #include "paper_a1.hpp"
 #include "paper_motor.hpp"
@@ -303,6 +305,51 @@ TEMPLATE_TEST_CASE("motor_to_matrix columns = E(M e_i ~M)/w", "[kernels]", KERNE
     check_against(c2, k::motor_to_matrix_c2_blades, (M * oracle::e2<double>() * Mr) / w, TestType::tol, column_drop);
     check_against(c3, k::motor_to_matrix_c3_blades, (M * oracle::e3<double>() * Mr) / w, TestType::tol, column_drop);
     check_against(t, k::motor_to_matrix_t_blades, P0 / w, TestType::tol, t_drop);
+  }
+}
+
+// Split form (runtime/scripts/motor_split_to_matrix.clu): G = a + b, H = a - b of the blades 1 e12 e13 e23 and
+// their einf^e0 multiples, U the einf blades e1inf e2inf e3inf e123inf.
+namespace {
+void split(const double* m, double* g, double* h, double* u) {
+  const int a[4] = {0, 1, 2, 4}, b[4] = {7, 9, 10, 11}, e[4] = {3, 5, 6, 8};
+  for (int i = 0; i < 4; ++i) g[i] = m[a[i]] + m[b[i]], h[i] = m[a[i]] - m[b[i]], u[i] = m[e[i]];
+}
+}  // namespace
+
+TEST_CASE("motor_split_to_matrix on the split form = motor_to_matrix's E(M e_i ~M)/w", "[kernels]") {
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    auto m = rng.array<12>();
+    m[0] += 3;  // keep the weight away from 0
+    double g[4], h[4], u[4], c1[3], c2[3], c3[3], t[3];
+    split(m.data(), g, h, u);
+    k::motor_split_to_matrix(g, h, u, c1, c2, c3, t);
+    MV M = from_coeffs(m.data(), kMotorBlades), Mr = oracle::reverse(M);
+    MV P0 = M * e0 * Mr;
+    double w = oracle::scalar_part(oracle::inner(einf ^ P0, einf ^ e0));
+    check_against(c1, k::motor_split_to_matrix_c1_blades, (M * oracle::e1<double>() * Mr) / w);
+    check_against(c2, k::motor_split_to_matrix_c2_blades, (M * oracle::e2<double>() * Mr) / w);
+    check_against(c3, k::motor_split_to_matrix_c3_blades, (M * oracle::e3<double>() * Mr) / w);
+    check_against(t, k::motor_split_to_matrix_t_blades, P0 / w);
+  }
+}
+
+TEST_CASE("motor_split_mul = A B in split form", "[kernels]") {
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    auto a = rng.array<12>(), b = rng.array<12>();
+    double ga[4], ha[4], ua[4], gb[4], hb[4], ub[4], g[4], h[4], u[4];
+    split(a.data(), ga, ha, ua);
+    split(b.data(), gb, hb, ub);
+    k::motor_split_mul(ga, ha, ua, gb, hb, ub, g, h, u);
+    // Back to the 12 blades (a = (G + H)/2, b = (G - H)/2) and against the oracle's product.
+    double c[12];
+    const int ai[4] = {0, 1, 2, 4}, bi[4] = {7, 9, 10, 11}, ei[4] = {3, 5, 6, 8};
+    for (int i = 0; i < 4; ++i) c[ai[i]] = 0.5 * (g[i] + h[i]), c[bi[i]] = 0.5 * (g[i] - h[i]), c[ei[i]] = u[i];
+    std::array<std::string_view, 12> names;
+    for (int i = 0; i < 12; ++i) names[i] = kMotorBlades[i];
+    check_against(c, names, from_coeffs(a.data(), kMotorBlades) * from_coeffs(b.data(), kMotorBlades));
   }
 }
 

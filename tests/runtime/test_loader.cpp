@@ -11,7 +11,9 @@
 #include <random>
 #include <set>
 
+#include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
+#include "cga/runtime/skinning.hpp"
 
 using namespace cga;
 
@@ -175,6 +177,110 @@ AnimationSet Clip {
   CHECK(t.scales[1].value == Approx(2.0f));  // geometric mean of 1, 2, 4
 }
 
+// tests/data/bone_without_node.x: a strip skinned to joint1 (y = 0), joint2 (y = 1) and joint3 (y = 2); the
+// scene has no node joint3. The clip turns joint2 by 90 degrees about z.
+TEST_CASE("a skinned bone without a node loads as a static joint, with a warning naming it") {
+  const Character ch = load_character(std::string(CGA_TEST_DATA_DIR) + "/bone_without_node.x");
+  check_character(ch);
+  bool named = false;
+  for (const std::string& w : ch.warnings)
+    if (w.find("'joint3'") != std::string::npos && w.find("no node") != std::string::npos) named = true;
+  INFO("warnings: " << ch.warnings.size());
+  CHECK(named);
+  const int j3 = ch.skeleton.find("joint3");
+  REQUIRE(j3 >= 0);
+  CHECK(ch.skeleton.parents[j3] == -1);
+  REQUIRE(ch.meshes.size() == 1);
+  REQUIRE(ch.clips.size() == 1);
+  const SkinnedMesh& mesh = ch.meshes[0];
+  CHECK(mesh_bones(ch) == std::set<std::string>{"joint1", "joint2", "joint3"});
+  const Clip& clip = ch.clips[0];
+  const InverseBind ib = make_inverse_bind(mesh);
+  // Every method through its own pipeline at the end of the clip (joint2 turned by 90 degrees).
+  for (SkinningMethod method : kAllSkinningMethods) {
+    INFO("method " << to_string(method));
+    const Interpolation mode = method == SkinningMethod::lbs   ? Interpolation::glm_matrix
+                               : method == SkinningMethod::dqs ? Interpolation::glm_dualquat
+                                                               : Interpolation::paper;
+    const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
+    PoseBuffer local(n), model(n);
+    SamplingJob s;
+    s.clip = &clip, s.time = clip.duration, s.mode = mode;
+    s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
+    s.out_scales = local.scales;
+    REQUIRE(s.Run());
+    LocalToModelJob l2m;
+    l2m.skeleton = &ch.skeleton, l2m.mode = mode;
+    l2m.local_motors = local.motors, l2m.local_transforms = local.transforms, l2m.local_dual_quats = local.dual_quats,
+    l2m.local_scales = local.scales;
+    l2m.model_motors = model.motors, l2m.model_matrices = model.matrices, l2m.model_dual_quats = model.dual_quats,
+    l2m.model_scales = model.scales;
+    REQUIRE(l2m.Run());
+    MatrixPalette matrices(mesh.joint_remap.size());
+    DualQuatPalette dual_quats(mesh.joint_remap.size());
+    MotorPalette motors(mesh.joint_remap.size());
+    SkinningPaletteJob p;
+    p.mode = mode, p.joint_remap = mesh.joint_remap, p.inverse_bind = &ib;
+    p.model_motors = model.motors, p.model_matrices = model.matrices, p.model_dual_quats = model.dual_quats,
+    p.model_scales = model.scales;
+    p.out_motors = motors, p.out_matrices = matrices, p.out_dual_quats = dual_quats;
+    REQUIRE(p.Run());
+    SkinnedOutput out;
+    out.resize_for(mesh);
+    SkinningJob job = make_skinning_job(method, mesh, out);
+    job.matrices = matrices, job.dual_quats = dual_quats, job.motors = motors;
+    REQUIRE(job.Run());
+    int moved = 0, still = 0;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const glm::vec3 rest(mesh.px[v], mesh.py[v], mesh.pz[v]), now(out.px[v], out.py[v], out.pz[v]);
+      const std::string bone = ch.skeleton.names[mesh.joint_remap[mesh.joints[v][0]]];
+      INFO("vertex " << v << " of " << bone << " at " << rest.x << " " << rest.y << " " << rest.z);
+      if (bone == "joint2") {
+        CHECK(glm::length(now - rest) > 0.5f);  // turned about z around (0, 1, 0): |x| = 0.5 goes onto y
+        ++moved;
+      } else {
+        CHECK(glm::length(now - rest) < 1e-5f);  // joint1 is not animated; joint3 stays at its bind pose
+        ++still;
+      }
+    }
+    CHECK(moved > 0);
+    CHECK(still > 0);
+  }
+}
+
+TEST_CASE("an animation channel of a node the scene lacks is ignored with a warning (no mesh bones)") {
+  const std::string x = R"(xof 0303txt 0032
+Frame Root {
+  FrameTransformMatrix {
+    1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0;;
+  }
+  Frame Bone {
+    FrameTransformMatrix {
+      1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,1.0,0.0,1.0;;
+    }
+  }
+}
+AnimationSet Clip {
+  Animation {
+    { Bone }
+    AnimationKey { 2; 2; 0;3;0.0,1.0,0.0;;, 10;3;0.0,2.0,0.0;;; }
+  }
+  Animation {
+    { Ghost }
+    AnimationKey { 2; 2; 0;3;0.0,1.0,0.0;;, 10;3;0.0,2.0,0.0;;; }
+  }
+}
+)";
+  const Character ch = load_character(temp_file("ghost.x", x));
+  check_character(ch);
+  CHECK(ch.skeleton.find("Bone") >= 0);
+  CHECK(ch.skeleton.find("Ghost") < 0);
+  bool named = false;
+  for (const std::string& w : ch.warnings)
+    if (w.find("'Ghost'") != std::string::npos) named = true;
+  CHECK(named);
+}
+
 TEST_CASE("bad files throw LoadError naming the path") {
   SECTION("missing file") {
     const std::string p = "/nonexistent/dir/character.x";
@@ -183,6 +289,15 @@ TEST_CASE("bad files throw LoadError naming the path") {
       FAIL("no exception");
     } catch (const LoadError& e) {
       CHECK(std::string(e.what()).find(p) != std::string::npos);
+    }
+  }
+  SECTION("a directory") {
+    const std::string p = std::filesystem::temp_directory_path().string();
+    try {
+      load_character(p);
+      FAIL("no exception");
+    } catch (const LoadError& e) {
+      CHECK(std::string(e.what()).find(p + ": cannot load character: is a directory") != std::string::npos);
     }
   }
   SECTION("truncated copy of a real .X file") {

@@ -1,16 +1,17 @@
 // Crowd-skinning kernels: one thread per vertex (grid-stride), blockIdx.y = instance. Each block stages its
 // instance's palette in shared memory; cga_points converts every motor there once into its weight-
-// normalized point-transform matrix with the generated motor_to_matrix (the point transform of a motor is
-// affine, so the per-bone transform_point + divide + average the paper does per vertex equals blending these
-// matrices), and cga_motors blends the 12 motor coefficients per vertex (rotor sign fix) and moves the point
-// with the generated transform_point. Methods and input formats are template parameters.
+// normalized point-transform matrix with the generated motor_split_to_matrix (the point transform of a motor
+// is affine, so the per-bone transform_point + divide + average the paper does per vertex equals blending
+// these matrices), and cga_motors stages its motors in split form (G = a + b, H = a - b, U; see
+// runtime/scripts/motor_split_to_matrix.clu: no cancellation for scaled motors), blends those 12 coefficients
+// per vertex (sign fix on G) and moves the point by motor_split_to_matrix's matrix. Methods and input formats
+// are template parameters.
 #include <cuda_runtime.h>
 
 #include <cstdint>
 
 #include "kernels.hpp"
-#include "motor_to_matrix.cuh"
-#include "transform_point.cuh"
+#include "motor_split_to_matrix.cuh"
 
 namespace cga::cuda::detail {
 namespace {
@@ -55,10 +56,18 @@ __device__ __forceinline__ void load_weights(const void* p, std::size_t i, float
   }
 }
 
-// Row-major 3x4 from the generated motor_to_matrix's columns.
-__device__ __forceinline__ void motor_rows(const float motor[12], float m[12]) {
+// A motor's 12 blades (types.hpp order) in split form: G = a + b in s[0..3], H = a - b in s[4..7], the einf
+// blades U in s[8..11].
+__device__ __forceinline__ void motor_split(const float c[12], float s[12]) {
+  s[0] = c[0] + c[7], s[1] = c[1] + c[9], s[2] = c[2] + c[10], s[3] = c[4] + c[11];
+  s[4] = c[0] - c[7], s[5] = c[1] - c[9], s[6] = c[2] - c[10], s[7] = c[4] - c[11];
+  s[8] = c[3], s[9] = c[5], s[10] = c[6], s[11] = c[8];
+}
+
+// Row-major 3x4 from the generated motor_split_to_matrix's columns, for a motor in split form.
+__device__ __forceinline__ void split_rows(const float s[12], float m[12]) {
   float c1[3], c2[3], c3[3], t[3];
-  cga::kernels::motor_to_matrix(motor, c1, c2, c3, t);
+  cga::kernels::motor_split_to_matrix(s, s + 4, s + 8, c1, c2, c3, t);
   for (int r = 0; r < 3; ++r) m[4 * r] = c1[r], m[4 * r + 1] = c2[r], m[4 * r + 2] = c3[r], m[4 * r + 3] = t[r];
 }
 
@@ -84,9 +93,16 @@ __global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
   const float* src = a.palettes + static_cast<std::size_t>(instance) * a.bones * kEntry;
   if constexpr (kMethod == kPoints) {
     for (unsigned b = threadIdx.x; b < a.bones; b += blockDim.x) {
+      float motor[12], split[12];
+      for (int e = 0; e < 12; ++e) motor[e] = src[12 * b + e];
+      motor_split(motor, split);
+      split_rows(split, palette + 12 * b);
+    }
+  } else if constexpr (kMethod == kMotors) {
+    for (unsigned b = threadIdx.x; b < a.bones; b += blockDim.x) {
       float motor[12];
       for (int e = 0; e < 12; ++e) motor[e] = src[12 * b + e];
-      motor_rows(motor, palette + 12 * b);
+      motor_split(motor, palette + 12 * b);
     }
   } else {
     for (unsigned i = threadIdx.x; i < a.bones * kEntry; i += blockDim.x) palette[i] = src[i];
@@ -103,8 +119,7 @@ __global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
     float w[4];
     load_joints<kU8>(a.joints, iv, j);
     load_weights<kUnorm>(a.weights, iv, w);
-    float m[12] = {};  // the blended 3x4; cga_motors without normals moves the point without it
-    bool have_matrix = true;
+    float m[12] = {};  // the blended 3x4
     float px = 0.0f, py = 0.0f, pz = 0.0f;
     if constexpr (kMethod == kLbs || kMethod == kPoints) {
       for (int e = 0; e < 12; ++e) m[e] = w[0] * palette[12 * j[0] + e];
@@ -127,26 +142,16 @@ __global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
       for (int e = 0; e < 12; ++e) b[e] = w[0] * q0[e];
       for (int k = 1; k < 4; ++k) {
         const float* q = palette + 12 * j[k];
-        // Rotor parts: blades 1, e12, e13, e23 (indices 0, 1, 2, 4).
-        const float dot = q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[4] * q[4];
+        // Rotor parts times 1 + k: G (split indices 0-3).
+        const float dot = q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[3] * q[3];
         const float wk = copysignf(w[k], dot);
         for (int e = 0; e < 12; ++e) b[e] += wk * q[e];
       }
-      if constexpr (kNormals) {
-        motor_rows(b, m);
-      } else {
-        float P[4];
-        cga::kernels::transform_point(b, x, y, z, P);
-        const float inv = 1.0f / P[3];
-        px = P[0] * inv, py = P[1] * inv, pz = P[2] * inv;
-        have_matrix = false;
-      }
+      split_rows(b, m);
     }
-    if (have_matrix) {
-      px = m[0] * x + m[1] * y + m[2] * z + m[3];
-      py = m[4] * x + m[5] * y + m[6] * z + m[7];
-      pz = m[8] * x + m[9] * y + m[10] * z + m[11];
-    }
+    px = m[0] * x + m[1] * y + m[2] * z + m[3];
+    py = m[4] * x + m[5] * y + m[6] * z + m[7];
+    pz = m[8] * x + m[9] * y + m[10] * z + m[11];
     a.out_positions[3 * ov] = px;
     a.out_positions[3 * ov + 1] = py;
     a.out_positions[3 * ov + 2] = pz;

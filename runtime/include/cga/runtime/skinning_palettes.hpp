@@ -11,7 +11,7 @@
 
 // A hard dependency: the CGA methods run on this generated kernel (cga::kernels, generated/CMakeLists.txt), so
 // a build without it fails here rather than at run time.
-#include <motor_to_matrix.hpp>
+#include <motor_split_to_matrix.hpp>
 
 namespace cga {
 
@@ -48,17 +48,34 @@ inline void pack_dual_quats(std::span<const glm::dualquat> in, std::span<float> 
 
 namespace detail {
 
-// The weight-normalized point transform of a (possibly blended, unnormalized) motor as a row-major 3x4
-// matrix, computed by the generated motor_to_matrix kernel.
-inline void motor_matrix(const float motor[12], float out[12]) {
+// A motor in split form (runtime/scripts/motor_split_to_matrix.clu): G = a + b and H = a - b (blades 1 e12
+// e13 e23 of a and of the E-times group b), U the einf blades (e1inf e2inf e3inf e123inf). Linear in the
+// coefficients, so blending split motors is the split form of the blend.
+inline void motor_split(const float m[12], float g[4], float h[4], float u[4]) {
+  g[0] = m[0] + m[7], g[1] = m[1] + m[9], g[2] = m[2] + m[10], g[3] = m[4] + m[11];
+  h[0] = m[0] - m[7], h[1] = m[1] - m[9], h[2] = m[2] - m[10], h[3] = m[4] - m[11];
+  u[0] = m[3], u[1] = m[5], u[2] = m[6], u[3] = m[8];
+}
+
+// The weight-normalized point transform of a (possibly blended, unnormalized) motor in split form as a
+// row-major 3x4 matrix, computed by the generated motor_split_to_matrix kernel.
+inline void motor_split_matrix(const float g[4], const float h[4], const float u[4], float out[12]) {
   float c1[3], c2[3], c3[3], t[3];
-  cga::kernels::motor_to_matrix(motor, c1, c2, c3, t);
+  cga::kernels::motor_split_to_matrix(g, h, u, c1, c2, c3, t);
   for (int r = 0; r < 3; ++r) {
     out[4 * r + 0] = c1[r];
     out[4 * r + 1] = c2[r];
     out[4 * r + 2] = c3[r];
     out[4 * r + 3] = t[r];
   }
+}
+
+// The same from the 12 blade coefficients (the split form first: the blade form's weight a^2 + b^2 + 2ab
+// cancels for scaled motors, see the script).
+inline void motor_matrix(const float motor[12], float out[12]) {
+  float g[4], h[4], u[4];
+  motor_split(motor, g, h, u);
+  motor_split_matrix(g, h, u, out);
 }
 
 }  // namespace detail
