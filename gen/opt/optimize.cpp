@@ -53,9 +53,12 @@ class PhaseTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The size of e for the work budget: its symbol occurrences. Unlike a node count this does not depend on
+// GiNaC's process-dependent choices ((a-b)*x or -(b-a)*x), so budget decisions and notes are the same in
+// every process.
 size_t tree_size(const ex& e) {
   size_t n = 0;
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) ++n;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) n += is_a<symbol>(*it);
   return n;
 }
 
@@ -115,6 +118,22 @@ std::optional<std::pair<ex, ex>> split_common_denominator(const ex& e) {
 
 // Brings a small output coefficient with denominators over one common denominator when that makes it
 // shorter (u.u - 1 with u = x/n folds to 0 or to a plain expression).
+// Above this size (tree_size) of one argument of a call or root, combine_fractions keeps calls and roots
+// opaque. The bundled scripts' arguments stay below 600 (circle3's radius); a fuzzer find had 10920.
+constexpr size_t kMaxNormalNodes = 1000;
+
+// The tree_size of the largest argument of a function call or non-integer power in e.
+size_t largest_call_argument(const ex& e) {
+  size_t n = 0;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+    if (is_a<function>(*it))
+      for (size_t i = 0; i < it->nops(); ++i) n = std::max(n, tree_size(it->op(i)));
+    else if (is_a<power>(*it) && !(is_a<numeric>(it->op(1)) && ex_to<numeric>(it->op(1)).is_integer()))
+      n = std::max(n, tree_size(it->op(0)));
+  }
+  return n;
+}
+
 Rat combine_fractions(const Rat& r) {
   if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return r;
   // When every term has the same denominator D the terms over D stay as many (they are distinct monomials),
@@ -126,8 +145,14 @@ Rat combine_fractions(const Rat& r) {
     const ex n = split->first.to_polynomial(repl), d = split->second.to_polynomial(repl);
     if (is_a<numeric>(gcd(n, d))) return r;
   }
-  ex nd = r.num.numer_denom();
+  // numer_denom also normalizes inside function arguments and roots, which simplifies small ones
+  // (sqrt(t)^2 = t) but takes minutes on a large quotient under sqrt(abs(...)). When an argument has more
+  // than kMaxNormalNodes nodes, calls and roots stay opaque (temporary symbols).
+  exmap opaque;
+  const bool large = largest_call_argument(r.num) > kMaxNormalNodes;
+  ex nd = (large ? r.num.to_rational(opaque) : r.num).numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
+  if (large) n = expand(n.subs(opaque, subs_options::no_pattern)), d = expand(d.subs(opaque, subs_options::no_pattern));
   auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
   if (n.is_zero()) return {0, 1};
   if (size(n) + size(d) >= size(r.num)) return r;
@@ -215,9 +240,9 @@ ex collect_in(const ex& e, const std::vector<ex>& xs) {
 
 // Above this estimated size a value is not substituted into its users but kept as a temporary.
 constexpr double kMaxInlineTerms = 4000;
-// Above this many expression nodes in the -O1 form, -O2 optimizes only the script's statement form. The
-// bundled runtime kernels stay below 3500; paper A.1 has 25000 and circle3 440000.
-constexpr size_t kMaxExpandedNodes = 10000;
+// Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
+// The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
+constexpr size_t kMaxExpandedNodes = 4000;
 
 // Unique identifier generation, avoiding the inputs' names.
 class Namer {
@@ -406,7 +431,7 @@ StatementForm statement_form(const Kernel& k, const Substituted& s, const std::v
   return f;
 }
 
-// Expression nodes of the expanded (-O1) form: what the CSE passes and the printer would work through.
+// The size (tree_size) of the expanded (-O1) form: what the CSE passes and the printer would work through.
 size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vector<SlotPlan>>& plans) {
   size_t n = 0;
   for (const auto& slots : plans)
@@ -417,7 +442,7 @@ size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vecto
 
 std::string over_budget_note(const char* level, size_t size) {
   return std::string(level) + " kept the script's statement form: the expanded form has " + std::to_string(size) +
-         " expression nodes (budget " + std::to_string(kMaxExpandedNodes) + ")";
+         " symbol occurrences (budget " + std::to_string(kMaxExpandedNodes) + ")";
 }
 
 Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
