@@ -9,34 +9,11 @@
 #include <string>
 #include <sys/wait.h>
 
-namespace {
+#include "cli_run.hpp"
 
-struct Result {
-  int code;
-  std::string out;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  std::string cmd = std::string(CGAGEN_EXE) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) throw std::runtime_error("popen failed");
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-std::string script(const std::string& name) { return std::string(CGA_SOURCE_DIR) + "/runtime/scripts/" + name; }
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  std::string path = std::string(CGA_BINARY_DIR) + "/" + name;
-  std::ofstream(path) << text;
-  return path;
-}
-
-}  // namespace
+using cga_test::run;
+using cga_test::script;
+using cga_test::write_temp;
 
 TEST_CASE("usage errors exit 2 with a message", "[cli]") {
   auto r = run("");

@@ -1,0 +1,40 @@
+// Running the built cgagen from CLI tests: its exit status and its stdout + stderr, and scratch scripts.
+// CGAGEN_EXE, CGA_SOURCE_DIR and CGA_BINARY_DIR come from tests/kernels/CMakeLists.txt.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+namespace cga_test {
+
+struct Result {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+inline Result run(const std::string& args) {
+  std::string cmd = std::string(CGAGEN_EXE) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) throw std::runtime_error("popen failed");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// Writes `text` to CGA_BINARY_DIR/name and returns the path.
+inline std::string write_temp(const std::string& name, const std::string& text) {
+  std::string path = std::string(CGA_BINARY_DIR) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+inline std::string script(const std::string& name) { return std::string(CGA_SOURCE_DIR) + "/runtime/scripts/" + name; }
+
+}  // namespace cga_test
