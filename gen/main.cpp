@@ -27,7 +27,8 @@ const char* kUsage = R"(usage: cgagen [options] SCRIPT
 Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code.
 
 options:
-  --target cpp|glsl|cuda  output language (default cpp)
+  --target NAME           output language (default cpp); --target list prints the targets
+  --target-extension NAME print the file extension of target NAME
   -O0 | -O1 | -O2         optimization level (default -O2)
   -o FILE                 write the output to FILE (default: standard output)
   --name NAME             function name (default: the script's file stem)
@@ -99,7 +100,15 @@ Options parse_args(int argc, char** argv) {
         std::cout << kUsage;
         std::exit(0);
       } else if (a == "--target") {
-        o.emit.target = emit::parse_target(value(i, a));
+        std::string t = value(i, a);
+        if (t == "list") {  // the table of targets (gen/emit/targets.cpp), one name per line
+          for (const auto& s : emit::targets()) std::cout << s.name << "\n";
+          std::exit(0);
+        }
+        o.emit.target = emit::parse_target(t);
+      } else if (a == "--target-extension") {  // for build systems: the file extension of a target
+        std::cout << emit::syntax(value(i, a)).extension << "\n";
+        std::exit(0);
       } else if (a == "-O0" || a == "-O1" || a == "-O2") {
         o.level = opt::parse_level(a);
       } else if (a == "-o") {
