@@ -10,6 +10,7 @@ packages=(
   catch2 libassimp-dev assimp-testmodels libbenchmark-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libstb-dev
   clang libclang-rt-14-dev
+  python3-numpy                              # targets: python (Debian's /usr/bin/python3)
 )
 
 missing=()
