@@ -11,6 +11,7 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libstb-dev
   clang libclang-rt-14-dev
   python3-numpy                              # targets: python (Debian's /usr/bin/python3)
+  nodejs                                     # targets: javascript (node)
 )
 
 missing=()
