@@ -12,6 +12,7 @@ packages=(
   clang libclang-rt-14-dev
   python3-numpy                              # targets: python (Debian's /usr/bin/python3)
   nodejs                                     # targets: javascript (node)
+  rustc                                      # targets: rust (no cargo, no crates)
 )
 
 missing=()

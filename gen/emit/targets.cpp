@@ -148,7 +148,7 @@ std::vector<Syntax> make_targets() {
   rust.out_param = "${name}: &mut [${T}; ${n}]";
   rust.temp = "let ${name}: ${T} = ${value};";
   rust.assign = "${elem} = ${value};  ${c} ${blade}";
-  rust.blade_list = "#[allow(non_upper_case_globals)]\npub const ${fn}_${out}_blades: [&str; ${n}] = [${list}];";
+  rust.blade_list = "#[allow(non_upper_case_globals, dead_code)]\npub const ${fn}_${out}_blades: [&str; ${n}] = [${list}];";
   t.push_back(rust);
 
   Syntax tex;

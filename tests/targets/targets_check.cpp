@@ -306,6 +306,75 @@ void run_javascript(const std::vector<Case>& cases, const std::string& gendir, c
   }
 }
 
+// Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
+void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  std::string src = "use std::io::{self, BufRead, Write};\n\n";
+  for (const auto& c : cases) src += "#[path = \"" + gendir + "/" + c.name + ".rs\"]\nmod k_" + c.name + ";\n";
+  for (const auto& c : cases) {
+    src += "\nfn run_" + c.name + "(single: bool, a: &[f64]) -> Vec<f64> {\n  let mut r = Vec::new();\n";
+    for (std::string T : {"f32", "f64"}) {
+      src += std::string(T == "f32" ? "  if single {\n" : "  } else {\n");
+      std::string args;
+      size_t off = 0;
+      for (size_t i = 0; i < c.in_sizes.size(); ++i) {
+        size_t n = c.in_sizes[i];
+        if (n == 0) {
+          args += (args.empty() ? "" : ", ") + std::string("a[") + std::to_string(off++) + "] as " + T;
+          continue;
+        }
+        std::string v = "i" + std::to_string(i);
+        src += "    let mut " + v + " = [0.0 as " + T + "; " + std::to_string(n) + "];\n    for k in 0.." +
+               std::to_string(n) + " { " + v + "[k] = a[" + std::to_string(off) + " + k] as " + T + "; }\n";
+        off += n;
+        args += (args.empty() ? "" : ", ") + std::string("&") + v;
+      }
+      std::string outs;
+      for (size_t i = 0; i < c.out_sizes.size(); ++i) {
+        std::string v = "o" + std::to_string(i);
+        src += "    let mut " + v + " = [0.0 as " + T + "; " + std::to_string(c.out_sizes[i]) + "];\n";
+        args += ", &mut " + v;
+        outs += "    r.extend(" + v + ".iter().map(|&v| v as f64));\n";
+      }
+      src += "    k_" + c.name + "::" + c.name + "_" + T + "(" + args + ");\n" + outs;
+    }
+    src += "  }\n  r\n}\n";
+  }
+  src += "\nfn main() {\n  let args: Vec<String> = std::env::args().collect();\n  let single = args[2] == \"f32\";\n"
+         "  let f: fn(bool, &[f64]) -> Vec<f64> = match args[1].as_str() {\n";
+  for (const auto& c : cases) src += "    \"" + c.name + "\" => run_" + c.name + ",\n";
+  src += "    _ => panic!(\"unknown kernel\"),\n  };\n  let stdin = io::stdin();\n"
+         "  let mut out = io::BufWriter::new(io::stdout());\n  for line in stdin.lock().lines() {\n"
+         "    let line = line.unwrap();\n    if line.is_empty() { continue; }\n"
+         "    let a: Vec<f64> = line.split_whitespace().map(|s| s.parse().unwrap()).collect();\n"
+         "    let v: Vec<String> = f(single, &a).iter().map(|x| format!(\"{:?}\", x)).collect();\n"
+         "    writeln!(out, \"{}\", v.join(\" \")).unwrap();\n  }\n}\n";
+  std::ofstream(work + "/drive.rs") << src;
+  auto t0 = std::chrono::steady_clock::now();
+  std::string cmd = std::string(RUSTC) + " --edition 2021 -C opt-level=1 -o " + work + "/drive " + work +
+                    "/drive.rs 2> " + work + "/rustc.log";
+  int rc = sh(cmd);
+  std::string log = slurp(work + "/rustc.log");
+  std::printf("rustc (%s) in %.1f s, %s\n%s", RUSTC, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              rc == 0 ? "ok" : "FAILED", log.c_str());
+  if (log.find("warning") != std::string::npos) ++failures;  // the generated code compiles without warnings
+  if (rc != 0) {
+    ++failures;
+    return;
+  }
+  for (const auto& c : cases) {
+    std::string base = work + "/" + c.name;
+    write_rows(base + ".in", c.inputs);
+    for (std::string T : {"f32", "f64"}) {
+      if (sh(work + "/drive " + c.name + " " + T + " < " + base + ".in > " + base + "." + T) != 0) {
+        std::printf("FAIL %-20s rust driver failed (%s)\n", c.name.c_str(), T.c_str());
+        ++failures;
+        continue;
+      }
+      check(c, "rustc " + T, base + "." + T, T == "f32" ? kTolFloat : kTolDouble);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -323,6 +392,7 @@ int main(int argc, char** argv) {
               std::chrono::duration<double>(t1 - t0).count());
   if (lang == "python") run_python(cases, gendir, work);
   else if (lang == "javascript") run_javascript(cases, gendir, work);
+  else if (lang == "rust") run_rust(cases, gendir, work);
   else {
     std::fprintf(stderr, "targets_check: no driver for %s\n", lang.c_str());
     return 2;
