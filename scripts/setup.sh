@@ -13,6 +13,7 @@ packages=(
   python3-numpy                              # targets: python (Debian's /usr/bin/python3)
   nodejs                                     # targets: javascript (node)
   rustc                                      # targets: rust (no cargo, no crates)
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers   # targets: opencl on the CPU
 )
 
 missing=()

@@ -306,6 +306,43 @@ void run_javascript(const std::vector<Case>& cases, const std::string& gendir, c
   }
 }
 
+// OpenCL: every script's emitted file plus wrapper kernels (one work item per row) in one program, built
+// once and run by opencl_host.
+void run_opencl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  std::string src, args;
+  for (const auto& c : cases) {
+    std::string base = work + "/" + c.name;
+    src += slurp(gendir + "/" + c.name + ".cl");
+    for (std::string T : {"float", "double"}) {
+      std::string suffix = T == "float" ? "_f32" : "_f64";
+      CCall k = c_call(c, T, c.name + suffix, "a", "o");
+      src += std::string(T == "double" ? "\n#ifdef cl_khr_fp64\n" : "\n") + "__kernel void run_" + c.name + suffix +
+             "(__global const " + T + "* in_all, __global " + T + "* out_all) {\n" +
+             "  const size_t i = get_global_id(0);\n  __global const " + T + "* a = in_all + i * " +
+             std::to_string(c.nin) + ";\n  __global " + T + "* o = out_all + i * " + std::to_string(c.nout) + ";\n" +
+             k.decls + k.call + k.copy_out + "}\n" + (T == "double" ? "#endif\n" : "");
+    }
+    src += "\n";
+    write_rows(base + ".in", c.inputs);
+    args += " " + c.name + " " + std::to_string(c.nin) + " " + std::to_string(c.nout) + " " + base + ".in " + base +
+            ".cl32 " + base + ".cl64";
+  }
+  std::ofstream(work + "/all.cl") << src;
+  auto t0 = std::chrono::steady_clock::now();
+  std::string cmd = std::string(OPENCL_HOST) + " " + work + "/all.cl" + args + " > " + work + "/device.txt";
+  if (sh(cmd) != 0) {
+    std::printf("FAIL opencl host failed: %s\n", cmd.c_str());
+    ++failures;
+    return;
+  }
+  std::printf("OpenCL build + runs in %.1f s on %s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              slurp(work + "/device.txt").c_str());
+  for (const auto& c : cases) {
+    check(c, "opencl float", work + "/" + c.name + ".cl32", kTolFloat);
+    check(c, "opencl double", work + "/" + c.name + ".cl64", kTolDouble);
+  }
+}
+
 // Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
 void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::string src = "use std::io::{self, BufRead, Write};\n\n";
@@ -393,6 +430,7 @@ int main(int argc, char** argv) {
   if (lang == "python") run_python(cases, gendir, work);
   else if (lang == "javascript") run_javascript(cases, gendir, work);
   else if (lang == "rust") run_rust(cases, gendir, work);
+  else if (lang == "opencl") run_opencl(cases, gendir, work);
   else {
     std::fprintf(stderr, "targets_check: no driver for %s\n", lang.c_str());
     return 2;
