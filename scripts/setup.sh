@@ -14,6 +14,7 @@ packages=(
   nodejs                                     # targets: javascript (node)
   rustc                                      # targets: rust (no cargo, no crates)
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers   # targets: opencl on the CPU
+  spirv-cross                                # targets: hlsl (SPIR-V -> GLSL for the GL 4.5 run)
 )
 
 missing=()

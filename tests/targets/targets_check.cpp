@@ -343,6 +343,46 @@ void run_opencl(const std::vector<Case>& cases, const std::string& gendir, const
   }
 }
 
+// HLSL: the emitted file plus a compute-shader wrapper (HLSL, one group per row, RWStructuredBuffers u0/u1)
+// -> glslangValidator's HLSL front end (-D) to SPIR-V -> spirv-val -> spirv-cross to GLSL 4.50 -> run by
+// gl_compute_runner on the headless GL 4.5 context (Mesa llvmpipe). Float only (HLSL's target precision).
+void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  for (const auto& c : cases) {
+    std::string base = work + "/" + c.name;
+    CCall k = c_call(c, "float", c.name, "In", "Out");
+    // c_call reads src[off + k]; make the row offset part of the buffer index.
+    std::string body = k.decls + k.call + k.copy_out;
+    auto replace_all = [](std::string s, const std::string& a, const std::string& b) {
+      for (size_t p = 0; (p = s.find(a, p)) != std::string::npos; p += b.size()) s.replace(p, a.size(), b);
+      return s;
+    };
+    body = replace_all(body, "In[", "In[row * " + std::to_string(c.nin) + " + ");
+    body = replace_all(body, "Out[", "Out[row * " + std::to_string(c.nout) + " + ");
+    std::string src = slurp(gendir + "/" + c.name + ".hlsl") +
+                      "\nRWStructuredBuffer<float> In : register(u0);\nRWStructuredBuffer<float> Out : register(u1);\n"
+                      "[numthreads(1, 1, 1)]\nvoid main(uint3 id : SV_DispatchThreadID) {\n  uint row = id.x;\n" +
+                      body + "}\n";
+    std::ofstream(base + ".hlsl") << src;
+    write_rows(base + ".in", c.inputs);
+    std::string steps[] = {
+        std::string(GLSLANG_VALIDATOR) + " -D -V -S comp -e main -o " + base + ".spv " + base + ".hlsl > " + base + ".log 2>&1",
+        std::string(SPIRV_VAL) + " " + base + ".spv >> " + base + ".log 2>&1",
+        std::string(SPIRV_CROSS) + " --version 450 --no-es --output " + base + ".comp " + base + ".spv >> " + base + ".log 2>&1",
+        std::string(GL_RUNNER) + " " + base + ".comp " + std::to_string(c.nin) + " " + std::to_string(c.nout) + " " +
+            base + ".in " + base + ".hl32 > " + base + ".device 2>> " + base + ".log"};
+    bool ok = true;
+    for (const auto& s : steps)
+      if (ok && sh(s) != 0) {
+        std::printf("FAIL %-20s %s\n%s\n", c.name.c_str(), s.c_str(), slurp(base + ".log").c_str());
+        ++failures;
+        ok = false;
+      }
+    if (!ok) continue;
+    if (&c == &cases.front()) std::printf("HLSL -> SPIR-V (glslang -D, spirv-val ok) -> GLSL 4.50 (spirv-cross) on %s", slurp(base + ".device").c_str());
+    check(c, "hlsl->spirv->gl float", base + ".hl32", kTolFloat);
+  }
+}
+
 // Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
 void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::string src = "use std::io::{self, BufRead, Write};\n\n";
@@ -431,6 +471,7 @@ int main(int argc, char** argv) {
   else if (lang == "javascript") run_javascript(cases, gendir, work);
   else if (lang == "rust") run_rust(cases, gendir, work);
   else if (lang == "opencl") run_opencl(cases, gendir, work);
+  else if (lang == "hlsl") run_hlsl(cases, gendir, work);
   else {
     std::fprintf(stderr, "targets_check: no driver for %s\n", lang.c_str());
     return 2;
