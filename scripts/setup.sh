@@ -15,6 +15,7 @@ packages=(
   rustc                                      # targets: rust (no cargo, no crates)
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers   # targets: opencl on the CPU
   spirv-cross                                # targets: hlsl (SPIR-V -> GLSL for the GL 4.5 run)
+  texlive-latex-base graphviz                # targets: latex (pdflatex), dot
 )
 
 missing=()

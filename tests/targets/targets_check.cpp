@@ -86,7 +86,7 @@ double max_error(const Case& c, const std::vector<double>& got, const std::vecto
   return worst;
 }
 
-Case load(const std::string& path) {
+Case load(const std::string& path, bool numeric) {
   Case c;
   c.path = path;
   c.name = fs::path(path).stem().string();
@@ -106,7 +106,7 @@ Case load(const std::string& path) {
   std::uniform_real_distribution<double> u(-1, 1);
   std::bernoulli_distribution coin;
   int attempts = 0;
-  while (static_cast<int>(c.inputs.size()) < kSamples) {
+  while (numeric && static_cast<int>(c.inputs.size()) < kSamples) {
     if (++attempts > 50 * kSamples) throw std::runtime_error(c.name + ": too few well-conditioned samples");
     std::vector<double> x(c.nin);
     for (auto& v : x) v = static_cast<float>(u(rng));
@@ -383,6 +383,44 @@ void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const s
   }
 }
 
+// LaTeX: pdflatex (nonstop, halt on error) must make a PDF from every emitted document.
+void run_latex(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  for (const auto& c : cases) {
+    std::string pdf = work + "/" + c.name + ".pdf";
+    fs::remove(pdf);
+    std::string cmd = std::string(PDFLATEX) + " -interaction=nonstopmode -halt-on-error -output-directory " + work +
+                      " " + gendir + "/" + c.name + ".tex > " + work + "/" + c.name + ".out 2>&1";
+    bool ok = sh(cmd) == 0 && fs::exists(pdf) && fs::file_size(pdf) > 1000;
+    std::string log = slurp(work + "/" + c.name + ".log");
+    size_t pages = log.find("Output written on");
+    std::printf("%s %-20s pdflatex: %s\n", ok ? "ok  " : "FAIL", c.name.c_str(),
+                pages == std::string::npos ? "no output" : log.substr(pages, log.find('\n', pages) - pages).c_str());
+    failures += !ok;
+  }
+}
+
+// dot: Graphviz must lay out every emitted graph, with one node per input blade, temporary and output blade.
+void run_dot(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  for (const auto& c : cases) {
+    std::string base = work + "/" + c.name;
+    std::string in = gendir + "/" + c.name + ".dot";
+    bool ok = sh(std::string(DOT) + " -Tsvg -o " + base + ".svg " + in + " 2> " + base + ".err") == 0 &&
+              sh(std::string(DOT) + " -Tplain -o " + base + ".plain " + in + " 2>> " + base + ".err") == 0;
+    size_t nodes = 0, edges = 0;
+    std::istringstream plain(slurp(base + ".plain"));
+    std::string line;
+    while (std::getline(plain, line)) {
+      nodes += line.rfind("node ", 0) == 0;
+      edges += line.rfind("edge ", 0) == 0;
+    }
+    size_t expected = c.nin + c.prog.temps.size() + c.nout;
+    ok &= nodes == expected && slurp(base + ".svg").find("<svg") != std::string::npos && slurp(base + ".err").empty();
+    std::printf("%s %-20s dot: %zu nodes (expected %zu: inputs + temporaries + output blades), %zu edges\n",
+                ok ? "ok  " : "FAIL", c.name.c_str(), nodes, expected, edges);
+    failures += !ok;
+  }
+}
+
 // Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
 void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::string src = "use std::io::{self, BufRead, Write};\n\n";
@@ -463,21 +501,25 @@ int main(int argc, char** argv) {
   fs::create_directories(work);
   std::vector<Case> cases;
   auto t0 = std::chrono::steady_clock::now();
-  for (int i = 4; i < argc; ++i) cases.push_back(load(argv[i]));
+  const bool numeric = lang != "latex" && lang != "dot";  // those two are only compiled / laid out
+  for (int i = 4; i < argc; ++i) cases.push_back(load(argv[i], numeric));
   auto t1 = std::chrono::steady_clock::now();
-  std::printf("%zu scripts, %d inputs each, reference (-O0, opt::evaluate) in %.2f s\n", cases.size(), kSamples,
-              std::chrono::duration<double>(t1 - t0).count());
+  if (numeric)
+    std::printf("%zu scripts, %d inputs each, reference (-O0, opt::evaluate) in %.2f s\n", cases.size(), kSamples,
+                std::chrono::duration<double>(t1 - t0).count());
   if (lang == "python") run_python(cases, gendir, work);
   else if (lang == "javascript") run_javascript(cases, gendir, work);
   else if (lang == "rust") run_rust(cases, gendir, work);
   else if (lang == "opencl") run_opencl(cases, gendir, work);
   else if (lang == "hlsl") run_hlsl(cases, gendir, work);
+  else if (lang == "latex") run_latex(cases, gendir, work);
+  else if (lang == "dot") run_dot(cases, gendir, work);
   else {
     std::fprintf(stderr, "targets_check: no driver for %s\n", lang.c_str());
     return 2;
   }
   auto t2 = std::chrono::steady_clock::now();
-  std::printf("%s: %s in %.2f s\n", lang.c_str(), failures ? "FAILED" : "all outputs within tolerance",
+  std::printf("%s: %s in %.2f s\n", lang.c_str(), failures ? "FAILED" : numeric ? "all outputs within tolerance" : "all files built",
               std::chrono::duration<double>(t2 - t1).count());
   return failures ? 1 : 0;
 }
