@@ -173,3 +173,14 @@ TEST_CASE("work budget: an over-budget statement fails fast with a located error
   auto r = run("--stats " + script("transform_point.clu"));
   CHECK(r.out.find("note:") == std::string::npos);
 }
+
+TEST_CASE("--target list prints the table of targets, --target-extension a target's extension", "[cli]") {
+  auto r = run("--target list");
+  CHECK(r.code == 0);
+  CHECK(r.out == "cpp\nglsl\ncuda\nhlsl\nopencl\npython\njavascript\nrust\nlatex\ndot\n");
+  r = run("--target-extension python");
+  CHECK(r.code == 0);
+  CHECK(r.out == ".py\n");
+  r = run("--target-extension fortran");
+  CHECK(r.code == 2);
+}
