@@ -174,7 +174,7 @@ TEST_CASE("work budget: an over-budget statement fails fast with a located error
   CHECK(r.out.find("note:") == std::string::npos);
 }
 
-TEST_CASE("--target list prints the table of targets, --target-extension a target's extension", "[cli]") {
+TEST_CASE("cli: --target list prints the table of targets, --target-extension the extension of one", "[cli]") {
   auto r = run("--target list");
   CHECK(r.code == 0);
   CHECK(r.out == "cpp\nglsl\ncuda\nhlsl\nopencl\npython\njavascript\nrust\nlatex\ndot\n");
