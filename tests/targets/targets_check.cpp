@@ -542,7 +542,7 @@ int main(int argc, char** argv) {
   for (int i = 4; i < argc; ++i) cases.push_back(load(argv[i], numeric));
   auto t1 = std::chrono::steady_clock::now();
   if (numeric)
-    std::printf("%zu scripts, %d inputs each, reference (-O0, opt::evaluate) in %.2f s\n", cases.size(), kSamples,
+    std::printf("%zu scripts, %d inputs each, reference (-O0, opt::evaluate; cached by targets/reference) in %.2f s\n", cases.size(), kSamples,
                 std::chrono::duration<double>(t1 - t0).count());
   if (lang == "reference") {
   } else if (lang == "python") run_python(cases, gendir, work);
