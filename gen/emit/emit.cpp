@@ -1,4 +1,5 @@
-// The C++, GLSL and CUDA emitters (see emit.hpp). Expressions are printed by the rules of opt/lower.hpp.
+// The emitter (see emit.hpp): one code path driven by the target's Syntax record (gen/emit/targets.cpp); GLSL packing
+// and the dot dataflow graph are the only target-specific branches. Expressions are printed by opt/lower.hpp's rules.
 #include "emit/emit.hpp"
 
 #include <cmath>
