@@ -90,6 +90,13 @@ std::vector<Syntax> make_targets() {
   hlsl.temp = "${T} ${name} = ${value};";
   t.push_back(hlsl);
 
+  // GLSL ES 3.00 (WebGL 2): the GLSL record, its own templates (a precision statement), packing included.
+  Syntax glsl_es = glsl;
+  glsl_es.name = "glsl-es";
+  glsl_es.extension = ".essl";
+  glsl_es.summary = "GLSL ES 3.00 functions (WebGL 2; float, highp), out parameters, --pack / --return";
+  t.push_back(glsl_es);
+
   Syntax opencl = c_family();
   opencl.name = "opencl";
   opencl.extension = ".cl";

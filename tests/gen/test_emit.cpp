@@ -142,7 +142,7 @@ TEST_CASE("the table of targets: unique names and extensions, every template pre
       CHECK(n.find("${") == std::string::npos);
     }
   }
-  for (const char* t : {"cpp", "glsl", "cuda", "hlsl", "opencl", "python", "javascript", "rust", "latex", "dot"})
+  for (const char* t : {"cpp", "glsl", "cuda", "hlsl", "glsl-es", "opencl", "python", "javascript", "rust", "latex", "dot"})
     CHECK(names.count(t) == 1);
   CHECK_THROWS_WITH(emit::parse_target("fortran"), Catch::Contains("expected cpp, glsl, cuda"));
 }

@@ -418,6 +418,47 @@ void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const s
   }
 }
 
+// GLSL ES: each file checked by glslang as a `#version 300 es` vertex shader (the WebGL 2 level), then run in a
+// `#version 310 es` compute wrapper (SSBOs 0/1, one group per row) on the headless GL 4.5 context, whose
+// ES 3.1 compatibility compiles ES shaders with the ES rules (llvmpipe in CI). Float only.
+void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  auto replace_all = [](std::string s, const std::string& a, const std::string& b) {
+    for (size_t p = 0; (p = s.find(a, p)) != std::string::npos; p += b.size()) s.replace(p, a.size(), b);
+    return s;
+  };
+  for (const auto& c : cases) {
+    std::string base = work + "/" + c.name;
+    std::string code = slurp(gendir + "/" + c.name + ".essl");
+    std::ofstream(base + ".vert") << "#version 300 es\n" << code << "\nvoid main() { gl_Position = vec4(0.0); }\n";
+    CCall k = c_call(c, "float", c.name, "In", "Out");
+    std::string body = replace_all(k.decls + k.call + k.copy_out, "(float)", "");
+    body = replace_all(body, "In[", "In_.data[row * " + std::to_string(c.nin) + " + ");
+    body = replace_all(body, "Out[", "Out_.data[row * " + std::to_string(c.nout) + " + ");
+    std::ofstream(base + ".comp") << "#version 310 es\nlayout(local_size_x = 1) in;\n"
+                                     "layout(std430, binding = 0) readonly buffer In { float data[]; } In_;\n"
+                                     "layout(std430, binding = 1) buffer Out { float data[]; } Out_;\n"
+                                  << code << "\nvoid main() {\n  int row = int(gl_GlobalInvocationID.x);\n" << body
+                                  << "}\n";
+    write_rows(base + ".in", c.inputs);
+    std::string steps[] = {
+        std::string(GLSLANG_VALIDATOR) + " " + base + ".vert > " + base + ".log 2>&1",
+        std::string(GLSLANG_VALIDATOR) + " " + base + ".comp >> " + base + ".log 2>&1",
+        std::string(GL_RUNNER) + " " + base + ".comp " + std::to_string(c.nin) + " " + std::to_string(c.nout) + " " +
+            base + ".in " + base + ".es32 > " + base + ".device 2>> " + base + ".log"};
+    bool ok = true;
+    for (const auto& s : steps)
+      if (ok && sh(s) != 0) {
+        std::printf("FAIL %-20s %s\n%s\n", c.name.c_str(), s.c_str(), slurp(base + ".log").c_str());
+        ++failures;
+        ok = false;
+      }
+    if (!ok) continue;
+    if (&c == &cases.front())
+      std::printf("GLSL ES 3.00 (glslang, vertex) + ES 3.10 compute on %s", slurp(base + ".device").c_str());
+    check(c, "glsl-es compute float", base + ".es32", kTolFloat);
+  }
+}
+
 // LaTeX: pdflatex (nonstop, halt on error) must make a PDF from every emitted document.
 void run_latex(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   for (const auto& c : cases) {
@@ -550,6 +591,7 @@ int main(int argc, char** argv) {
   else if (lang == "rust") run_rust(cases, gendir, work);
   else if (lang == "opencl") run_opencl(cases, gendir, work);
   else if (lang == "hlsl") run_hlsl(cases, gendir, work);
+  else if (lang == "glsl-es") run_glsl_es(cases, gendir, work);
   else if (lang == "latex") run_latex(cases, gendir, work);
   else if (lang == "dot") run_dot(cases, gendir, work);
   else {
