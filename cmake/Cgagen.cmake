@@ -3,7 +3,7 @@
 #   cgagen_generate(<target>
 #                   SCRIPTS a.clu [b.clu ...]
 #                   OUTPUT_DIR <dir>
-#                   [TARGETS cpp glsl cuda]     # default: cpp
+#                   [TARGETS cpp glsl ...]      # default: cpp; any of cmake/CgagenTargets.cmake
 #                   [OPT -O2]                   # default: -O2
 #                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
 #                   [RETURN OUT]                # glsl only: --return OUT
@@ -11,7 +11,8 @@
 #                   [NO_WERROR])                # warnings stay warnings (default: --Werror, so a misspelt
 #                                               # name that silently became an input fails the build)
 #
-# For each script NAME.clu and each target it writes OUTPUT_DIR/NAME.hpp / NAME.glsl / NAME.cuh, plus
+# For each script NAME.clu and each target it writes OUTPUT_DIR/NAME<ext> (.hpp, .glsl, .cuh, .py, ...: the
+# target's extension from cmake/CgagenTargets.cmake, the table `cgagen --target list` prints), plus
 # OUTPUT_DIR/NAME.stats (the --stats text), with dependencies on the script, the templates and the cgagen
 # tool. <target> is an INTERFACE library whose include directory is OUTPUT_DIR; linking it builds the files
 # first. Call it several times with the same <target> to give scripts different options (packing differs
@@ -20,6 +21,7 @@
 # `cgagen::cgagen` of an installed cgagen (find_package(cgagen), which includes this file from
 # <prefix>/share/cgagen/cmake; the default templates are then <prefix>/share/cgagen/templates).
 
+include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
@@ -71,15 +73,10 @@ function(cgagen_generate target)
     get_filename_component(_name ${_script} NAME_WE)
     set(_stats_done OFF)
     foreach(_t ${CG_TARGETS})
-      if(_t STREQUAL "cpp")
-        set(_ext .hpp)
-      elseif(_t STREQUAL "glsl")
-        set(_ext .glsl)
-      elseif(_t STREQUAL "cuda")
-        set(_ext .cuh)
-      else()
-        message(FATAL_ERROR "cgagen_generate(${target}): unknown target '${_t}' (cpp, glsl or cuda)")
+      if(NOT DEFINED CGAGEN_EXT_${_t})
+        message(FATAL_ERROR "cgagen_generate(${target}): unknown target '${_t}' (${CGAGEN_TARGETS})")
       endif()
+      set(_ext ${CGAGEN_EXT_${_t}})
       set(_out ${CG_OUTPUT_DIR}/${_name}${_ext})
       set(_args --target ${_t} ${CG_OPT} --name ${_name} ${_templates_arg})
       if(NOT CG_NO_WERROR)

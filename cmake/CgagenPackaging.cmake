@@ -85,7 +85,7 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/cgagenConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/cgagenConfigVersion.cmake
                                  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/cgagenConfig.cmake ${PROJECT_BINARY_DIR}/cgagenConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/Cgagen.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/Cgagen.cmake ${PROJECT_SOURCE_DIR}/cmake/CgagenTargets.cmake
         DESTINATION ${CGAGEN_INSTALL_CMAKEDIR})
 
 # Documentation.

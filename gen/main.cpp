@@ -28,7 +28,8 @@ Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code. SCRIPT - rea
 standard input (diagnostics then name <stdin>, the function is named kernel unless --name is given).
 
 options:
-  --target cpp|glsl|cuda  output language (default cpp); --target list prints the targets, one per line
+  --target NAME           output language (default cpp); --target list prints the targets
+  --target-extension NAME print the file extension of target NAME
   -O0 | -O1 | -O2         optimization level (default -O2)
   -o FILE                 write the output to FILE (default: standard output)
   --name NAME             function name (default: the script's file stem)
@@ -107,11 +108,16 @@ Options parse_args(int argc, char** argv) {
       } else if (a == "--version") {
         std::cout << "cgagen " << CGAGEN_VERSION << "\n";
         std::exit(0);
-      } else if (a == "--target" && i + 1 < args.size() && args[i + 1] == "list") {
-        for (const auto& t : emit::targets()) std::cout << t.first << "\n";
-        std::exit(0);
       } else if (a == "--target") {
-        o.emit.target = emit::parse_target(value(i, a));
+        std::string t = value(i, a);
+        if (t == "list") {  // the table of targets (gen/emit/targets.cpp), one name per line
+          for (const auto& s : emit::targets()) std::cout << s.name << "\n";
+          std::exit(0);
+        }
+        o.emit.target = emit::parse_target(t);
+      } else if (a == "--target-extension") {  // for build systems: the file extension of a target
+        std::cout << emit::syntax(value(i, a)).extension << "\n";
+        std::exit(0);
       } else if (a == "-O0" || a == "-O1" || a == "-O2") {
         o.level = opt::parse_level(a);
       } else if (a == "-o") {

@@ -48,7 +48,8 @@ if [ "$mode" = ci ]; then
   # Without address randomization: GiNaC orders terms by hashes that mix in addresses, so with ASLR the
   # coverage, and with it the fuzzer's path, would differ from run to run. This way two runs of the same
   # commit execute the same inputs (their coverage lines match; only the timings differ).
-  setarch "$(uname -m)" -R ./build-fuzz/fuzz_script build-fuzz/ci-corpus "${limits[@]}" -seed="$seed" -runs="$runs" \
+  # -reload=0: by default libFuzzer rereads the corpus folder on a wall-clock timer, which makes the path timing-dependent.
+  setarch "$(uname -m)" -R ./build-fuzz/fuzz_script build-fuzz/ci-corpus "${limits[@]}" -seed="$seed" -runs="$runs" -reload=0 \
     -artifact_prefix=build-fuzz/ -print_final_stats=1
 else
   corpus=build-fuzz/explore-corpus

@@ -11,6 +11,12 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libstb-dev
   clang libclang-rt-14-dev
   dpkg-dev
+  python3-numpy                              # targets: python (Debian's /usr/bin/python3)
+  nodejs                                     # targets: javascript (node)
+  rustc                                      # targets: rust (no cargo, no crates)
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers   # targets: opencl on the CPU
+  spirv-cross                                # targets: hlsl (SPIR-V -> GLSL for the GL 4.5 run)
+  texlive-latex-base graphviz                # targets: latex (pdflatex), dot
 )
 
 missing=()

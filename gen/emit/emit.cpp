@@ -1,9 +1,11 @@
-// The C++, GLSL and CUDA emitters (see emit.hpp). Expressions are printed by the rules of opt/lower.hpp.
+// The emitter (see emit.hpp): one code path driven by the target's Syntax record (gen/emit/targets.cpp); GLSL packing
+// and the dot dataflow graph are the only target-specific branches. Expressions are printed by opt/lower.hpp's rules.
 #include "emit/emit.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -17,25 +19,30 @@ namespace cgagen::emit {
 using namespace GiNaC;
 using opt::CanonicalKeys;
 
-const std::vector<std::pair<std::string, Target>>& targets() {
-  static const std::vector<std::pair<std::string, Target>> list{
-      {"cpp", Target::Cpp}, {"glsl", Target::Glsl}, {"cuda", Target::Cuda}};
-  return list;
-}
+const Target Target::Cpp{"cpp"};
+const Target Target::Glsl{"glsl"};
+const Target Target::Cuda{"cuda"};
 
-Target parse_target(const std::string& t) {
-  for (const auto& [name, target] : targets())
-    if (t == name) return target;
-  throw std::invalid_argument("unknown target '" + t + "' (expected cpp, glsl or cuda)");
-}
+Target parse_target(const std::string& t) { return Target{syntax(t).name.c_str()}; }
 
-std::string file_extension(Target t) {
-  switch (t) {
-    case Target::Cpp: return ".hpp";
-    case Target::Glsl: return ".glsl";
-    case Target::Cuda: return ".cuh";
+std::string file_extension(Target t) { return t.syntax().extension; }
+
+std::string fill_pattern(const std::string& p, const std::map<std::string, std::string>& values) {
+  std::string out;
+  size_t pos = 0;
+  while (true) {
+    size_t open = p.find("${", pos);
+    if (open == std::string::npos) break;
+    size_t close = p.find('}', open + 2);
+    if (close == std::string::npos) throw std::logic_error("cgagen pattern: unterminated ${ in " + p);
+    auto it = values.find(p.substr(open + 2, close - open - 2));
+    if (it == values.end()) throw std::logic_error("cgagen pattern: unknown key in " + p);
+    out.append(p, pos, open - pos);
+    out += it->second;
+    pos = close + 1;
   }
-  return "";
+  out.append(p, pos, std::string::npos);
+  return out;
 }
 
 Pack parse_pack(const std::string& t) {
@@ -104,7 +111,8 @@ std::string exact_decimal(const numeric& v) {
 }  // namespace
 
 std::string literal(const numeric& v, Target target, bool single) {
-  std::string suffix = single && target != Target::Glsl ? "f" : "";
+  const Syntax& sx = target.syntax();
+  std::string suffix = single ? sx.single_suffix : sx.double_suffix;
   std::string sign = v.is_negative() ? "-" : "";
   if (!v.is_rational()) {
     char buf[64];
@@ -126,8 +134,8 @@ namespace {
 // Prints expressions in one target's syntax (one precision).
 class Printer {
  public:
-  Printer(Target target, bool single, const opt::SymbolNames& code_names, CanonicalKeys& keys)
-      : target_(target), single_(single), code_(code_names), keys_(keys) {}
+  Printer(Target target, const Precision& prec, const opt::SymbolNames& code_names, CanonicalKeys& keys)
+      : target_(target), sx_(target.syntax()), prec_(prec), single_(prec.single), code_(code_names), keys_(keys) {}
 
   // prec: 0 = any context, 1 = operand of * or /, 2 = needs to be an atom
   std::string print(const ex& e, int prec = 0) {
@@ -172,11 +180,11 @@ class Printer {
       for (int k = 0; k < f.exponent; ++k) den.push_back(a);
     }
     std::string s;
-    for (size_t i = 0; i < num.size(); ++i) s += (i ? " * " : "") + num[i];
+    for (size_t i = 0; i < num.size(); ++i) s += (i ? sx_.mul : "") + num[i];
     if (!den.empty()) {
       std::string d;
-      for (size_t i = 0; i < den.size(); ++i) d += (i ? " * " : "") + den[i];
-      s += " / " + (den.size() > 1 ? "(" + d + ")" : d);
+      for (size_t i = 0; i < den.size(); ++i) d += (i ? sx_.mul : "") + den[i];
+      s += sx_.div + (den.size() > 1 ? "(" + d + ")" : d);
     }
     bool compound = num.size() + den.size() > 1;
     if (p.coeff.is_negative()) {
@@ -189,27 +197,29 @@ class Printer {
   std::string atom(const ex& b) {
     if (is_a<symbol>(b) || is_a<numeric>(b) || is_a<constant>(b)) return print(b, 2);
     if (is_a<add>(b) || is_a<mul>(b)) return print(b, 2);
-    if (opt::is_sqrt(b)) return fn("sqrt") + "(" + print(b.op(0)) + ")";
-    if (is_a<power>(b)) return fn("pow") + "(" + print(b.op(0)) + ", " + print(b.op(1)) + ")";
+    if (opt::is_sqrt(b)) return call("sqrt", print(b.op(0)));
+    if (is_a<power>(b)) return call("pow", print(b.op(0)) + ", " + print(b.op(1)));
     if (is_a<function>(b)) {
       std::string name = ex_to<function>(b).get_name();
-      std::string s = fn(name) + "(";
+      std::string s;
       for (size_t i = 0; i < b.nops(); ++i) s += (i ? ", " : "") + print(b.op(i));
-      return s + ")";
+      return call(name, s);
     }
     throw std::logic_error("cgagen emitter: cannot print expression of this kind");
   }
 
-  std::string fn(const std::string& name) const {
-    switch (target_) {
-      case Target::Cpp: return "std::" + name;
-      case Target::Cuda: return name == "abs" ? "fabs" : name;
-      case Target::Glsl: return name == "atan2" ? "atan" : name;
-    }
-    return name;
+  // A math call in the target's spelling: prefix + (renamed) name, or a whole pattern from math_names.
+  std::string call(const std::string& name, const std::string& args) const {
+    auto it = sx_.math_names.find(name);
+    std::string fn = it == sx_.math_names.end() ? name : it->second;
+    if (fn.find("${") != std::string::npos) return fill_pattern(fn, {{"args", args}, {"T", prec_.type}});
+    fn = fill_pattern(sx_.math_prefix, {{"T", prec_.type}}) + fn;
+    return fill_pattern(sx_.call, {{"fn", fn}, {"args", args}});
   }
 
   Target target_;
+  const Syntax& sx_;
+  const Precision& prec_;
   bool single_;
   const opt::SymbolNames& code_;
   CanonicalKeys& keys_;
@@ -221,15 +231,6 @@ std::string read_file(const std::string& path) {
   std::ostringstream os;
   os << in.rdbuf();
   return os.str();
-}
-
-std::string target_dir(Target t) {
-  switch (t) {
-    case Target::Cpp: return "cpp";
-    case Target::Glsl: return "glsl";
-    case Target::Cuda: return "cuda";
-  }
-  return "";
 }
 
 struct Param {
@@ -274,16 +275,55 @@ std::string indent(const std::string& body) { return body; }
 
 }  // namespace
 
+namespace {
+
+std::string as_ident(const Syntax& sx, const std::string& s) { return sx.ident ? sx.ident(s) : s; }
+std::string as_text(const Syntax& sx, const std::string& s) { return sx.text ? sx.text(s) : s; }
+
+// The dot target: the program's dataflow, one node per input blade, temporary and output blade, an edge
+// from every symbol an expression reads.
+std::string dataflow(const opt::Program& program, const opt::SymbolNames& code) {
+  std::string s;
+  auto node = [](const std::string& id) { return "\"" + id + "\""; };
+  for (const auto& in : program.inputs)
+    for (size_t k = 0; k < in.symbols.size(); ++k)
+      s += "  " + node(code.at(in.symbols[k])) + " [shape=box" +
+           (in.is_multivector ? ", label=\"" + code.at(in.symbols[k]) + "\\n" + algebra::blade_name(in.blades[k]) + "\"" : "") +
+           "];\n";
+  auto edges = [&](const GiNaC::ex& value, const std::string& to) {
+    std::set<std::string> from;
+    for (auto i = value.preorder_begin(); i != value.preorder_end(); ++i)
+      if (is_a<symbol>(*i)) from.insert(code.at(*i));
+    for (const auto& f : from) s += "  " + node(f) + " -> " + node(to) + ";\n";
+  };
+  for (const auto& t : program.temps) {
+    s += "  " + node(t.name) + " [shape=ellipse];\n";
+    edges(t.value, t.name);
+  }
+  for (const auto& o : program.outputs)
+    for (size_t k = 0; k < o.slots.size(); ++k) {
+      std::string id = o.name + "[" + std::to_string(k) + "]";
+      s += "  " + node(id) + " [shape=doubleoctagon, label=\"" + id + "\\n" + algebra::blade_name(o.slots[k].blade) +
+           "\"];\n";
+      edges(o.slots[k].value, id);
+    }
+  if (!s.empty()) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
 std::string emit(const opt::Program& program, const EmitOptions& options) {
   const Target target = options.target;
+  const Syntax& sx = target.syntax();
   const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +
-                          target_dir(target);
-  const std::string file_tmpl_path = dir + "/file" + file_extension(target) + ".in";
+                          sx.name;
+  const std::string file_tmpl_path = dir + "/file" + sx.extension + ".in";
   const std::string fn_tmpl_path = dir + "/function.in";
   const std::string file_tmpl = read_file(file_tmpl_path);
-  const std::string fn_tmpl = read_file(fn_tmpl_path);
+  const std::string fn_tmpl = sx.kind == Syntax::Kind::Code ? read_file(fn_tmpl_path) : "";
 
-  if (target != Target::Glsl && (!options.pack.empty() || !options.return_output.empty()))
+  if (!sx.glsl_pack && (!options.pack.empty() || !options.return_output.empty()))
     throw std::runtime_error("--pack and --return apply to the glsl target only");
 
   // Packing per parameter.
@@ -310,90 +350,117 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
   opt::SymbolNames canon = opt::symbol_names(program);
   CanonicalKeys keys(canon);
 
+  // Blade k of a parameter or output, in the target's syntax (GLSL packing included).
+  auto elem = [&](const std::string& name, size_t k, Pack p) {
+    if (p != Pack::Array) return element(name, k, p);
+    return fill_pattern(sx.element, {{"name", as_ident(sx, name)}, {"k", std::to_string(k)}});
+  };
+
   // Code names of the symbols.
   opt::SymbolNames code;
   for (const auto& in : program.inputs) {
     if (!in.is_multivector) {
-      code[in.symbols.at(0)] = in.name;
+      code[in.symbols.at(0)] = as_ident(sx, in.name);
       continue;
     }
-    Pack p = target == Target::Glsl ? pack_of(in.name, in.symbols.size()) : Pack::Array;
-    for (size_t k = 0; k < in.symbols.size(); ++k) code[in.symbols[k]] = element(in.name, k, p);
+    Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
+    for (size_t k = 0; k < in.symbols.size(); ++k) code[in.symbols[k]] = elem(in.name, k, p);
   }
-  for (const auto& t : program.temps) code[t.sym] = t.name;
+  for (const auto& t : program.temps) code[t.sym] = as_ident(sx, t.name);
 
-  auto function_text = [&](bool single) {
-    std::string T = single ? "float" : "double";
-    if (target == Target::Glsl) T = "float";
-    Printer pr(target, single, code, keys);
+  auto function_text = [&](const Precision& prec) {
+    const std::string& T = prec.type;
+    Printer pr(target, prec, code, keys);
     std::string params;
     auto add_param = [&](const std::string& s) { params += (params.empty() ? "" : ", ") + s; };
+    auto line = [&](const std::string& s) { return sx.indent + s + "\n"; };
+    std::string splat;
     for (const auto& in : program.inputs) {
+      std::map<std::string, std::string> v{
+          {"T", T}, {"name", as_ident(sx, in.name)}, {"n", std::to_string(in.symbols.size())}};
+      splat += (splat.empty() ? "" : ", ") + fill_pattern(in.is_multivector ? sx.splat_mv : sx.splat_scalar, v);
       if (!in.is_multivector) {
-        add_param(T + " " + in.name);
-      } else if (target == Target::Glsl) {
-        Pack p = pack_of(in.name, in.symbols.size());
-        add_param(p == Pack::Array ? "in float " + in.name + "[" + std::to_string(in.symbols.size()) + "]"
-                                   : std::string("in ") + pack_type(p) + " " + in.name);
-      } else {
-        add_param("const " + T + " " + in.name + "[" + std::to_string(in.symbols.size()) + "]");
+        add_param(fill_pattern(sx.scalar_param, v));
+        continue;
       }
+      Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
+      add_param(p == Pack::Array ? fill_pattern(sx.mv_param, v) : std::string("in ") + pack_type(p) + " " + in.name);
     }
     std::string return_type = "void";
     std::string body;
+    if (!sx.prologue.empty()) body += line(fill_pattern(sx.prologue, {{"splat", splat}}));
     std::string ret_line;
+    std::string items;
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
-      Pack p = target == Target::Glsl ? pack_of(o.name, n) : Pack::Array;
-      std::string decl = p == Pack::Array ? T + " " + o.name + "[" + std::to_string(n) + "]"
-                                          : std::string(pack_type(p)) + " " + o.name;
-      if (target == Target::Glsl && o.name == options.return_output) {
+      Pack p = sx.glsl_pack ? pack_of(o.name, n) : Pack::Array;
+      std::map<std::string, std::string> v{{"T", T}, {"name", as_ident(sx, o.name)}, {"n", std::to_string(n)}};
+      if (sx.out_param.empty()) {
+        body += line(fill_pattern(sx.out_decl, v));
+        items += (items.empty() ? "" : ", ") + fill_pattern(sx.return_item, v);
+      } else if (sx.glsl_pack && o.name == options.return_output) {
+        std::string decl = p == Pack::Array ? T + " " + o.name + "[" + std::to_string(n) + "]"
+                                            : std::string(pack_type(p)) + " " + o.name;
         return_type = p == Pack::Array ? "float[" + std::to_string(n) + "]" : pack_type(p);
-        body += "  " + decl + ";\n";
-        ret_line = "  return " + o.name + ";\n";
+        body += line(decl + ";");
+        ret_line = line("return " + o.name + ";");
+      } else if (p != Pack::Array) {
+        add_param(std::string("out ") + pack_type(p) + " " + o.name);
       } else {
-        add_param((target == Target::Glsl ? "out " : "") + decl);
+        add_param(fill_pattern(sx.out_param, v));
       }
     }
+    if (!items.empty()) ret_line = line(fill_pattern(sx.return_stmt, {{"items", items}}));
     for (const auto& t : program.temps)
-      body += "  " + std::string(target == Target::Glsl ? "float " : "const " + T + " ") + t.name + " = " +
-              pr.print(t.value) + ";\n";
+      body += line(fill_pattern(sx.temp, {{"T", T}, {"name", as_ident(sx, t.name)}, {"value", pr.print(t.value)}}));
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
-      Pack p = target == Target::Glsl ? pack_of(o.name, n) : Pack::Array;
+      Pack p = sx.glsl_pack ? pack_of(o.name, n) : Pack::Array;
       for (size_t k = 0; k < n; ++k)
-        body += "  " + element(o.name, k, p) + " = " + pr.print(o.slots[k].value) + ";  // " +
-                algebra::blade_name(o.slots[k].blade) + "\n";
+        body += line(fill_pattern(sx.assign, {{"elem", elem(o.name, k, p)},
+                                              {"value", pr.print(o.slots[k].value)},
+                                              {"blade", as_text(sx, algebra::blade_name(o.slots[k].blade))},
+                                              {"c", sx.comment}}));
       for (size_t k = n; p != Pack::Array && p != Pack::Float && k < pack_capacity(p); ++k)
-        body += "  " + element(o.name, k, p) + " = 0.0;  // (padding)\n";
+        body += line(element(o.name, k, p) + " = 0.0;  // (padding)");
     }
     body += ret_line;
     if (!body.empty() && body.back() == '\n') body.pop_back();
-    return fill_template(fn_tmpl,
-                         {{"return_type", return_type}, {"name", program.name}, {"params", params},
-                          {"body", indent(body)}, {"type", T}},
-                         fn_tmpl_path);
+    return prec.before + fill_template(fn_tmpl,
+                                       {{"return_type", return_type},
+                                        {"name", as_text(sx, program.name + prec.fn_suffix)},
+                                        {"params", params},
+                                        {"body", indent(body)},
+                                        {"type", T},
+                                        {"qualifiers", sx.qualifiers}},
+                                       fn_tmpl_path) +
+           prec.after;
   };
 
   std::string functions;
-  if (target == Target::Glsl) functions = function_text(true);
-  else functions = function_text(true) + "\n" + function_text(false);
+  if (sx.kind == Syntax::Kind::Dataflow) {
+    functions = dataflow(program, code);
+  } else {
+    for (size_t i = 0; i < sx.precisions.size(); ++i)
+      functions += (i ? "\n" : "") + function_text(sx.precisions[i]);
+  }
 
   std::string blade_lists;
   for (const auto& o : program.outputs) {
     std::string list;
     for (size_t k = 0; k < o.slots.size(); ++k)
-      list += std::string(k ? ", " : "") + (target == Target::Glsl ? "" : "\"") +
-              algebra::blade_name(o.slots[k].blade) + (target == Target::Glsl ? "" : "\"");
-    if (target == Target::Glsl)
-      blade_lists += "// " + o.name + ": " + list + "\n";
-    else
-      blade_lists += "inline constexpr std::array<std::string_view, " + std::to_string(o.slots.size()) + "> " +
-                     program.name + "_" + o.name + "_blades = {" + list + "};\n";
+      list += std::string(k ? ", " : "") + sx.blade_quote + as_text(sx, algebra::blade_name(o.slots[k].blade)) +
+              sx.blade_quote;
+    blade_lists += fill_pattern(sx.blade_list, {{"fn", as_text(sx, program.name)},
+                                                {"out", as_ident(sx, o.name)},
+                                                {"n", std::to_string(o.slots.size())},
+                                                {"list", list},
+                                                {"c", sx.comment}}) +
+                   "\n";
   }
   std::string inputs_doc;
   for (const auto& in : program.inputs) {
-    inputs_doc += "// input " + in.name;
+    inputs_doc += sx.comment + " input " + in.name;
     if (in.is_multivector) {
       inputs_doc += ":";
       for (auto b : in.blades) inputs_doc += " " + algebra::blade_name(b);
@@ -403,9 +470,9 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
   if (!blade_lists.empty() && blade_lists.back() == '\n') blade_lists.pop_back();
   if (!inputs_doc.empty() && inputs_doc.back() == '\n') inputs_doc.pop_back();
   return fill_template(file_tmpl,
-                       {{"script", options.script_name},
+                       {{"script", as_text(sx, options.script_name)},
                         {"level", std::to_string(static_cast<int>(program.level))},
-                        {"name", program.name},
+                        {"name", as_text(sx, program.name)},
                         {"inputs", inputs_doc},
                         {"blade_lists", blade_lists},
                         {"functions", functions}},

@@ -1,20 +1,81 @@
-// Emitters: Program -> C++ header, GLSL functions or CUDA header, through the text templates in templates/
-// (files a user can edit; placeholders are {{name}}). See docs/generator.md for the generated interface.
+// Emitters: Program -> source text in one of several languages, through the text templates in templates/
+// (files a user can edit; placeholders are {{name}}). See docs/generator.md for the generated interfaces.
+//
+// A target is data: one `Syntax` record (gen/emit/targets.cpp, the table `targets()`) says how the language
+// spells literals, math calls, parameters, outputs, temporaries, blade lists and comments, and
+// templates/<name>/ holds its file and function templates. Adding a language is a record, its templates and
+// its tests (tests/targets); the CLI (`--target list`), cgagen_generate() (`--target-extension NAME`) and
+// the docs all read the same table.
 #pragma once
 
 #include <map>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "opt/program.hpp"
 
 namespace cgagen::emit {
 
-enum class Target { Cpp, Glsl, Cuda };
-const std::vector<std::pair<std::string, Target>>& targets();  // every target by its --target name, in order
+// One precision a target emits a function for.
+struct Precision {
+  std::string type;       // "float", "double", "f32"; "" where the language has one number type
+  bool single = false;    // literals take the target's single-precision suffix
+  std::string fn_suffix;  // appended to the function name ("_f32" in Rust, "" where overloading exists)
+  std::string before;     // text around the function (e.g. an #ifdef for OpenCL's double)
+  std::string after;
+};
+
+// How a language spells a straight-line kernel. Patterns use ${key} placeholders (listed per field).
+struct Syntax {
+  enum class Kind { Code, Dataflow };  // Dataflow: the program's dependency graph (dot), no expressions
+  std::string name;                    // --target NAME, the folder under templates/
+  std::string extension;               // ".hpp"; the file template is templates/NAME/file<ext>.in
+  std::string summary;                 // one line for `--target list -v` and the docs
+  Kind kind = Kind::Code;
+  std::vector<Precision> precisions;   // one function per entry, in this order, joined by a blank line
+  std::string single_suffix;           // literal suffix in single precision ("f")
+  std::string double_suffix;           // literal suffix in double precision
+  std::string math_prefix;             // before a math function's name ("std::", "np.", "${T}::")
+  std::map<std::string, std::string> math_names;  // renamed functions; a value containing "${" is a
+                                                   // whole pattern with ${args}
+  std::string call = "${fn}(${args})";  // a call: ${fn} (prefix + name), ${args}
+  std::string mul = " * ", div = " / ";
+  std::string comment = "//";          // line comment
+  std::string qualifiers;              // {{qualifiers}} of the function template ("inline", CUDA's)
+  std::string indent = "  ";           // body indentation
+  std::string scalar_param;            // ${T} ${name}
+  std::string mv_param;                // ${T} ${name} ${n}
+  std::string out_param;               // ${T} ${name} ${n}; empty: outputs are returned (see below)
+  std::string element = "${name}[${k}]";        // blade k of a multivector parameter or output
+  std::string temp;                    // ${T} ${name} ${value}
+  std::string assign;                  // ${elem} ${value} ${blade} ${c} (the comment token)
+  // Returned outputs (out_param empty): each declared with out_decl, then return_stmt.
+  std::string out_decl;                // ${T} ${name} ${n}
+  std::string return_item = "${name}";  // ${name}
+  std::string return_stmt;             // ${items}, joined by ", "
+  std::string prologue;                // first body line(s); ${splat}: inputs joined by ", " with
+  std::string splat_scalar = "${name}", splat_mv = "${name}";  // these forms
+  std::string blade_list;              // one line per output: ${fn} ${out} ${n} ${list}
+  std::string blade_quote = "\"";      // around each blade name in ${list}
+  bool glsl_pack = false;              // --pack / --return apply
+  std::string (*ident)(const std::string&) = nullptr;  // identifier spelling (LaTeX), null: as is
+  std::string (*text)(const std::string&) = nullptr;   // escaping of blade names in text, null: as is
+};
+
+// The table of targets, in `--target list` order.
+const std::vector<Syntax>& targets();
+// The record of NAME; throws std::invalid_argument naming the known targets.
+const Syntax& syntax(const std::string& name);
+
+// A target by name (a handle into the table). Target::Cpp etc. remain for the built-in C-family targets.
+struct Target {
+  const char* name = "cpp";
+  const Syntax& syntax() const { return emit::syntax(name); }
+  friend bool operator==(const Target& a, const Target& b) { return std::string(a.name) == b.name; }
+  static const Target Cpp, Glsl, Cuda;
+};
 Target parse_target(const std::string& text);  // a name from targets(); throws std::invalid_argument
-std::string file_extension(Target t);          // ".hpp" | ".glsl" | ".cuh"
+std::string file_extension(Target t);          // ".hpp" | ".glsl" | ".cuh" | ...
 
 // How a GLSL parameter is passed: as a float array (default) or packed in a vector/matrix type.
 enum class Pack { Array, Mat3x4, Vec4, Vec3, Float };
@@ -35,6 +96,9 @@ std::string emit(const opt::Program& program, const EmitOptions& options);
 // placeholder without a value or an unterminated one.
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values,
                           const std::string& template_name);
+
+// Replaces each ${key} with values[key] (the records' patterns); an unknown key is a logic error.
+std::string fill_pattern(const std::string& pattern, const std::map<std::string, std::string>& values);
 
 // Numeric literal of an exact rational in the target's syntax ("0.5", "0.5f", "(1.0 / 3.0)").
 std::string literal(const GiNaC::numeric& value, Target target, bool single_precision);

@@ -276,4 +276,14 @@ TEST_CASE("fuzzer find: a quotient by exp(g) optimizes at every level", "[cli]")
     CHECK(r.out.rfind("M e1^e2^e3^einf^e0 ", 0) == 0);
     CHECK(std::stod(r.out.substr(19)) == Approx(-0.75 * std::exp(-0.5)).epsilon(1e-14));
   }
+
+TEST_CASE("cli: --target list prints the table of targets, --target-extension the extension of one", "[cli]") {
+  auto r = run("--target list");
+  CHECK(r.code == 0);
+  CHECK(r.out == "cpp\nglsl\ncuda\nhlsl\nglsl-es\nopencl\npython\njavascript\nrust\nlatex\ndot\n");
+  r = run("--target-extension python");
+  CHECK(r.code == 0);
+  CHECK(r.out == ".py\n");
+  r = run("--target-extension fortran");
+  CHECK(r.code == 2);
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <string>
 
 #include "../kernels/hand_kernels.hpp"
@@ -119,4 +120,70 @@ TEST_CASE("every bundled script's GLSL compiles with glslang", "[emit][glsl]") {
       ++n;
     }
   CHECK(n >= 6);
+}
+
+TEST_CASE("the table of targets: unique names and extensions, every template present and filled", "[emit][targets]") {
+  std::set<std::string> names, exts;
+  for (const auto& s : emit::targets()) {
+    INFO(s.name);
+    CHECK(names.insert(s.name).second);
+    CHECK(exts.insert(s.extension).second);
+    CHECK(emit::parse_target(s.name).syntax().name == s.name);
+    CHECK(emit::file_extension(emit::parse_target(s.name)) == s.extension);
+    for (auto lvl : {opt::Level::O0, opt::Level::O1, opt::Level::O2}) {
+      emit::EmitOptions eo;
+      eo.target = emit::parse_target(s.name);
+      eo.script_name = "transform_point.clu";
+      std::string code = emit::emit(opt::optimize(cga_test::transform_point_kernel(), lvl), eo);
+      CHECK(code.find("{{") == std::string::npos);
+      CHECK(code.find("${") == std::string::npos);
+      CHECK((code.find("transform_point") != std::string::npos || code.find("transform\\_point") != std::string::npos));
+      std::string n = emit::emit(opt::optimize(cga_test::normalize_kernel(), lvl), eo);  // sqrt, division
+      CHECK(n.find("${") == std::string::npos);
+    }
+  }
+  for (const char* t : {"cpp", "glsl", "cuda", "hlsl", "glsl-es", "opencl", "python", "javascript", "rust", "latex", "dot"})
+    CHECK(names.count(t) == 1);
+  CHECK_THROWS_WITH(emit::parse_target("fortran"), Catch::Contains("expected cpp, glsl, cuda"));
+}
+
+TEST_CASE("interfaces of the targets besides C++/GLSL/CUDA", "[emit][targets]") {
+  auto p = opt::optimize(cga_test::transform_point_kernel(), opt::Level::O2);
+  auto code = [&](const char* t) {
+    emit::EmitOptions eo;
+    eo.target = emit::parse_target(t);
+    return emit::emit(p, eo);
+  };
+  CHECK(code("python").find("def transform_point(M, x, y, z):") != std::string::npos);
+  CHECK(code("python").find("    return (_out(P, _s),)") != std::string::npos);
+  CHECK(code("javascript").find("export function transform_point(M, x, y, z) {") != std::string::npos);
+  CHECK(code("javascript").find("  return [P];") != std::string::npos);
+  CHECK(code("rust").find("pub fn transform_point_f32(M: &[f32; 12], x: f32, y: f32, z: f32, P: &mut [f32; 4])") !=
+        std::string::npos);
+  CHECK(code("rust").find("pub fn transform_point_f64(M: &[f64; 12]") != std::string::npos);
+  CHECK(code("opencl").find("void transform_point_f32(const float M[12], float x, float y, float z, float P[4])") !=
+        std::string::npos);
+  CHECK(code("opencl").find("#ifdef cl_khr_fp64\nvoid transform_point_f64(const double M[12]") != std::string::npos);
+  CHECK(code("hlsl").find("void transform_point(in float M[12], float x, float y, float z, out float P[4])") !=
+        std::string::npos);
+  CHECK(code("latex").find("\\documentclass{article}") != std::string::npos);
+  CHECK(code("dot").find("digraph \"transform_point\" {") != std::string::npos);
+  CHECK_THROWS_WITH([&] {
+    emit::EmitOptions eo;
+    eo.target = emit::parse_target("rust");
+    eo.return_output = "P";
+    emit::emit(p, eo);
+  }(), Catch::Contains("glsl target only"));
+  // Math spellings per target.
+  auto n = opt::optimize(cga_test::normalize_kernel(), opt::Level::O2);
+  auto ncode = [&](const char* t) {
+    emit::EmitOptions eo;
+    eo.target = emit::parse_target(t);
+    return emit::emit(n, eo);
+  };
+  CHECK(ncode("python").find("_np.sqrt(") != std::string::npos);
+  CHECK(ncode("javascript").find("Math.sqrt(") != std::string::npos);
+  CHECK(ncode("rust").find("f32::sqrt(") != std::string::npos);
+  CHECK(ncode("rust").find("f64::sqrt(") != std::string::npos);
+  CHECK(ncode("latex").find("\\sqrt{") != std::string::npos);
 }

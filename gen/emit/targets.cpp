@@ -1,0 +1,210 @@
+// The table of targets: one Syntax record per language (see emit.hpp). The templates of a target live in
+// templates/<name>/; its interface and how it is checked are in docs/generator.md and tests/targets.
+#include <stdexcept>
+#include <utility>
+
+#include "emit/emit.hpp"
+
+namespace cgagen::emit {
+
+namespace {
+
+// LaTeX: identifiers in math mode (an underscore would start a subscript), names and blades in text.
+std::string latex_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '_' || c == '&' || c == '%' || c == '#' || c == '$') out += std::string("\\") + c;
+    else if (c == '^') out += "\\textasciicircum{}";
+    else out += c;
+  }
+  return out;
+}
+std::string latex_ident(const std::string& s) {
+  if (s.size() == 1) return s;
+  return "\\mathit{" + latex_text(s) + "}";
+}
+
+Precision prec(std::string type, bool single, std::string suffix = "", std::string before = "",
+               std::string after = "") {
+  return Precision{std::move(type), single, std::move(suffix), std::move(before), std::move(after)};
+}
+
+Syntax c_family() {
+  Syntax s;
+  s.single_suffix = "f";
+  s.scalar_param = "${T} ${name}";
+  s.mv_param = "const ${T} ${name}[${n}]";
+  s.out_param = "${T} ${name}[${n}]";
+  s.temp = "const ${T} ${name} = ${value};";
+  s.assign = "${elem} = ${value};  ${c} ${blade}";
+  s.blade_list = "${c} ${out}: ${list}";
+  s.blade_quote = "";
+  return s;
+}
+
+std::vector<Syntax> make_targets() {
+  std::vector<Syntax> t;
+
+  Syntax cpp = c_family();
+  cpp.name = "cpp";
+  cpp.extension = ".hpp";
+  cpp.summary = "C++17 header: inline float and double overloads, out arrays";
+  cpp.precisions = {prec("float", true), prec("double", false)};
+  cpp.math_prefix = "std::";
+  cpp.qualifiers = "inline";
+  cpp.blade_list = "inline constexpr std::array<std::string_view, ${n}> ${fn}_${out}_blades = {${list}};";
+  cpp.blade_quote = "\"";
+  t.push_back(cpp);
+
+  Syntax glsl = c_family();
+  glsl.name = "glsl";
+  glsl.extension = ".glsl";
+  glsl.summary = "GLSL 3.30 functions (float), out parameters, --pack / --return";
+  glsl.precisions = {prec("float", true)};
+  glsl.single_suffix = "";
+  glsl.math_names = {{"atan2", "atan"}};
+  glsl.mv_param = "in ${T} ${name}[${n}]";
+  glsl.out_param = "out ${T} ${name}[${n}]";
+  glsl.temp = "${T} ${name} = ${value};";
+  glsl.glsl_pack = true;
+  t.push_back(glsl);
+
+  // CUDA is the C++ record plus qualifiers (and C math names, which nvcc provides for float and double).
+  Syntax cuda = cpp;
+  cuda.name = "cuda";
+  cuda.extension = ".cuh";
+  cuda.summary = "CUDA header: the C++ functions as __host__ __device__ __forceinline__";
+  cuda.math_prefix = "";
+  cuda.math_names = {{"abs", "fabs"}};
+  cuda.qualifiers = "__host__ __device__ __forceinline__";
+  t.push_back(cuda);
+
+  Syntax hlsl = c_family();
+  hlsl.name = "hlsl";
+  hlsl.extension = ".hlsl";
+  hlsl.summary = "HLSL functions (float), in/out array parameters";
+  hlsl.precisions = {prec("float", true)};
+  hlsl.single_suffix = "";
+  hlsl.mv_param = "in ${T} ${name}[${n}]";
+  hlsl.out_param = "out ${T} ${name}[${n}]";
+  hlsl.temp = "${T} ${name} = ${value};";
+  t.push_back(hlsl);
+
+  // GLSL ES 3.00 (WebGL 2): the GLSL record, its own templates (a precision statement), packing included.
+  Syntax glsl_es = glsl;
+  glsl_es.name = "glsl-es";
+  glsl_es.extension = ".essl";
+  glsl_es.summary = "GLSL ES 3.00 functions (WebGL 2; float, highp), out parameters, --pack / --return";
+  t.push_back(glsl_es);
+
+  Syntax opencl = c_family();
+  opencl.name = "opencl";
+  opencl.extension = ".cl";
+  opencl.summary = "OpenCL C functions NAME_f32 and NAME_f64 (with cl_khr_fp64), private arrays";
+  opencl.precisions = {prec("float", true, "_f32"),
+                       prec("double", false, "_f64", "#ifdef cl_khr_fp64\n", "\n#endif")};
+  opencl.math_names = {{"abs", "fabs"}};
+  t.push_back(opencl);
+
+  Syntax py;
+  py.name = "python";
+  py.extension = ".py";
+  py.summary = "Python/NumPy: NAME(*inputs) -> tuple of outputs (floats or broadcast arrays)";
+  py.precisions = {prec("", false)};
+  py.math_prefix = "_np.";
+  py.math_names = {{"atan2", "arctan2"}, {"asin", "arcsin"}, {"acos", "arccos"}, {"atan", "arctan"},
+                   {"pow", "power"}};
+  py.comment = "#";
+  py.indent = "    ";
+  py.scalar_param = "${name}";
+  py.mv_param = "${name}";
+  py.splat_mv = "*${name}";
+  py.prologue = "_s = _shape(${splat})";
+  py.temp = "${name} = ${value}";
+  py.assign = "${elem} = ${value}  ${c} ${blade}";
+  py.out_decl = "${name} = [0.0] * ${n}";
+  py.return_item = "_out(${name}, _s)";
+  py.return_stmt = "return (${items},)";
+  py.blade_list = "${fn}_${out}_blades = (${list},)";
+  t.push_back(py);
+
+  Syntax js;
+  js.name = "javascript";
+  js.extension = ".mjs";
+  js.summary = "JavaScript ES module: export function NAME(...inputs) -> array of outputs (numbers)";
+  js.precisions = {prec("", false)};
+  js.math_prefix = "Math.";
+  js.scalar_param = "${name}";
+  js.mv_param = "${name}";
+  js.temp = "const ${name} = ${value};";
+  js.assign = "${elem} = ${value};  ${c} ${blade}";
+  js.out_decl = "const ${name} = new Array(${n});";
+  js.return_stmt = "return [${items}];";
+  js.blade_list = "export const ${fn}_${out}_blades = [${list}];";
+  t.push_back(js);
+
+  Syntax rust;
+  rust.name = "rust";
+  rust.extension = ".rs";
+  rust.summary = "Rust module: pub fn NAME_f32 / NAME_f64 with &[T; N] inputs and &mut [T; N] outputs";
+  rust.precisions = {prec("f32", true, "_f32"), prec("f64", false, "_f64")};
+  rust.math_prefix = "${T}::";
+  rust.math_names = {{"pow", "powf"}};
+  rust.scalar_param = "${name}: ${T}";
+  rust.mv_param = "${name}: &[${T}; ${n}]";
+  rust.out_param = "${name}: &mut [${T}; ${n}]";
+  rust.temp = "let ${name}: ${T} = ${value};";
+  rust.assign = "${elem} = ${value};  ${c} ${blade}";
+  rust.blade_list = "#[allow(non_upper_case_globals, dead_code)]\npub const ${fn}_${out}_blades: [&str; ${n}] = [${list}];";
+  t.push_back(rust);
+
+  Syntax tex;
+  tex.name = "latex";
+  tex.extension = ".tex";
+  tex.summary = "LaTeX standalone document: the optimized program as equations";
+  tex.precisions = {prec("", false)};
+  tex.call = "\\operatorname{${fn}}(${args})";
+  tex.math_names = {{"sqrt", "\\sqrt{${args}}"}};
+  tex.mul = " \\cdot ";
+  tex.comment = "%";
+  tex.indent = "";
+  tex.scalar_param = "$${name}$";
+  tex.mv_param = "$${name}$ (${n} blades)";
+  tex.out_param = "$${name}$ (${n} blades)";
+  tex.element = "${name}_{${k}}";
+  tex.temp = "\\noindent$${name} = ${value}$\\par";
+  tex.assign = "\\noindent$${elem} = ${value}$ \\hfill ${blade}\\par";
+  tex.blade_list = "\\noindent $${out}$: ${list}\\par";
+  tex.blade_quote = "";
+  tex.ident = latex_ident;
+  tex.text = latex_text;
+  t.push_back(tex);
+
+  Syntax dot;
+  dot.name = "dot";
+  dot.extension = ".dot";
+  dot.summary = "Graphviz digraph of the optimized program's dataflow";
+  dot.kind = Syntax::Kind::Dataflow;
+  dot.blade_list = "${c} ${out}: ${list}";
+  dot.blade_quote = "";
+  t.push_back(dot);
+  return t;
+}
+
+}  // namespace
+
+const std::vector<Syntax>& targets() {
+  static const std::vector<Syntax> table = make_targets();
+  return table;
+}
+
+const Syntax& syntax(const std::string& name) {
+  std::string known;
+  for (const auto& s : targets()) {
+    if (s.name == name) return s;
+    known += (known.empty() ? "" : ", ") + s.name;
+  }
+  throw std::invalid_argument("unknown target '" + name + "' (expected " + known + ")");
+}
+
+}  // namespace cgagen::emit

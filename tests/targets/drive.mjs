@@ -1,0 +1,34 @@
+// Runs a cgagen javascript kernel: node drive.mjs META MODULE IN OUT. Calls NAME(...inputs) per input row
+// (a multivector input as an array of its blades) and writes the flat outputs one row per line; checks the
+// interface (an array of outputs, each an array of the declared number of numbers).
+import { readFileSync, writeFileSync } from "node:fs";
+import { pathToFileURL } from "node:url";
+
+const [meta_path, module_path, in_path, out_path] = process.argv.slice(2);
+const meta = JSON.parse(readFileSync(meta_path, "utf8"));
+const mod = await import(pathToFileURL(module_path).href);
+const fn = mod[meta.name];
+if (typeof fn !== "function") throw new Error(`no function ${meta.name}`);
+const lines = readFileSync(in_path, "utf8").split("\n").filter((l) => l.length > 0);
+const out = [];
+for (const line of lines) {
+  const v = line.split(" ").map(Number);
+  const args = [];
+  let off = 0;
+  for (const n of meta.inputs) {
+    if (n === 0) args.push(v[off++]);
+    else { args.push(v.slice(off, off + n)); off += n; }
+  }
+  const res = fn(...args);
+  if (!Array.isArray(res) || res.length !== meta.outputs.length) throw new Error("bad outputs");
+  const row = [];
+  res.forEach((o, i) => {
+    if (!Array.isArray(o) || o.length !== meta.outputs[i]) throw new Error(`bad output ${i}`);
+    for (const x of o) {
+      if (typeof x !== "number") throw new Error("not a number");
+      row.push(String(x));
+    }
+  });
+  out.push(row.join(" "));
+}
+writeFileSync(out_path, out.join("\n") + "\n");
