@@ -276,6 +276,7 @@ TEST_CASE("fuzzer find: a quotient by exp(g) optimizes at every level", "[cli]")
     CHECK(r.out.rfind("M e1^e2^e3^einf^e0 ", 0) == 0);
     CHECK(std::stod(r.out.substr(19)) == Approx(-0.75 * std::exp(-0.5)).epsilon(1e-14));
   }
+}
 
 TEST_CASE("cli: --target list prints the table of targets, --target-extension the extension of one", "[cli]") {
   auto r = run("--target list");
