@@ -47,7 +47,8 @@ if [ "$mode" = ci ]; then
   echo "fuzz.sh: fuzzing with -seed=$seed -runs=$runs"
   # Without address randomization: GiNaC orders terms by hashes that mix in addresses, so with ASLR the
   # coverage, and with it the fuzzer's path, would differ from run to run. This way two runs of the same
-  # commit execute the same inputs (their coverage lines match; only the timings differ).
+  # commit in the same checkout folder execute the same inputs (their coverage lines match; only the timings
+  # differ). From another folder the path differs (the binary's layout moves with it), the verdict does not.
   # -reload=0: by default libFuzzer rereads the corpus folder on a wall-clock timer, which makes the path timing-dependent.
   setarch "$(uname -m)" -R ./build-fuzz/fuzz_script build-fuzz/ci-corpus "${limits[@]}" -seed="$seed" -runs="$runs" -reload=0 \
     -artifact_prefix=build-fuzz/ -print_final_stats=1
