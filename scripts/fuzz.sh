@@ -23,7 +23,7 @@ case "${1:-}" in
   *) echo "usage: scripts/fuzz.sh [--explore SECONDS]" >&2; exit 2 ;;
 esac
 seed=${FUZZ_SEED:-1}
-runs=${FUZZ_RUNS:-4000}
+runs=${FUZZ_RUNS:-3000}
 
 cmake -S fuzz -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build-fuzz --target fuzz_script
