@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../runtime/scaled_rig.hpp"
+#include "cga/testing/key_times.hpp"
 #include "cga/gpu/skinning.hpp"
 
 using namespace cga;
@@ -20,10 +21,7 @@ namespace {
 void check_gl_paths(const Context& ctx, const Character& ch) {
   const double size = character_size(ch);
   const Clip& clip = ch.clips.at(0);
-  std::vector<float> times;
-  for (const JointKeys& k : clip.keys) times.insert(times.end(), k.times.begin(), k.times.end());
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
+  const std::vector<float> times = cga::testing::key_times(clip);
   for (SkinningMethod method : kAllSkinningMethods)
     for (Interpolation mode : {Interpolation::paper, Interpolation::nlerp}) {
       if (method != SkinningMethod::cga_points && method != SkinningMethod::cga_motors && mode != Interpolation::paper)

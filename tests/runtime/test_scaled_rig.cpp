@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scaled_rig.hpp"
+#include "cga/testing/key_times.hpp"
 
 using namespace cga;
 
@@ -20,10 +21,7 @@ constexpr double kTolerance = 1e-5;  // of the character's size
 double worst_deviation(const Character& ch, SkinningMethod method, Interpolation motor_mode, bool use_simd) {
   const double size = character_size(ch);
   const Clip& clip = ch.clips.at(0);
-  std::vector<float> times;
-  for (const JointKeys& k : clip.keys) times.insert(times.end(), k.times.begin(), k.times.end());
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
+  const std::vector<float> times = cga::testing::key_times(clip);
   double worst = 0.0;
   for (float t : times)
     for (std::size_t m = 0; m < ch.meshes.size(); ++m) {

@@ -11,6 +11,7 @@
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/skinning.hpp"
+#include "cga/testing/key_times.hpp"
 #include "cga/testing/nan_max.hpp"
 
 namespace {
@@ -19,14 +20,7 @@ using namespace cga;
 
 std::string model(const char* rel) { return std::string(CGA_MODELS_DIR) + "/" + rel; }
 
-// Every joint's key times, merged: at these times every sampling mode returns keys, not interpolations.
-std::vector<float> key_times(const Clip& clip) {
-  std::vector<float> times;
-  for (const JointKeys& k : clip.keys) times.insert(times.end(), k.times.begin(), k.times.end());
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
-  return times;
-}
+using cga::testing::key_times;
 
 // One mesh's palettes at one time, in the representation of each mode (paper motors, GLM matrices, rigid
 // dual quaternions), made by sampling -> local-to-model -> skinning palette.

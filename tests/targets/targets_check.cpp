@@ -204,6 +204,18 @@ std::string slurp(const std::string& path) {
 
 int failures = 0;
 
+// Runs a case's toolchain commands in order; the first that fails is reported with its log (and counted).
+template <class Steps>
+bool run_steps(const std::string& name, const Steps& steps, const std::string& log) {
+  for (const std::string& s : steps)
+    if (sh(s) != 0) {
+      std::printf("FAIL %-20s %s\n%s\n", name.c_str(), s.c_str(), slurp(log).c_str());
+      ++failures;
+      return false;
+    }
+  return true;
+}
+
 // Compares a driver's output file with the reference (the first `rows` samples, all when 0).
 void check(const Case& c, const std::string& what, const std::string& path, double tol, size_t rows = 0) {
   auto got = read_rows(path);
@@ -405,14 +417,7 @@ void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const s
         std::string(SPIRV_CROSS) + " --version 450 --no-es --output " + base + ".comp " + base + ".spv >> " + base + ".log 2>&1",
         std::string(GL_RUNNER) + " " + base + ".comp " + std::to_string(c.nin) + " " + std::to_string(c.nout) + " " +
             base + ".in " + base + ".hl32 > " + base + ".device 2>> " + base + ".log"};
-    bool ok = true;
-    for (const auto& s : steps)
-      if (ok && sh(s) != 0) {
-        std::printf("FAIL %-20s %s\n%s\n", c.name.c_str(), s.c_str(), slurp(base + ".log").c_str());
-        ++failures;
-        ok = false;
-      }
-    if (!ok) continue;
+    if (!run_steps(c.name, steps, base + ".log")) continue;
     if (&c == &cases.front()) std::printf("HLSL -> SPIR-V (glslang -D, spirv-val ok) -> GLSL 4.50 (spirv-cross) on %s", slurp(base + ".device").c_str());
     check(c, "hlsl->spirv->gl float", base + ".hl32", kTolFloat);
   }
@@ -445,14 +450,7 @@ void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, cons
         std::string(GLSLANG_VALIDATOR) + " " + base + ".comp >> " + base + ".log 2>&1",
         std::string(GL_RUNNER) + " " + base + ".comp " + std::to_string(c.nin) + " " + std::to_string(c.nout) + " " +
             base + ".in " + base + ".es32 > " + base + ".device 2>> " + base + ".log"};
-    bool ok = true;
-    for (const auto& s : steps)
-      if (ok && sh(s) != 0) {
-        std::printf("FAIL %-20s %s\n%s\n", c.name.c_str(), s.c_str(), slurp(base + ".log").c_str());
-        ++failures;
-        ok = false;
-      }
-    if (!ok) continue;
+    if (!run_steps(c.name, steps, base + ".log")) continue;
     if (&c == &cases.front())
       std::printf("GLSL ES 3.00 (glslang, vertex) + ES 3.10 compute on %s", slurp(base + ".device").c_str());
     check(c, "glsl-es compute float", base + ".es32", kTolFloat);
