@@ -351,9 +351,10 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
   CanonicalKeys keys(canon);
 
   // Blade k of a parameter or output, in the target's syntax (GLSL packing included).
-  auto elem = [&](const std::string& name, size_t k, Pack p) {
+  auto elem = [&](const std::string& name, size_t k, Pack p, bool output = false) {
     if (p != Pack::Array) return element(name, k, p);
-    return fill_pattern(sx.element, {{"name", as_ident(sx, name)}, {"k", std::to_string(k)}});
+    const std::string& pattern = output && !sx.out_element.empty() ? sx.out_element : sx.element;
+    return fill_pattern(pattern, {{"name", as_ident(sx, name)}, {"k", std::to_string(k)}});
   };
 
   // Code names of the symbols.
@@ -417,7 +418,7 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
       const size_t n = o.slots.size();
       Pack p = sx.glsl_pack ? pack_of(o.name, n) : Pack::Array;
       for (size_t k = 0; k < n; ++k)
-        body += line(fill_pattern(sx.assign, {{"elem", elem(o.name, k, p)},
+        body += line(fill_pattern(sx.assign, {{"elem", elem(o.name, k, p, true)},
                                               {"value", pr.print(o.slots[k].value)},
                                               {"blade", as_text(sx, algebra::blade_name(o.slots[k].blade))},
                                               {"c", sx.comment}}));

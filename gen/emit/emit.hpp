@@ -47,6 +47,7 @@ struct Syntax {
   std::string mv_param;                // ${T} ${name} ${n}
   std::string out_param;               // ${T} ${name} ${n}; empty: outputs are returned (see below)
   std::string element = "${name}[${k}]";        // blade k of a multivector parameter or output
+  std::string out_element;             // blade k of an output where it differs (WGSL's pointers); empty: element
   std::string temp;                    // ${T} ${name} ${value}
   std::string assign;                  // ${elem} ${value} ${blade} ${c} (the comment token)
   // Returned outputs (out_param empty): each declared with out_decl, then return_stmt.

@@ -1,5 +1,6 @@
 // The table of targets: one Syntax record per language (see emit.hpp). The templates of a target live in
 // templates/<name>/; its interface and how it is checked are in docs/generator.md and tests/targets.
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -22,6 +23,31 @@ std::string latex_text(const std::string& s) {
 std::string latex_ident(const std::string& s) {
   if (s.size() == 1) return s;
   return "\\mathit{" + latex_text(s) + "}";
+}
+
+// WGSL: its keywords and reserved words (WGSL spec, sections 15.1 and 15.2) cannot name a variable or a
+// function; a script identifier that is one gets a trailing underscore. Other names pass unchanged.
+std::string wgsl_ident(const std::string& s) {
+  static const std::set<std::string> reserved = {
+      "alias", "break", "case", "const", "const_assert", "continue", "continuing", "default", "diagnostic",
+      "discard", "else", "enable", "false", "fn", "for", "if", "let", "loop", "override", "requires", "return",
+      "struct", "switch", "true", "var", "while", "NULL", "Self", "abstract", "active", "alignas", "alignof", "as",
+      "asm", "asm_fragment", "async", "attribute", "auto", "await", "become", "binding_array", "cast", "catch",
+      "class", "co_await", "co_return", "co_yield", "coherent", "column_major", "common", "compile",
+      "compile_fragment", "concept", "const_cast", "consteval", "constexpr", "constinit", "crate", "debugger",
+      "decltype", "delete", "demote", "demote_to_helper", "do", "dynamic_cast", "enum", "explicit", "export",
+      "extends", "extern", "external", "fallthrough", "filter", "final", "finally", "friend", "from", "fxgroup",
+      "get", "goto", "groupshared", "highp", "impl", "implements", "import", "inline", "instanceof", "interface",
+      "layout", "lowp", "macro", "macro_rules", "match", "mediump", "meta", "mod", "module", "move", "mut",
+      "mutable", "namespace", "new", "nil", "noexcept", "noinline", "nointerpolation", "non_coherent",
+      "noncoherent", "noperspective", "null", "nullptr", "of", "operator", "package", "packoffset", "partition",
+      "pass", "patch", "pixelfragment", "precise", "precision", "premerge", "priv", "protected", "pub", "public",
+      "readonly", "ref", "regardless", "register", "reinterpret_cast", "require", "resource", "restrict", "self",
+      "set", "shared", "sizeof", "smooth", "snorm", "static", "static_assert", "static_cast", "std", "subroutine",
+      "super", "target", "template", "this", "thread_local", "throw", "trait", "try", "type", "typedef", "typeid",
+      "typename", "typeof", "union", "unless", "unorm", "unsafe", "unsized", "use", "using", "varying", "virtual",
+      "volatile", "wgsl", "where", "with", "writeonly", "yield"};
+  return reserved.count(s) ? s + "_" : s;
 }
 
 Precision prec(std::string type, bool single, std::string suffix = "", std::string before = "",
@@ -96,6 +122,26 @@ std::vector<Syntax> make_targets() {
   glsl_es.extension = ".essl";
   glsl_es.summary = "GLSL ES 3.00 functions (WebGL 2; float, highp), out parameters, --pack / --return";
   t.push_back(glsl_es);
+
+  // WGSL (WebGPU): f32 only, as WGSL has no f64. Inputs are arrays by value; outputs are pointers to
+  // function-space arrays (WGSL has no out parameters), so an output's blade is (*name)[k]. Literals stay
+  // unsuffixed (abstract floats, converted to f32 where used: WGSL rounds them, as GLSL does).
+  Syntax wgsl;
+  wgsl.name = "wgsl";
+  wgsl.extension = ".wgsl";
+  wgsl.summary = "WGSL functions (WebGPU; f32 only), array inputs, ptr<function, array> outputs";
+  wgsl.precisions = {prec("f32", true)};
+  wgsl.scalar_param = "${name}: ${T}";
+  wgsl.mv_param = "${name}: array<${T}, ${n}>";
+  wgsl.out_param = "${name}: ptr<function, array<${T}, ${n}>>";
+  wgsl.out_element = "(*${name})[${k}]";
+  wgsl.temp = "let ${name}: ${T} = ${value};";
+  wgsl.assign = "${elem} = ${value};  ${c} ${blade}";
+  wgsl.blade_list = "${c} ${out}: ${list}";  // WGSL has no strings: the blade lists are comments
+  wgsl.blade_quote = "";
+  wgsl.ident = wgsl_ident;
+  wgsl.text = wgsl_ident;  // the function's name is the script's; blade names and file names pass unchanged
+  t.push_back(wgsl);
 
   Syntax opencl = c_family();
   opencl.name = "opencl";

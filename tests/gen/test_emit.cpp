@@ -142,7 +142,8 @@ TEST_CASE("the table of targets: unique names and extensions, every template pre
       CHECK(n.find("${") == std::string::npos);
     }
   }
-  for (const char* t : {"cpp", "glsl", "cuda", "hlsl", "glsl-es", "opencl", "python", "javascript", "rust", "latex", "dot"})
+  for (const char* t : {"cpp", "glsl", "cuda", "hlsl", "glsl-es", "wgsl", "opencl", "python", "javascript", "rust", "latex",
+                        "dot"})
     CHECK(names.count(t) == 1);
   CHECK_THROWS_WITH(emit::parse_target("fortran"), Catch::Contains("expected cpp, glsl, cuda"));
 }
@@ -166,6 +167,10 @@ TEST_CASE("interfaces of the targets besides C++/GLSL/CUDA", "[emit][targets]") 
   CHECK(code("opencl").find("#ifdef cl_khr_fp64\nvoid transform_point_f64(const double M[12]") != std::string::npos);
   CHECK(code("hlsl").find("void transform_point(in float M[12], float x, float y, float z, out float P[4])") !=
         std::string::npos);
+  CHECK(code("wgsl").find("fn transform_point(M: array<f32, 12>, x: f32, y: f32, z: f32, P: ptr<function, "
+                          "array<f32, 4>>) {") != std::string::npos);
+  CHECK(code("wgsl").find("  (*P)[0] = ") != std::string::npos);
+  CHECK(code("wgsl").find("f64") == std::string::npos);  // WGSL has no f64
   CHECK(code("latex").find("\\documentclass{article}") != std::string::npos);
   CHECK(code("dot").find("digraph \"transform_point\" {") != std::string::npos);
   CHECK_THROWS_WITH([&] {
