@@ -20,7 +20,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -423,18 +425,236 @@ void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const s
   }
 }
 
-// GLSL ES: each file checked by glslang as a `#version 300 es` vertex shader (the WebGL 2 level), then run in a
-// `#version 310 es` compute wrapper (SSBOs 0/1, one group per row) on the headless GL 4.5 context, whose
-// ES 3.1 compatibility compiles ES shaders with the ES rules (llvmpipe in CI). Float only.
+// ---- Browser checks (wgsl, glsl-es): all scripts in one page (tests/targets/browser_harness.js), one
+// Chromium launch per language, driven by browser_run.py. The GPU APIs run on SwiftShader, Chromium's CPU
+// implementation: its timings are CPU emulation, printed as such, never GPU speed.
+constexpr int kBrowserTimeout = 120;  // seconds; a hung browser fails the test instead of hanging it
+
+std::string base64(const std::vector<float>& v) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* b = reinterpret_cast<const unsigned char*>(v.data());  // little-endian, as Float32Array reads it
+  const size_t n = v.size() * sizeof(float);
+  std::string out;
+  for (size_t i = 0; i < n; i += 3) {
+    unsigned x = b[i] << 16 | (i + 1 < n ? b[i + 1] << 8 : 0) | (i + 2 < n ? b[i + 2] : 0);
+    out += abc[x >> 18 & 63];
+    out += abc[x >> 12 & 63];
+    out += i + 1 < n ? abc[x >> 6 & 63] : '=';
+    out += i + 2 < n ? abc[x & 63] : '=';
+  }
+  return out;
+}
+
+std::vector<float> unbase64(const std::string& s) {
+  std::string bytes;
+  unsigned x = 0;
+  int bits = 0;
+  for (char ch : s) {
+    int d = ch >= 'A' && ch <= 'Z' ? ch - 'A' : ch >= 'a' && ch <= 'z' ? ch - 'a' + 26
+          : ch >= '0' && ch <= '9' ? ch - '0' + 52 : ch == '+' ? 62 : ch == '/' ? 63 : -1;
+    if (d < 0) continue;  // '=' padding
+    x = x << 6 | d;
+    bits += 6;
+    if (bits >= 8) bytes += static_cast<char>(x >> (bits -= 8) & 255);
+  }
+  std::vector<float> v(bytes.size() / sizeof(float));
+  std::copy(bytes.begin(), bytes.begin() + v.size() * sizeof(float), reinterpret_cast<char*>(v.data()));
+  return v;
+}
+
+// A JavaScript string literal; '<' escaped so that no "</script>" can end the page's script early.
+std::string js_string(const std::string& s) {
+  std::string out = "\"";
+  char buf[8];
+  for (unsigned char ch : s) {
+    if (ch == '"' || ch == '\\') out += std::string("\\") + static_cast<char>(ch);
+    else if (ch == '\n') out += "\\n";
+    else if (ch < 0x20 || ch == '<') std::snprintf(buf, sizeof buf, "\\u%04x", ch), out += buf;
+    else out += static_cast<char>(ch);
+  }
+  return out + "\"";
+}
+
+// Sine and cosine on the GPU APIs: WGSL and Vulkan (SwiftShader's, under both WebGPU and WebGL 2) promise
+// only an absolute error <= 2^-11 on [-pi, pi], and SwiftShader uses that room (errors ~4e-4 seen), which a
+// float tolerance of 1e-5 cannot hold. So a script that calls sin or cos runs twice: as emitted, held to
+// 4 * 2^-11 (the API's bound, with room for the few products each value enters), and with sin/cos replaced
+// by accurate float versions (Cephes' sinf/cosf: Cody-Waite reduction by pi/2, minimax polynomials on
+// [-pi/4, pi/4], ~1 ulp) held to the usual 1e-5: the emitted code itself is checked at float precision.
+constexpr double kTolGpuTrig = 4 * 0x1p-11;
+const char* kSinCosWgsl =
+    "fn cgagen_sincos(x: f32) -> vec2<f32> {  // (sin x, cos x)\n"
+    "  let k = round(x * 0.63661977236758134);\n"
+    "  let r = ((x - k * 1.5703125) - k * 4.837512969970703125e-4) - k * 7.54978995489188216e-8;\n"
+    "  let z = r * r;\n"
+    "  let s = r + r * z * (-1.6666654611e-1 + z * (8.3321608736e-3 + z * -1.9515295891e-4));\n"
+    "  let c = 1.0 - 0.5 * z + z * z * (4.166664568298827e-2 + z * (-1.388731625493765e-3 + z * 2.443315711809948e-5));\n"
+    "  let q = i32(k) & 3;\n"
+    "  if (q == 0) { return vec2(s, c); }\n  if (q == 1) { return vec2(c, -s); }\n"
+    "  if (q == 2) { return vec2(-s, -c); }\n  return vec2(-c, s);\n}\n"
+    "fn cgagen_sin(x: f32) -> f32 { return cgagen_sincos(x).x; }\n"
+    "fn cgagen_cos(x: f32) -> f32 { return cgagen_sincos(x).y; }\n";
+const char* kSinCosEssl =
+    "vec2 cgagen_sincos(float x) {  // (sin x, cos x)\n"
+    "  float k = floor(x * 0.63661977236758134 + 0.5);\n"
+    "  float r = ((x - k * 1.5703125) - k * 4.837512969970703125e-4) - k * 7.54978995489188216e-8;\n"
+    "  float z = r * r;\n"
+    "  float s = r + r * z * (-1.6666654611e-1 + z * (8.3321608736e-3 + z * -1.9515295891e-4));\n"
+    "  float c = 1.0 - 0.5 * z + z * z * (4.166664568298827e-2 + z * (-1.388731625493765e-3 + z * 2.443315711809948e-5));\n"
+    "  int q = int(k) & 3;\n"
+    "  if (q == 0) return vec2(s, c);\n  if (q == 1) return vec2(c, -s);\n"
+    "  if (q == 2) return vec2(-s, -c);\n  return vec2(-c, s);\n}\n"
+    "float cgagen_sin(float x) { return cgagen_sincos(x).x; }\n"
+    "float cgagen_cos(float x) { return cgagen_sincos(x).y; }\n";
+const std::regex kSinCosCall("\\b(sin|cos)\\(");
+
+// One kernel run in the page: a case, its whole shader, its tolerance and label.
+struct BrowserRun {
+  const Case* c;
+  std::string id, code, what;
+  double tol;
+};
+
+// Adds the runs of one script: as emitted, and (if it calls sin/cos) with accurate sin/cos, the second shader
+// made by shader(definitions, code with sin/cos renamed).
+template <class Shader>
+void add_runs(std::vector<BrowserRun>& runs, const Case& c, const std::string& code, const std::string& what,
+              const char* sincos, const Shader& shader) {
+  if (!std::regex_search(code, kSinCosCall)) {
+    runs.push_back({&c, c.name, shader("", code), what, kTolFloat});
+    return;
+  }
+  runs.push_back({&c, c.name, shader("", code), what + " (API sin/cos)", kTolGpuTrig});
+  runs.push_back({&c, c.name + "+sincos", shader(sincos, std::regex_replace(code, kSinCosCall, "cgagen_$1(")),
+                  what + " (float sin/cos)", kTolFloat});
+}
+
+// Runs every shader in one page for `api` (webgpu or webgl2) and checks the outputs (rows in WORK/ID.EXT).
+void run_browser(const std::string& api, const std::vector<BrowserRun>& runs, const std::string& work,
+                 const std::string& ext) {
+  if (!fs::exists(CHROMIUM)) {
+    std::printf("FAIL chromium-headless-shell not found (configure found: %s). The %s checks run in headless\n"
+                "     Chromium: install Debian's chromium-headless-shell (scripts/setup.sh does) and configure again.\n",
+                CHROMIUM, api.c_str());
+    ++failures;
+    return;
+  }
+  std::string page = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>cgagen " + api +
+                     "</title></head><body>\n<script>\nconst CGAGEN_API = \"" + api + "\";\nconst CGAGEN_CASES = [\n";
+  for (const auto& r : runs) {
+    std::vector<float> in;
+    for (const auto& row : r.c->inputs) in.insert(in.end(), row.begin(), row.end());  // floats already (see load)
+    page += "{name: \"" + r.id + "\", rows: " + std::to_string(r.c->inputs.size()) + ", nin: " +
+            std::to_string(r.c->nin) + ", nout: " + std::to_string(r.c->nout) + ",\n input: \"" + base64(in) +
+            "\",\n code: " + js_string(r.code) + "},\n";
+  }
+  page += "];\n</script>\n<script>\n" + slurp(std::string(TARGETS_DIR) + "/browser_harness.js") + "</script>\n</body></html>\n";
+  const std::string html = work + "/" + api + ".html", out = work + "/" + api + ".txt", err = work + "/" + api + ".err";
+  std::ofstream(html) << page;
+  fs::remove(out);
+  auto t0 = std::chrono::steady_clock::now();
+  int rc = sh(std::string(PYTHON) + " " + TARGETS_DIR + "/browser_run.py " + CHROMIUM + " " + api + " " + html + " " +
+              out + " " + std::to_string(kBrowserTimeout) + " 2> " + err);
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (rc != 0) {
+    std::printf("FAIL %s in Chromium (%s): browser_run.py exit status %d after %.1f s:\n%s", api.c_str(), html.c_str(),
+                rc, wall, slurp(err).c_str());
+    ++failures;
+    return;
+  }
+  std::map<std::string, std::string> result;  // run id -> its line
+  std::istringstream lines(slurp(out));
+  std::string line, device, total;
+  while (std::getline(lines, line)) {
+    std::istringstream ls(line);
+    std::string kind, id;
+    ls >> kind;
+    if (kind == "device") device = line.substr(7);
+    else if (kind == "total") ls >> total;
+    else if (kind == "case" || kind == "fail") {
+      ls >> id;
+      result[id] = line;
+      if (kind == "fail") {
+        std::printf("FAIL %-20s %s: %s\n", id.c_str(), api.c_str(), line.substr(6 + id.size()).c_str());
+        ++failures;
+      }
+    }
+  }
+  std::printf("%s in headless Chromium on %s\n  page %s ms, Chromium launch to exit %.1f s (SwiftShader: CPU emulation, "
+              "not GPU speed)\n", api.c_str(), device.c_str(), total.c_str(), wall);
+  for (const auto& r : runs) {
+    const Case& c = *r.c;
+    auto it = result.find(r.id);
+    if (it == result.end()) {
+      std::printf("FAIL %-20s %s: no result from the page\n", r.id.c_str(), r.what.c_str());
+      ++failures;
+      continue;
+    }
+    if (it->second.rfind("case ", 0) != 0) continue;  // a fail line, reported above
+    std::istringstream ls(it->second);
+    std::string kind, id, compile_ms, run_ms, data;
+    ls >> kind >> id >> compile_ms >> run_ms >> data;
+    std::vector<float> v = unbase64(data);
+    std::vector<std::vector<double>> rows;
+    for (size_t k = 0; c.nout && (k + 1) * c.nout <= v.size(); ++k)
+      rows.emplace_back(v.begin() + k * c.nout, v.begin() + (k + 1) * c.nout);
+    write_rows(work + "/" + r.id + "." + ext, rows);
+    std::printf("time %-20s compile %s ms, %zu rows %s ms (SwiftShader CPU emulation)\n", r.id.c_str(),
+                compile_ms.c_str(), c.inputs.size(), run_ms.c_str());
+    check(c, r.what, work + "/" + r.id + "." + ext, r.tol);
+  }
+}
+
+// GLSL ES: each file, inside the WebGL 2 vertex shader below, checked by glslang (ES profile: `#version 300
+// es`), then run in headless Chromium's WebGL 2: row gl_VertexID of an R32F texture in, the outputs out
+// through vec4 varyings captured by transform feedback (WebGL 2 has no compute shaders). Also run in a
+// `#version 310 es` compute wrapper (SSBOs 0/1, one group per row) on the headless GL 4.5 context, whose ES
+// 3.1 compatibility compiles ES shaders with the ES rules (llvmpipe in CI). Float only.
 void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   auto replace_all = [](std::string s, const std::string& a, const std::string& b) {
     for (size_t p = 0; (p = s.find(a, p)) != std::string::npos; p += b.size()) s.replace(p, a.size(), b);
     return s;
   };
+  std::vector<BrowserRun> webgl;
   for (const auto& c : cases) {
     std::string base = work + "/" + c.name;
     std::string code = slurp(gendir + "/" + c.name + ".essl");
-    std::ofstream(base + ".vert") << "#version 300 es\n" << code << "\nvoid main() { gl_Position = vec4(0.0); }\n";
+    // The WebGL 2 vertex shader around `code` (functions `defs` first).
+    auto vertex_shader = [&](const std::string& defs, const std::string& code) {
+    std::string vs = "#version 300 es\n" + (defs.empty() ? "" : "precision highp float;\n" + defs) + code +
+                     "\nuniform highp sampler2D cgagen_in;\n";
+    const size_t vec4s = (c.nout + 3) / 4;
+    for (size_t i = 0; i < vec4s; ++i) vs += "out vec4 cgagen_r" + std::to_string(i) + ";\n";
+    vs += "float cgagen_x(int k) { return texelFetch(cgagen_in, ivec2(k, gl_VertexID), 0).r; }\nvoid main() {\n";
+    std::string args;
+    size_t off = 0;
+    for (size_t i = 0; i < c.in_sizes.size(); ++i) {
+      const std::string n = std::to_string(c.in_sizes[i]), v = "cgagen_i" + std::to_string(i);
+      if (c.in_sizes[i] == 0) {
+        args += (args.empty() ? "" : ", ") + std::string("cgagen_x(") + std::to_string(off++) + ")";
+        continue;
+      }
+      vs += "  float " + v + "[" + n + "];\n  for (int k = 0; k < " + n + "; ++k) " + v + "[k] = cgagen_x(" +
+            std::to_string(off) + " + k);\n";
+      off += c.in_sizes[i];
+      args += (args.empty() ? "" : ", ") + v;
+    }
+    for (size_t i = 0; i < c.out_sizes.size(); ++i) {
+      vs += "  float cgagen_o" + std::to_string(i) + "[" + std::to_string(c.out_sizes[i]) + "];\n";
+      args += ", cgagen_o" + std::to_string(i);
+    }
+    vs += "  " + c.name + "(" + args + ");\n";
+    for (size_t i = 0; i < vec4s; ++i) vs += "  cgagen_r" + std::to_string(i) + " = vec4(0.0);\n";
+    for (size_t i = 0, g = 0; i < c.out_sizes.size(); ++i)
+      for (size_t k = 0; k < c.out_sizes[i]; ++k, ++g)
+        vs += "  cgagen_r" + std::to_string(g / 4) + "[" + std::to_string(g % 4) + "] = cgagen_o" + std::to_string(i) +
+              "[" + std::to_string(k) + "];\n";
+    vs += "  gl_Position = vec4(0.0);\n}\n";
+    return vs;
+    };
+    std::ofstream(base + ".vert") << vertex_shader("", code);
+    add_runs(webgl, c, code, "glsl-es WebGL2 float", kSinCosEssl, vertex_shader);
+    // The ES 3.10 compute wrapper for the desktop GL context.
     CCall k = c_call(c, "float", c.name, "In", "Out");
     std::string body = replace_all(k.decls + k.call + k.copy_out, "(float)", "");
     body = replace_all(body, "In[", "In_.data[row * " + std::to_string(c.nin) + " + ");
@@ -452,9 +672,55 @@ void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, cons
             base + ".in " + base + ".es32 > " + base + ".device 2>> " + base + ".log"};
     if (!run_steps(c.name, steps, base + ".log")) continue;
     if (&c == &cases.front())
-      std::printf("GLSL ES 3.00 (glslang, vertex) + ES 3.10 compute on %s", slurp(base + ".device").c_str());
+      std::printf("GLSL ES 3.00 (glslang, the WebGL 2 vertex shader) + ES 3.10 compute on %s", slurp(base + ".device").c_str());
     check(c, "glsl-es compute float", base + ".es32", kTolFloat);
   }
+  run_browser("webgl2", webgl, work, "webgl32");
+}
+
+// WGSL: each file plus a compute entry point (storage buffers 0: inputs, 1: outputs, one thread per row) run
+// in headless Chromium's WebGPU (Dawn on SwiftShader's Vulkan); Dawn's WGSL compiler (Tint) is the validator:
+// its errors fail the script. f32 only: WGSL has no f64.
+void run_wgsl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  std::vector<BrowserRun> runs;
+  for (const auto& c : cases) {
+    const std::string fn = emit::syntax("wgsl").text(c.name);  // the emitter renames WGSL's reserved words
+    std::string main = "\n@group(0) @binding(0) var<storage, read> cgagen_in: array<f32>;\n"
+                       "@group(0) @binding(1) var<storage, read_write> cgagen_out: array<f32>;\n\n"
+                       "@compute @workgroup_size(64)\nfn cgagen_main(@builtin(global_invocation_id) cgagen_id: vec3<u32>) {\n"
+                       "  let cgagen_row = cgagen_id.x;\n  if (cgagen_row >= " + std::to_string(c.inputs.size()) +
+                       "u) { return; }\n  let cgagen_a = cgagen_row * " + std::to_string(c.nin) +
+                       "u;\n  let cgagen_b = cgagen_row * " + std::to_string(c.nout) + "u;\n";
+    std::string args;
+    size_t off = 0;
+    for (size_t i = 0; i < c.in_sizes.size(); ++i) {
+      const std::string n = std::to_string(c.in_sizes[i]), v = "cgagen_i" + std::to_string(i);
+      if (c.in_sizes[i] == 0) {
+        args += (args.empty() ? "" : ", ") + std::string("cgagen_in[cgagen_a + ") + std::to_string(off++) + "u]";
+        continue;
+      }
+      main += "  var " + v + ": array<f32, " + n + ">;\n  for (var k = 0u; k < " + n + "u; k++) { " + v +
+              "[k] = cgagen_in[cgagen_a + " + std::to_string(off) + "u + k]; }\n";
+      off += c.in_sizes[i];
+      args += (args.empty() ? "" : ", ") + v;
+    }
+    std::string copy_out;
+    off = 0;
+    for (size_t i = 0; i < c.out_sizes.size(); ++i) {
+      const std::string n = std::to_string(c.out_sizes[i]), v = "cgagen_o" + std::to_string(i);
+      main += "  var " + v + ": array<f32, " + n + ">;\n";
+      args += ", &" + v;
+      copy_out += "  for (var k = 0u; k < " + n + "u; k++) { cgagen_out[cgagen_b + " + std::to_string(off) +
+                  "u + k] = " + v + "[k]; }\n";
+      off += c.out_sizes[i];
+    }
+    main += "  " + fn + "(" + args + ");\n" + copy_out + "}\n";
+    auto shader = [&](const std::string& defs, const std::string& code) { return defs + code + main; };
+    const std::string code = slurp(gendir + "/" + c.name + ".wgsl");
+    std::ofstream(work + "/" + c.name + ".wgsl") << shader("", code);
+    add_runs(runs, c, code, "wgsl WebGPU f32", kSinCosWgsl, shader);
+  }
+  run_browser("webgpu", runs, work, "wgsl32");
 }
 
 // LaTeX: pdflatex (nonstop, halt on error) must make a PDF from every emitted document.
@@ -590,6 +856,7 @@ int main(int argc, char** argv) {
   else if (lang == "opencl") run_opencl(cases, gendir, work);
   else if (lang == "hlsl") run_hlsl(cases, gendir, work);
   else if (lang == "glsl-es") run_glsl_es(cases, gendir, work);
+  else if (lang == "wgsl") run_wgsl(cases, gendir, work);
   else if (lang == "latex") run_latex(cases, gendir, work);
   else if (lang == "dot") run_dot(cases, gendir, work);
   else {
