@@ -39,7 +39,8 @@ def main():
     from_chrome_r, from_chrome_w = os.pipe()
 
     def child_fds():  # Chromium reads commands on fd 3 and writes replies on fd 4
-        r, w = fcntl.fcntl(to_chrome_r, fcntl.F_DUPFD_CLOEXEC, 10), fcntl.fcntl(from_chrome_w, fcntl.F_DUPFD_CLOEXEC, 10)
+        r = fcntl.fcntl(to_chrome_r, fcntl.F_DUPFD_CLOEXEC, 10)
+        w = fcntl.fcntl(from_chrome_w, fcntl.F_DUPFD_CLOEXEC, 10)
         os.dup2(r, 3)  # via fds >= 10: the pipe's own fds may be 3 or 4; dup2 makes 3 and 4 inheritable
         os.dup2(w, 4)  # (os.pipe's fds and the copies >= 10 close on exec)
 
@@ -114,8 +115,8 @@ def main():
     except Exception as e:
         sys.stderr.write("browser_run: %s\n" % e)
     finally:
-        try:
-            proc.wait(timeout=5)
+        try:  # after Browser.close, Chromium exits by itself; else (an error, a hang) it is stopped at once
+            proc.wait(timeout=5 if status == 0 else 0.1)
         except subprocess.TimeoutExpired:
             pass
         try:  # Chromium's helpers (GPU, renderer, zygote) share its process group
