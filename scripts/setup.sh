@@ -17,6 +17,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers   # targets: opencl on the CPU
   spirv-cross                                # targets: hlsl (SPIR-V -> GLSL for the GL 4.5 run)
   texlive-latex-base graphviz                # targets: latex (pdflatex), dot
+  chromium-headless-shell                    # targets: wgsl (WebGPU), glsl-es (WebGL 2), on SwiftShader
 )
 
 missing=()

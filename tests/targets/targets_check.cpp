@@ -11,7 +11,11 @@
 // which the script is ill-conditioned are redrawn: each input is perturbed by a relative 2^-20 and the sample
 // is kept only if no output moves by more than 1e-5 of its scale (an amplification <= ~10), and if every
 // reference value is finite. Error of one blade: |got - ref| / max(1, max |ref| over that output's blades),
-// i.e. relative to the output's size, absolute below 1. Tolerances: 1e-5 in float, 1e-12 in double.
+// i.e. relative to the output's size, absolute below 1. Tolerances: 1e-5 in float, 1e-12 in double (sin/cos
+// in the browser APIs: see kTolGpuTrig).
+//
+// wgsl and glsl-es run in headless Chromium (WebGPU, WebGL 2): one page per language with every script,
+// written here, run by browser_run.py, the page's half in browser_harness.js.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
