@@ -11,6 +11,8 @@
 
 #include "../kernels/hand_kernels.hpp"
 #include "emit/emit.hpp"
+#include "expand/expand.hpp"
+#include "front/parser.hpp"
 #include "opt/program.hpp"
 
 using namespace cgagen;
@@ -170,7 +172,7 @@ TEST_CASE("interfaces of the targets besides C++/GLSL/CUDA", "[emit][targets]") 
   CHECK(code("wgsl").find("fn transform_point(M: array<f32, 12>, x: f32, y: f32, z: f32, P: ptr<function, "
                           "array<f32, 4>>) {") != std::string::npos);
   CHECK(code("wgsl").find("  (*P)[0] = ") != std::string::npos);
-  CHECK(code("wgsl").find("f64") == std::string::npos);  // WGSL has no f64
+  CHECK(code("wgsl").find(": f64") == std::string::npos);  // WGSL has no f64: no f64 parameter or temporary
   CHECK(code("latex").find("\\documentclass{article}") != std::string::npos);
   CHECK(code("dot").find("digraph \"transform_point\" {") != std::string::npos);
   CHECK_THROWS_WITH([&] {
@@ -191,4 +193,17 @@ TEST_CASE("interfaces of the targets besides C++/GLSL/CUDA", "[emit][targets]") 
   CHECK(ncode("rust").find("f32::sqrt(") != std::string::npos);
   CHECK(ncode("rust").find("f64::sqrt(") != std::string::npos);
   CHECK(ncode("latex").find("\\sqrt{") != std::string::npos);
+}
+
+TEST_CASE("wgsl: an identifier that is a WGSL keyword or reserved word gets a trailing underscore", "[emit][targets]") {
+  // target, self, type, mod: fine in CluScript and C++-like targets, reserved in WGSL.
+  const front::SourceFile f("mod.clu", "?type = target * e1 + self * e2;\n");
+  emit::EmitOptions eo;
+  eo.target = emit::parse_target("wgsl");
+  const std::string code = emit::emit(opt::optimize(expand(front::parse(f), "mod"), opt::Level::O2), eo);
+  CHECK(code.find("fn mod_(target_: f32, self_: f32, type_: ptr<function, array<f32, 2>>) {") != std::string::npos);
+  CHECK(code.find("(*type_)[0] = target_;") != std::string::npos);
+  eo.target = emit::parse_target("javascript");  // other targets keep the names
+  CHECK(emit::emit(opt::optimize(expand(front::parse(f), "mod"), opt::Level::O2), eo).find("function mod(target, self)") !=
+        std::string::npos);
 }
