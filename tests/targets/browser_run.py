@@ -48,7 +48,9 @@ def main():
     log = open(out_path + ".chromium.log", "w")
     proc = subprocess.Popen(
         [chromium, "--headless", "--no-sandbox", "--no-first-run", "--disable-extensions",
-         "--user-data-dir=" + profile, "--remote-debugging-pipe", *FLAGS[api], "about:blank"],
+         "--user-data-dir=" + profile,
+         "--disable-dev-shm-usage",  # containers often have a small /dev/shm
+         "--remote-debugging-pipe", *FLAGS[api], "about:blank"],
         stdin=subprocess.DEVNULL, stdout=log, stderr=log, close_fds=False,  # close_fds would close 3 and 4
         preexec_fn=child_fds, start_new_session=True)
     os.close(to_chrome_r)
