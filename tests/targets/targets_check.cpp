@@ -611,7 +611,43 @@ void run_browser(const std::string& api, const std::vector<BrowserRun>& runs, co
   }
 }
 
-// GLSL ES: each file, inside the WebGL 2 vertex shader below, checked by glslang (ES profile: `#version 300
+// The WebGL 2 vertex shader for case c around its GLSL ES `code` (functions `defs` first): reads row
+// gl_VertexID of the R32F texture cgagen_in (nin wide), writes the outputs to vec4 varyings cgagen_r0.. (zero
+// padded), which the page captures with transform feedback.
+std::string webgl_vertex_shader(const Case& c, const std::string& defs, const std::string& code) {
+  std::string vs = "#version 300 es\n" + (defs.empty() ? "" : "precision highp float;\n" + defs) + code +
+                   "\nuniform highp sampler2D cgagen_in;\n";
+  const size_t vec4s = (c.nout + 3) / 4;
+  for (size_t i = 0; i < vec4s; ++i) vs += "out vec4 cgagen_r" + std::to_string(i) + ";\n";
+  vs += "float cgagen_x(int k) { return texelFetch(cgagen_in, ivec2(k, gl_VertexID), 0).r; }\nvoid main() {\n";
+  std::string args;
+  size_t off = 0;
+  for (size_t i = 0; i < c.in_sizes.size(); ++i) {
+    const std::string n = std::to_string(c.in_sizes[i]), v = "cgagen_i" + std::to_string(i);
+    if (c.in_sizes[i] == 0) {
+      args += (args.empty() ? "" : ", ") + std::string("cgagen_x(") + std::to_string(off++) + ")";
+      continue;
+    }
+    vs += "  float " + v + "[" + n + "];\n  for (int k = 0; k < " + n + "; ++k) " + v + "[k] = cgagen_x(" +
+          std::to_string(off) + " + k);\n";
+    off += c.in_sizes[i];
+    args += (args.empty() ? "" : ", ") + v;
+  }
+  for (size_t i = 0; i < c.out_sizes.size(); ++i) {
+    vs += "  float cgagen_o" + std::to_string(i) + "[" + std::to_string(c.out_sizes[i]) + "];\n";
+    args += ", cgagen_o" + std::to_string(i);
+  }
+  vs += "  " + c.name + "(" + args + ");\n";
+  for (size_t i = 0; i < vec4s; ++i) vs += "  cgagen_r" + std::to_string(i) + " = vec4(0.0);\n";
+  for (size_t i = 0, g = 0; i < c.out_sizes.size(); ++i)
+    for (size_t k = 0; k < c.out_sizes[i]; ++k, ++g)
+      vs += "  cgagen_r" + std::to_string(g / 4) + "[" + std::to_string(g % 4) + "] = cgagen_o" + std::to_string(i) +
+            "[" + std::to_string(k) + "];\n";
+  vs += "  gl_Position = vec4(0.0);\n}\n";
+  return vs;
+}
+
+// GLSL ES: each file, inside the WebGL 2 vertex shader above, checked by glslang (ES profile: `#version 300
 // es`), then run in headless Chromium's WebGL 2: row gl_VertexID of an R32F texture in, the outputs out
 // through vec4 varyings captured by transform feedback (WebGL 2 has no compute shaders). Also run in a
 // `#version 310 es` compute wrapper (SSBOs 0/1, one group per row) on the headless GL 4.5 context, whose ES
@@ -625,38 +661,8 @@ void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, cons
   for (const auto& c : cases) {
     std::string base = work + "/" + c.name;
     std::string code = slurp(gendir + "/" + c.name + ".essl");
-    // The WebGL 2 vertex shader around `code` (functions `defs` first).
-    auto vertex_shader = [&](const std::string& defs, const std::string& code) {
-    std::string vs = "#version 300 es\n" + (defs.empty() ? "" : "precision highp float;\n" + defs) + code +
-                     "\nuniform highp sampler2D cgagen_in;\n";
-    const size_t vec4s = (c.nout + 3) / 4;
-    for (size_t i = 0; i < vec4s; ++i) vs += "out vec4 cgagen_r" + std::to_string(i) + ";\n";
-    vs += "float cgagen_x(int k) { return texelFetch(cgagen_in, ivec2(k, gl_VertexID), 0).r; }\nvoid main() {\n";
-    std::string args;
-    size_t off = 0;
-    for (size_t i = 0; i < c.in_sizes.size(); ++i) {
-      const std::string n = std::to_string(c.in_sizes[i]), v = "cgagen_i" + std::to_string(i);
-      if (c.in_sizes[i] == 0) {
-        args += (args.empty() ? "" : ", ") + std::string("cgagen_x(") + std::to_string(off++) + ")";
-        continue;
-      }
-      vs += "  float " + v + "[" + n + "];\n  for (int k = 0; k < " + n + "; ++k) " + v + "[k] = cgagen_x(" +
-            std::to_string(off) + " + k);\n";
-      off += c.in_sizes[i];
-      args += (args.empty() ? "" : ", ") + v;
-    }
-    for (size_t i = 0; i < c.out_sizes.size(); ++i) {
-      vs += "  float cgagen_o" + std::to_string(i) + "[" + std::to_string(c.out_sizes[i]) + "];\n";
-      args += ", cgagen_o" + std::to_string(i);
-    }
-    vs += "  " + c.name + "(" + args + ");\n";
-    for (size_t i = 0; i < vec4s; ++i) vs += "  cgagen_r" + std::to_string(i) + " = vec4(0.0);\n";
-    for (size_t i = 0, g = 0; i < c.out_sizes.size(); ++i)
-      for (size_t k = 0; k < c.out_sizes[i]; ++k, ++g)
-        vs += "  cgagen_r" + std::to_string(g / 4) + "[" + std::to_string(g % 4) + "] = cgagen_o" + std::to_string(i) +
-              "[" + std::to_string(k) + "];\n";
-    vs += "  gl_Position = vec4(0.0);\n}\n";
-    return vs;
+    auto vertex_shader = [&c](const std::string& defs, const std::string& text) {
+      return webgl_vertex_shader(c, defs, text);
     };
     std::ofstream(base + ".vert") << vertex_shader("", code);
     add_runs(webgl, c, code, "glsl-es WebGL2 float", kSinCosEssl, vertex_shader);
