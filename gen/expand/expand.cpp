@@ -459,7 +459,9 @@ class Expander {
   std::optional<ex> sample(const ex& c) {
     ex v;
     try {
-      v = GiNaC::evalf(c.subs(samples_));
+      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
+      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
+      v = GiNaC::evalf(c.subs(samples_, GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product));
     } catch (const std::exception&) {
       return ex(GiNaC::numeric(0));
     }
