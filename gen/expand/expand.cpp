@@ -265,6 +265,13 @@ class Expander {
     for (const auto& s : prelude_->statements) define_macro(*s);
   }
 
+  bool is_algebra_builtin(const Stmt* def) const {
+    if (!prelude_) return false;
+    for (const auto& s : prelude_->statements)
+      if (s.get() == def) return true;
+    return false;
+  }
+
   // ---- statements --------------------------------------------------------------------------------
 
   void exec_top(const Stmt& s) {
@@ -665,7 +672,12 @@ class Expander {
       // The definition for this many arguments, else the latest one (which may use fewer).
       auto by_arity = macro->second.find(args.size());
       const Stmt* def = by_arity != macro->second.end() ? by_arity->second : latest_macro_.at(fn);
-      return call_macro(*def, std::move(args), e);
+      if (!is_algebra_builtin(def)) return call_macro(*def, std::move(args), e);
+      try {  // a fault inside a built-in macro is reported at the call: its text is not the script's
+        return call_macro(*def, std::move(args), e);
+      } catch (const CompileError& x) {
+        throw CompileError(e.loc, "in the " + algebra::current().name() + " built-in '" + fn + "': " + x.what());
+      }
     }
     if (expand_algebra::is_cga_only_builtin(fn))
       throw CompileError(e.loc, "'" + fn + "' is a CGA built-in; the algebra '" + algebra::current().name() +

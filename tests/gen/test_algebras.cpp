@@ -379,6 +379,10 @@ TEST_CASE("bad --algebra arguments are clear errors, not crashes") {
   CHECK(r.out.find("'VecN3' is a CGA built-in; the algebra '3dpga' does not have it") != std::string::npos);
   r = run_cli("--algebra 3dpga " + write("v.clu", "?a = einf;\n"));  // a CGA name is an input in PGA
   CHECK(r.code == 0);
+  // A fault inside a built-in macro is reported where the script calls it.
+  r = run_cli("--algebra 3dpga " + write("n.clu", "z = 0;\n?a = Normalize(z*e1);\n"));
+  CHECK(r.code == 1);
+  CHECK(r.out.find("n.clu:2:6: error: in the 3dpga built-in 'Normalize': ") != std::string::npos);
 }
 
 // ---- op counts and generator time (docs/generator.md, "Algebras") --------------------------------------
