@@ -15,6 +15,7 @@
 #include "bench_common.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
+#include "cga/baselines/pose_jobs.hpp"
 #include "summary.hpp"
 
 namespace cga::bench {
@@ -26,7 +27,7 @@ constexpr float kFrame = 1.0f / 60.0f;
 
 struct PoseScene {
   Character character;
-  std::vector<InverseBind> inverse_binds;  // per skinned mesh
+  std::vector<baseline::InverseBind> inverse_binds;  // per skinned mesh
   std::size_t palette_entries = 0;
 };
 
@@ -36,7 +37,7 @@ const PoseScene& pose_scene() {
     s->character = load_character(models_dir() + "/" + kCharacter);
     if (s->character.clips.empty()) throw std::runtime_error(std::string(kCharacter) + " has no clip");
     for (const SkinnedMesh& mesh : s->character.meshes) {
-      s->inverse_binds.push_back(make_inverse_bind(mesh));
+      s->inverse_binds.push_back(baseline::make_inverse_bind(mesh));
       s->palette_entries += mesh.joint_remap.size();
     }
     return s;
@@ -63,36 +64,60 @@ void bm_pose(benchmark::State& state, Interpolation mode) {
   const Clip& clip_a = ch.clips[0];
   const Clip& clip_b = ch.clips.size() > 1 ? ch.clips[1] : ch.clips[0];
   const std::size_t joints = static_cast<std::size_t>(ch.skeleton.joint_count());
-  PoseBuffer a(joints), b(joints), blended(joints), model(joints);
+  baseline::PoseBuffer a(joints), b(joints), blended(joints), model(joints);
   std::vector<PaletteBuffers> palettes;
   for (const SkinnedMesh& mesh : ch.meshes) palettes.emplace_back(mesh.joint_remap.size());
 
-  SamplingJob sample_a{&clip_a, 0.0f, mode, a.motors, a.transforms, a.dual_quats, a.scales};
-  SamplingJob sample_b{&clip_b, 0.0f, mode, b.motors, b.transforms, b.dual_quats, b.scales};
-  const BlendLayer layers[2] = {{1.0f - kCrossFade, a.motors, a.transforms, a.dual_quats, a.scales},
-                                {kCrossFade, b.motors, b.transforms, b.dual_quats, b.scales}};
-  const BlendingJob blend{mode, layers, blended.motors, blended.transforms, blended.dual_quats, blended.scales};
-  const LocalToModelJob to_model{&ch.skeleton,   mode,           blended.motors,  blended.transforms,
-                                 blended.dual_quats, blended.scales, model.motors, model.matrices,
-                                 model.dual_quats,   model.scales};
-  std::vector<SkinningPaletteJob> palette_jobs;
-  for (std::size_t m = 0; m < ch.meshes.size(); ++m)
-    palette_jobs.push_back({mode, ch.meshes[m].joint_remap, &scene->inverse_binds[m], model.motors,
-                            model.matrices, model.dual_quats, model.scales, palettes[m].motors,
-                            palettes[m].matrices, palettes[m].dual_quats});
+  // One representation's jobs per mode: the runtime's motor jobs, or the GLM baselines'.
+  using namespace baseline;
+  SamplingJob motor_a{&clip_a, 0.0f, mode, a.motors}, motor_b{&clip_b, 0.0f, mode, b.motors};
+  const BlendLayer motor_layers[2] = {{1.0f - kCrossFade, a.motors}, {kCrossFade, b.motors}};
+  const BlendingJob motor_blend{mode, motor_layers, blended.motors};
+  const LocalToModelJob motor_model{&ch.skeleton, blended.motors, model.motors};
+  std::vector<SkinningPaletteJob> motor_palettes;
+  TransformSamplingJob trs_a{&clip_a, 0.0f, a.transforms}, trs_b{&clip_b, 0.0f, b.transforms};
+  const TransformLayer trs_layers[2] = {{1.0f - kCrossFade, a.transforms}, {kCrossFade, b.transforms}};
+  const TransformBlendingJob trs_blend{trs_layers, blended.transforms};
+  const MatrixLocalToModelJob matrix_model{&ch.skeleton, blended.transforms, model.matrices};
+  std::vector<MatrixPaletteJob> matrix_palettes;
+  DualQuatSamplingJob dq_a{&clip_a, 0.0f, a.dual_quats, a.scales}, dq_b{&clip_b, 0.0f, b.dual_quats, b.scales};
+  const DualQuatLayer dq_layers[2] = {{1.0f - kCrossFade, a.dual_quats, a.scales},
+                                      {kCrossFade, b.dual_quats, b.scales}};
+  const DualQuatBlendingJob dq_blend{dq_layers, blended.dual_quats, blended.scales};
+  const DualQuatLocalToModelJob dq_model{&ch.skeleton, blended.dual_quats, blended.scales, model.dual_quats,
+                                         model.scales};
+  std::vector<DualQuatPaletteJob> dq_palettes;
+  for (std::size_t m = 0; m < ch.meshes.size(); ++m) {
+    const baseline::InverseBind& ib = scene->inverse_binds[m];
+    motor_palettes.push_back({ch.meshes[m].joint_remap, ib.motors, model.motors, palettes[m].motors});
+    matrix_palettes.push_back({ch.meshes[m].joint_remap, ib.matrices, model.matrices, palettes[m].matrices});
+    dq_palettes.push_back({ch.meshes[m].joint_remap, ib.dual_quats, model.dual_quats, model.scales,
+                           palettes[m].dual_quats});
+  }
+  const auto run_pose = [&](float ta, float tb) {
+    bool ok = true;
+    if (mode == Interpolation::glm_matrix) {
+      trs_a.time = ta, trs_b.time = tb;
+      ok = trs_a.Run() && trs_b.Run() && trs_blend.Run() && matrix_model.Run();
+      for (const MatrixPaletteJob& job : matrix_palettes) ok &= job.Run();
+    } else if (mode == Interpolation::glm_dualquat) {
+      dq_a.time = ta, dq_b.time = tb;
+      ok = dq_a.Run() && dq_b.Run() && dq_blend.Run() && dq_model.Run();
+      for (const DualQuatPaletteJob& job : dq_palettes) ok &= job.Run();
+    } else {
+      motor_a.time = ta, motor_b.time = tb;
+      ok = motor_a.Run() && motor_b.Run() && motor_blend.Run() && motor_model.Run();
+      for (const SkinningPaletteJob& job : motor_palettes) ok &= job.Run();
+    }
+    return ok;
+  };
 
   const float duration_a = clip_a.duration > 0 ? clip_a.duration : 1.0f;
   const float duration_b = clip_b.duration > 0 ? clip_b.duration : 1.0f;
   float t = 0.0f;
   bool ok = true;
   for (auto _ : state) {
-    sample_a.time = std::fmod(t, duration_a);
-    sample_b.time = std::fmod(t + 0.5f * duration_b, duration_b);
-    ok &= sample_a.Run();
-    ok &= sample_b.Run();
-    ok &= blend.Run();
-    ok &= to_model.Run();
-    for (const SkinningPaletteJob& job : palette_jobs) ok &= job.Run();
+    ok &= run_pose(std::fmod(t, duration_a), std::fmod(t + 0.5f * duration_b, duration_b));
     benchmark::DoNotOptimize(palettes.front().motors.data());
     benchmark::DoNotOptimize(palettes.front().matrices.data());
     benchmark::ClobberMemory();
