@@ -52,7 +52,7 @@ struct PaletteBuffers {
   explicit PaletteBuffers(std::size_t n) : motors(n), matrices(n), dual_quats(n) {}
 };
 
-void bm_pose(benchmark::State& state, Interpolation mode) {
+void bm_pose(benchmark::State& state, Interpolation mode, bool partial) {
   const PoseScene* scene = nullptr;
   try {
     scene = &pose_scene();
@@ -71,7 +71,11 @@ void bm_pose(benchmark::State& state, Interpolation mode) {
   // One representation's jobs per mode: the runtime's motor jobs, or the GLM baselines'.
   using namespace baseline;
   SamplingJob motor_a{&clip_a, 0.0f, mode, a.motors}, motor_b{&clip_b, 0.0f, mode, b.motors};
-  const BlendLayer motor_layers[2] = {{1.0f - kCrossFade, a.motors}, {kCrossFade, b.motors}};
+  // Partial blending: the second layer weighs 1 on the second half of the joints, 0.3 on the first.
+  std::vector<float> mask(joints, 1.0f);
+  for (std::size_t j = 0; j < joints / 2; ++j) mask[j] = 0.3f;
+  const BlendLayer motor_layers[2] = {{1.0f - kCrossFade, a.motors},
+                                      {kCrossFade, b.motors, partial ? std::span<const float>(mask) : std::span<const float>()}};
   const BlendingJob motor_blend{mode, motor_layers, blended.motors};
   const LocalToModelJob motor_model{&ch.skeleton, blended.motors, model.motors};
   std::vector<SkinningPaletteJob> motor_palettes;
@@ -139,11 +143,18 @@ void register_pose_benchmarks() {
   const std::string baseline = "pose/glm-matrix";
   for (Interpolation mode : kAllInterpolations) {
     const std::string name = "pose/" + std::string(to_string(mode));
-    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode, false)->Unit(benchmark::kMicrosecond);
     const bool ours = uses_motors(mode);
     add_figure({name, section, std::string(to_string(mode)) + (ours ? "" : " (baseline)"), Metric::us_per_iter,
                 baseline, "glm-matrix", ours ? std::optional<Target>(Target{1.0, "<= 1.0 µs"}) : std::nullopt,
                 {}});
+  }
+  // Partial blending (per-joint weights on the second layer): the per-joint path of BlendingJob.
+  for (Interpolation mode : {Interpolation::paper, Interpolation::nlerp}) {
+    const std::string name = "pose/" + std::string(to_string(mode)) + "-partial";
+    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode, true)->Unit(benchmark::kMicrosecond);
+    add_figure({name, section, std::string(to_string(mode)) + ", per-joint weights", Metric::us_per_iter, baseline,
+                "glm-matrix", std::nullopt, {}});
   }
 }
 

@@ -20,9 +20,9 @@
 namespace cga::kernels {
 
 inline constexpr std::array<std::string_view, 3> ik_two_bone_T_blades = {"e1", "e2", "e3"};
-inline constexpr std::array<std::string_view, 3> ik_two_bone_E_blades = {"e1", "e2", "e3"};
+inline constexpr std::array<std::string_view, 4> ik_two_bone_X_blades = {"e1", "e2", "e3", "e0"};
 
-__host__ __device__ __forceinline__ void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, float l1, float l2, float px, float py, float pz, float T[3], float E[3]) {
+__host__ __device__ __forceinline__ void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, float l1, float l2, float px, float py, float pz, float T[3], float X[4]) {
   const float t0 = exp(-(x / ds)) - 1.0f;
   const float t1 = ds * t0 - dm;
   const float t2 = t1 * ux;
@@ -47,16 +47,16 @@ __host__ __device__ __forceinline__ void ik_two_bone(float dm, float ds, float x
   const float t21 = t12 * t2 - t10 * t4;
   const float t22 = (t13 * t3 + t14 * t2) * t15 + (t14 * t4 + t16 * t3) * t17 - (t13 * t4 - t16 * t2) * t21;
   const float t23 = sqrt(fabs(2.0f * t22 - t18 * t18 - t19 * t19 - t20 * t20));
-  const float t24 = 1.0f / (t15 * t15 + t17 * t17 + t21 * t21);
   T[0] = -t2;  // e1
   T[1] = -t3;  // e2
   T[2] = -t4;  // e3
-  E[0] = -(t15 * t18 + t17 * t23 + t19 * t21) * t24;  // e1
-  E[1] = -(t15 * t20 + t17 * t19 - t21 * t23) * t24;  // e2
-  E[2] = (t15 * t23 + t20 * t21 - t17 * t18) * t24;  // e3
+  X[0] = -t15 * t18 - t17 * t23 - t19 * t21;  // e1
+  X[1] = t21 * t23 - t15 * t20 - t17 * t19;  // e2
+  X[2] = t15 * t23 + t20 * t21 - t17 * t18;  // e3
+  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
 }
 
-__host__ __device__ __forceinline__ void ik_two_bone(double dm, double ds, double x, double ux, double uy, double uz, double l1, double l2, double px, double py, double pz, double T[3], double E[3]) {
+__host__ __device__ __forceinline__ void ik_two_bone(double dm, double ds, double x, double ux, double uy, double uz, double l1, double l2, double px, double py, double pz, double T[3], double X[4]) {
   const double t0 = exp(-(x / ds)) - 1.0;
   const double t1 = ds * t0 - dm;
   const double t2 = t1 * ux;
@@ -81,13 +81,13 @@ __host__ __device__ __forceinline__ void ik_two_bone(double dm, double ds, doubl
   const double t21 = t12 * t2 - t10 * t4;
   const double t22 = (t13 * t3 + t14 * t2) * t15 + (t14 * t4 + t16 * t3) * t17 - (t13 * t4 - t16 * t2) * t21;
   const double t23 = sqrt(fabs(2.0 * t22 - t18 * t18 - t19 * t19 - t20 * t20));
-  const double t24 = 1.0 / (t15 * t15 + t17 * t17 + t21 * t21);
   T[0] = -t2;  // e1
   T[1] = -t3;  // e2
   T[2] = -t4;  // e3
-  E[0] = -(t15 * t18 + t17 * t23 + t19 * t21) * t24;  // e1
-  E[1] = -(t15 * t20 + t17 * t19 - t21 * t23) * t24;  // e2
-  E[2] = (t15 * t23 + t20 * t21 - t17 * t18) * t24;  // e3
+  X[0] = -t15 * t18 - t17 * t23 - t19 * t21;  // e1
+  X[1] = t21 * t23 - t15 * t20 - t17 * t19;  // e2
+  X[2] = t15 * t23 + t20 * t21 - t17 * t18;  // e3
+  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
 }
 
 }  // namespace cga::kernels

@@ -12,9 +12,9 @@
 // input py
 // input pz
 // T: e1, e2, e3
-// E: e1, e2, e3
+// X: e1, e2, e3, e0
 
-void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, float l1, float l2, float px, float py, float pz, out float T[3], out float E[3]) {
+void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, float l1, float l2, float px, float py, float pz, out float T[3], out float X[4]) {
   float t0 = exp(-(x / ds)) - 1.0;
   float t1 = ds * t0 - dm;
   float t2 = t1 * ux;
@@ -39,12 +39,12 @@ void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, floa
   float t21 = t12 * t2 - t10 * t4;
   float t22 = (t13 * t3 + t14 * t2) * t15 + (t14 * t4 + t16 * t3) * t17 - (t13 * t4 - t16 * t2) * t21;
   float t23 = sqrt(abs(2.0 * t22 - t18 * t18 - t19 * t19 - t20 * t20));
-  float t24 = 1.0 / (t15 * t15 + t17 * t17 + t21 * t21);
   T[0] = -t2;  // e1
   T[1] = -t3;  // e2
   T[2] = -t4;  // e3
-  E[0] = -(t15 * t18 + t17 * t23 + t19 * t21) * t24;  // e1
-  E[1] = -(t15 * t20 + t17 * t19 - t21 * t23) * t24;  // e2
-  E[2] = (t15 * t23 + t20 * t21 - t17 * t18) * t24;  // e3
+  X[0] = -t15 * t18 - t17 * t23 - t19 * t21;  // e1
+  X[1] = t21 * t23 - t15 * t20 - t17 * t19;  // e2
+  X[2] = t15 * t23 + t20 * t21 - t17 * t18;  // e3
+  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
 }
 

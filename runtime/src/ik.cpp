@@ -131,12 +131,15 @@ bool TwoBoneIKJob::Run() const {
       if (!(glm::length(p) > kTiny * l1)) p = any_perpendicular(u);
     }
     p = glm::normalize(p);
-    float tt[3], el[3];
+    float tt[3], x[4];
     kernels::ik_two_bone(soft ? da : dc, soft ? ds : 1.0f, soft ? dc - da : 0.0f, u.x, u.y, u.z, l1, l2, p.x, p.y,
-                         p.z, tt, el);
-    const glm::vec3 reach(tt[0], tt[1], tt[2]), elbow(el[0], el[1], el[2]);
+                         p.z, tt, x);
+    const glm::vec3 reach(tt[0], tt[1], tt[2]), elbow = glm::vec3(x[0], x[1], x[2]) / x[3];
     a = shortest_arc(v1, elbow, p);
-    b = shortest_arc(a * v2, reach - elbow, p) * a;
+    // Bone 2 aims from where bone 1 actually put the mid joint (a v1, of length l1 exactly), not from the
+    // kernel's elbow: near full extension or folded flat the elbow's rounding (sqrt of a cancelling B.B) would
+    // otherwise tilt bone 2 to first order.
+    b = shortest_arc(a * v2, reach - a * v1, p) * a;
     hit = glm::length(reach - t) <= 1e-5f * chain;
   }
   if (twist_angle != 0.0f) {

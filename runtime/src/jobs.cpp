@@ -418,17 +418,90 @@ bool SamplingJob::Run() const {
 
 // ---------------------------------------------------------------------------------------------- blending
 
+namespace {
+
+bool has_joint_weights(std::span<const BlendLayer> layers) {
+  for (const BlendLayer& l : layers)
+    if (l.weight > 0.0f && !l.joint_weights.empty()) return true;
+  return false;
+}
+
+// The weight layer l gives joint j (0 for a layer left out).
+inline float joint_weight(const BlendLayer& l, std::size_t j) {
+  if (!(l.weight > 0.0f)) return 0.0f;
+  return l.joint_weights.empty() ? l.weight : l.weight * l.joint_weights[j];
+}
+
+// Partial blending: every joint normalized by its own weight sum (the per-joint form of the loops above; not
+// vectorized across joints, since the weights differ per joint).
+void blend_per_joint(Interpolation mode, std::span<const BlendLayer> layers, std::span<const Motor> rest,
+                     std::span<Motor> output) {
+  for (std::size_t j = 0; j < output.size(); ++j) {
+    float total = 0.0f;
+    std::size_t first = layers.size();
+    for (std::size_t k = 0; k < layers.size(); ++k) {
+      const float w = joint_weight(layers[k], j);
+      if (w > 0.0f && first == layers.size()) first = k;
+      total += w;
+    }
+    if (!(total > 0.0f)) {
+      output[j] = rest[j];
+      continue;
+    }
+    const Motor& ref = layers[first].motors[j];
+    Motor acc;
+    if (mode == Interpolation::screw) {
+      acc = ref;
+      float sum = joint_weight(layers[first], j);
+      for (std::size_t k = first + 1; k < layers.size(); ++k) {
+        const float w = joint_weight(layers[k], j);
+        if (!(w > 0.0f)) continue;
+        sum += w;
+        acc = motor_screw(acc, layers[k].motors[j], w / sum);
+      }
+      output[j] = motor_normalize_fast(acc);
+      continue;
+    }
+    const float inv = 1.0f / total;
+    for (std::size_t c = 0; c < kM; ++c) acc.c[c] = 0.0f;
+    for (std::size_t k = first; k < layers.size(); ++k) {
+      float w = joint_weight(layers[k], j) * inv;
+      if (!(w > 0.0f)) continue;
+      const Motor& x = layers[k].motors[j];
+      if (mode == Interpolation::nlerp) w = rotor_sign::signed_weight(w, motor_rotor_dot(ref, x));
+      for (std::size_t c = 0; c < kM; ++c) acc.c[c] += w * x.c[c];
+    }
+    output[j] = mode == Interpolation::nlerp ? motor_normalize_fast(acc) : acc;
+  }
+}
+
+}  // namespace
+
 bool BlendingJob::Validate() const {
   if (layers.empty() || !uses_motors(mode)) return false;
   const std::size_t n = output.size();
+  if (!rest_pose.empty() && rest_pose.size() < n) return false;
   float total = 0.0f;
   for (const BlendLayer& l : layers) {
     if (!std::isfinite(l.weight)) return false;
     if (l.weight <= 0.0f) continue;
     total += l.weight;
     if (l.motors.size() < n) return false;
+    if (!l.joint_weights.empty()) {
+      if (l.joint_weights.size() < n) return false;
+      for (std::size_t j = 0; j < n; ++j)
+        if (!(l.joint_weights[j] >= 0.0f) || !std::isfinite(l.joint_weights[j])) return false;
+    }
   }
-  return total > 0.0f;
+  if (!(total > 0.0f)) return false;
+  // With per-joint weights a joint may get none: then it needs the rest pose.
+  if (rest_pose.empty() && has_joint_weights(layers))
+    for (std::size_t j = 0; j < n; ++j) {
+      float sum = 0.0f;
+      for (const BlendLayer& l : layers) sum += joint_weight(l, j);
+      if (!(sum > 0.0f)) return false;
+    }
+  return true;
 }
 
 bool BlendingJob::Run() const {
@@ -440,6 +513,10 @@ bool BlendingJob::Run() const {
   std::size_t first = 0;
   while (layers[first].weight <= 0.0f) ++first;
   const std::size_t n = output.size();
+  if (has_joint_weights(layers)) {
+    blend_per_joint(mode, layers, rest_pose, output);
+    return true;
+  }
 
   switch (mode) {
     case Interpolation::paper: {

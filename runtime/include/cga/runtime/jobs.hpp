@@ -37,6 +37,9 @@ struct SamplingJob {
 struct BlendLayer {
   float weight = 0.0f;
   std::span<const Motor> motors;  // size >= output.size() when weight > 0
+  // Optional per-joint weights (partial blending, ozz's joint_weights): empty, or size >= output.size(),
+  // each finite and >= 0; joint j then enters with weight * joint_weights[j].
+  std::span<const float> joint_weights{};
 };
 
 // Weighted blend of N poses, weights normalized by their sum (which must be > 0):
@@ -44,10 +47,13 @@ struct BlendLayer {
 //   nlerp   weighted sum with each motor's sign matched to the first layer's (rotor_sign.hpp), normalized.
 //   screw   screw interpolation folded over the layers: acc = screw(acc, layer k, w_k / (w_0+..+w_k));
 //           exact for two layers, order-dependent (and approximate) for more.
+// With per-joint weights every joint is normalized by its own weight sum; a joint whose sum is 0 takes
+// rest_pose[j] (ozz's fallback), and without a rest pose such a joint makes the job invalid.
 struct BlendingJob {
   Interpolation mode = Interpolation::paper;
   std::span<const BlendLayer> layers;  // at least one with weight > 0
   std::span<Motor> output;             // the joint count: every contributing layer holds at least this many
+  std::span<const Motor> rest_pose{};  // optional: empty, or size >= output.size()
 
   bool Validate() const;
   bool Run() const;
