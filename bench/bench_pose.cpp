@@ -13,7 +13,9 @@
 #include <fmt/format.h>
 
 #include "bench_common.hpp"
+#include "cga/runtime/additive.hpp"
 #include "cga/runtime/jobs.hpp"
+#include "cga/runtime/motor.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/baselines/pose_jobs.hpp"
 #include "summary.hpp"
@@ -136,6 +138,31 @@ void bm_pose(benchmark::State& state, Interpolation mode, bool partial) {
   state.counters["joints"] = static_cast<double>(joints);
 }
 
+// An additive layer (weight 0.6) on a 54-joint base pose, both random rigid motors: the screw weighting
+// (motor log/exp per joint) against the normalized lerp toward the identity.
+void bm_additive(benchmark::State& state, Interpolation mode) {
+  constexpr std::size_t kJoints = 54;
+  std::vector<Motor> base(kJoints), delta(kJoints), out(kJoints);
+  for (std::size_t j = 0; j < kJoints; ++j) {
+    const float a = 0.1f * static_cast<float>(j);
+    Transform x, y;
+    x.rotation = glm::angleAxis(a, glm::normalize(glm::vec3(1.0f, a, 2.0f)));
+    x.translation = glm::vec3(a, 1.0f, -a);
+    y.rotation = glm::angleAxis(0.5f + a, glm::normalize(glm::vec3(a, 1.0f, 0.5f)));
+    y.translation = glm::vec3(0.2f, -a, 0.3f);
+    base[j] = motor_from_transform(x), delta[j] = motor_from_transform(y);
+  }
+  const AdditiveLayer layers[1] = {{0.6f, delta}};
+  const AdditiveBlendingJob job{mode, base, layers, out};
+  bool ok = true;
+  for (auto _ : state) {
+    ok &= job.Run();
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  if (!ok) state.SkipWithError("AdditiveBlendingJob::Run returned false");
+}
+
 }  // namespace
 
 void register_pose_benchmarks() {
@@ -148,6 +175,14 @@ void register_pose_benchmarks() {
     add_figure({name, section, std::string(to_string(mode)) + (ours ? "" : " (baseline)"), Metric::us_per_iter,
                 baseline, "glm-matrix", ours ? std::optional<Target>(Target{1.0, "<= 1.0 µs"}) : std::nullopt,
                 {}});
+  }
+  // Additive layer weighting, screw (exp(w log Δ)) vs nlerp toward the identity.
+  const std::string additive = "Additive layer on 54 joints (weight 0.6)";
+  for (Interpolation mode : {Interpolation::screw, Interpolation::nlerp}) {
+    const std::string name = "pose/additive-" + std::string(to_string(mode));
+    benchmark::RegisterBenchmark(name.c_str(), bm_additive, mode)->Unit(benchmark::kMicrosecond);
+    add_figure({name, additive, std::string(to_string(mode)) + " weighting", Metric::us_per_iter,
+                mode == Interpolation::nlerp ? "" : "pose/additive-nlerp", "nlerp", std::nullopt, {}});
   }
   // Partial blending (per-joint weights on the second layer): the per-joint path of BlendingJob.
   for (Interpolation mode : {Interpolation::paper, Interpolation::nlerp}) {
