@@ -3,10 +3,12 @@
 # machine it ran on, and writes the same text to build/bench.md (the table README carries).
 #   scripts/bench.sh [--quick] [Google Benchmark flags...]
 #   --quick   shorter runs (--benchmark_min_time=0.1), for a smoke check rather than figures to publish
+#   scripts/bench.sh --vs-ozz OZZ_GIT_DIR: ozz-animation and cga-bench interleaved (scripts/bench-vs-ozz.sh)
 # Environment: BUILD_DIR (default build), CPU (the core to pin to with taskset, default 0; empty: no pin),
 #              JOBS (build parallelism, default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1-}" = --vs-ozz ]; then shift; exec bash scripts/bench-vs-ozz.sh "$@"; fi
 
 BUILD_DIR=${BUILD_DIR:-build}
 JOBS=${JOBS:-2}

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# ozz-animation side by side (issue 18): builds bench/ozz (ozz's SkinningJob and pose pipeline on the same
+# kind of data as cga-bench) from an ozz-animation git directory, then runs ozz and cga-bench interleaved
+# (ozz, cga, ozz, cga, ...) on one core and prints, per round and as medians with their spread, each
+# method's speed as a ratio to ozz measured in the same round. Only such ratios mean anything on a shared
+# machine; the absolute figures are printed to say what they rest on.
+#   scripts/bench.sh --vs-ozz OZZ_GIT_DIR      (ROUNDS=N alternations, default 4; CPU as in bench.sh)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ozz_git=${1:?usage: scripts/bench.sh --vs-ozz OZZ_GIT_DIR (a clone or mirror of guillaumeblanc/ozz-animation)}
+[ -d "$ozz_git" ] || { echo "bench-vs-ozz: '$ozz_git' is not a directory" >&2; exit 1; }
+BUILD_DIR=${BUILD_DIR:-build}
+ROUNDS=${ROUNDS:-4}
+CPU=${CPU-0}
+work="$BUILD_DIR/vs-ozz"
+mkdir -p "$work"
+
+cmake --preset default >/dev/null
+cmake --build "$BUILD_DIR" --target cga-bench -j "${JOBS:-2}" >&2
+ozz_bench=$(bash bench/ozz/build.sh "$ozz_git" "$(realpath "$BUILD_DIR")/ozz" | tail -1)
+
+pin=()
+if [ -n "$CPU" ] && command -v taskset >/dev/null; then pin=(taskset -c "$CPU"); fi
+for r in $(seq 1 "$ROUNDS"); do
+  echo "round $r/$ROUNDS: ozz" >&2
+  "${pin[@]}" "$ozz_bench" > "$work/ozz_$r.txt"
+  echo "round $r/$ROUNDS: cga-bench" >&2
+  "${pin[@]}" "$BUILD_DIR/bench/cga-bench" --benchmark_filter='^(skinning/random1M/|pose/paper$)' \
+    --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
+    --benchmark_out="$work/cga_$r.json" --benchmark_out_format=json >/dev/null 2>&1
+done
+
+python3 - "$work" "$ROUNDS" <<'PY'
+import json, re, statistics, sys
+work, rounds = sys.argv[1], int(sys.argv[2])
+methods = ["lbs", "cga-points", "cga-motors", "dqs"]
+rows = {"positions": [], "positions+normals": []}
+pose = []
+for r in range(1, rounds + 1):
+    text = open(f"{work}/ozz_{r}.txt").read()
+    ozz = {}
+    for kind, tag in (("positions", "P "), ("positions+normals", "PN")):
+        m = re.search(rf"ozz SkinningJob {tag} 1M .*?: ([0-9.]+) Mvert/s", text)
+        if not m: sys.exit(f"bench-vs-ozz: no '{tag}' 1M line in ozz output of round {r}")
+        ozz[kind] = float(m.group(1))
+    m = re.search(r"ozz pose full: sample x2\+blend\+L2M\+invbind\s+joints=\d+:\s+([0-9.]+) ns/pose", text)
+    ozz_pose_ns = float(m.group(1)) if m else None
+    cga = {}
+    for b in json.load(open(f"{work}/cga_{r}.json"))["benchmarks"]:
+        if b.get("aggregate_name") == "median":
+            cga[b["run_name"]] = b
+    for kind in rows:
+        row = {"ozz": ozz[kind]}
+        for meth in methods:
+            b = cga.get(f"skinning/random1M/{kind}/{meth}")
+            row[meth] = b["items_per_second"] / 1e6 / ozz[kind] if b else None
+        rows[kind].append(row)
+    b = cga.get("pose/paper")
+    if b and ozz_pose_ns:
+        ns = b["real_time"] * {"ns": 1, "us": 1e3, "ms": 1e6}[b["time_unit"]]
+        pose.append((ozz_pose_ns, ns))
+
+def fmt(v): return "–" if v is None else f"{v:.2f}"
+for kind, rs in rows.items():
+    print(f"\n### Skinning, {kind}: 1 M random vertices, 64 joints, 4 influences, one core")
+    print("| round | ozz (M vertices/s) | " + " | ".join(methods) + " |")
+    print("|---|---|" + "---|" * len(methods))
+    for i, row in enumerate(rs, 1):
+        print(f"| {i} | {row['ozz']:.0f} | " + " | ".join(fmt(row[m]) for m in methods) + " |")
+    med = []
+    for m in methods:
+        v = [row[m] for row in rs if row[m] is not None]
+        med.append(f"**{statistics.median(v):.2f}** ({min(v):.2f}–{max(v):.2f})" if v else "–")
+    print(f"| median (spread) | {statistics.median(r['ozz'] for r in rs):.0f} | " + " | ".join(med) + " |")
+if pose:
+    print("\n### Pose: two clips sampled, blended, to model space, times inverse binds (ozz: 54 joints; cga-bench pose/paper)")
+    print("| round | ozz (µs/pose) | cga paper (µs/pose) | speed ratio to ozz |")
+    print("|---|---|---|---|")
+    for i, (o, c) in enumerate(pose, 1):
+        print(f"| {i} | {o/1e3:.2f} | {c/1e3:.2f} | {o/c:.2f} |")
+print("\nRatios are speed relative to ozz in the same round (> 1 = faster than ozz).")
+PY
