@@ -8,7 +8,10 @@
 //    which depends on uniforms only, becomes one prepared value. So x*a + y*b + z*c + d leaves a, b, c, d,
 //    and a uniform 1/w or a factor 2 goes into the coefficients (they fold into the matrix);
 //  - lifted: the expression kept as the optimizer left it, each maximal uniform-only part of a sum or a
-//    product lifted into one prepared value (cheaper when the per-element part is a product of sums).
+//    product lifted into one prepared value (cheaper when the per-element part is a product of sums);
+//  - kept: the per-element temporaries stay temporaries (not substituted), their uniform parts lifted. The
+//    only candidate when substituting them would exceed the optimizer's size budget (paper A.1 with only
+//    one parameter uniform), and never dearer per element than the unstaged program.
 // Prepared values equal up to sign (by canonical key) are one value. The per-element stage and the prepare
 // stage then each go through the -O2 pass pipeline (pipeline.cpp) as ordinary programs. Of the candidates
 // the one with the lower per-element cost wins, then the one with fewer prepared values, then the cheaper
@@ -63,11 +66,12 @@ std::vector<std::string> uniform_inputs(const Kernel& k, const std::vector<std::
 
 namespace {
 
-enum class Mode { Collect, Lift };
+enum class Mode { Collect, Lift, Keep };
 
 // One candidate split: the output roots over per-element inputs and prepared symbols, and the prepared
 // values over uniform inputs and the unstaged program's uniform temporaries.
 struct Split {
+  std::vector<Temp> temps;  // Keep: the per-element temporaries, uniform parts lifted
   std::vector<ex> roots;
   std::vector<ex> values;
   std::vector<realsymbol> syms;
@@ -277,26 +281,53 @@ StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) 
   }))
     prepared_name += "_";
 
-  // Per-element temporaries substituted into the outputs; uniform ones stay symbols.
-  exmap element_temps;
-  std::vector<Temp> uniform_temps;
+  // Temporaries split by rate. The size (symbol occurrences) each expression would have with the per-element
+  // temporaries substituted is counted first: substituting a shared DAG into trees can explode.
+  std::vector<Temp> uniform_temps, element_temp_list;
+  ExSet element_or_temp = element_symbols;
+  std::map<ex, double, ex_is_less> inlined_size;
+  auto size_with_inlining = [&](const ex& e) {
+    double n = 0;
+    for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+      if (is_a<symbol>(*it)) {
+        auto f = inlined_size.find(*it);
+        n += f == inlined_size.end() ? 1 : f->second;
+      }
+    return n;
+  };
   for (const auto& t : p.temps) {
     ExSet syms;
     collect_symbols(t.value, syms);
-    const bool varies = std::any_of(syms.begin(), syms.end(),
-                                    [&](const ex& s) { return element_symbols.count(s) || element_temps.count(s); });
-    if (varies)
-      element_temps[t.sym] = element_temps.empty() ? t.value : t.value.subs(element_temps, subs_options::no_pattern);
-    else
+    const bool varies =
+        std::any_of(syms.begin(), syms.end(), [&](const ex& s) { return element_or_temp.count(s) > 0; });
+    if (varies) {
+      element_temp_list.push_back(t);
+      element_or_temp.insert(t.sym);
+      inlined_size[t.sym] = size_with_inlining(t.value);
+    } else {
       uniform_temps.push_back(t);
+    }
   }
-  std::vector<ex> roots;
+  std::vector<ex> slot_values;
   std::vector<std::string> slot_labels;
+  double inlined_total = 0;
   for (const auto& o : p.outputs)
     for (const auto& s : o.slots) {
-      roots.push_back(element_temps.empty() ? s.value : s.value.subs(element_temps, subs_options::no_pattern));
+      slot_values.push_back(s.value);
       slot_labels.push_back(o.name + "." + algebra::blade_name(s.blade));
+      inlined_total += size_with_inlining(s.value);
     }
+  // The same budget as the optimizer's expanded form (levels.cpp): above it only the kept form is tried.
+  constexpr double kMaxInlinedSize = 4000;
+  const bool inline_ok = inlined_total <= kMaxInlinedSize;
+  std::vector<ex> roots;
+  if (inline_ok) {
+    exmap element_temps;
+    for (const auto& t : element_temp_list)
+      element_temps[t.sym] = element_temps.empty() ? t.value : t.value.subs(element_temps, subs_options::no_pattern);
+    for (const auto& v : slot_values)
+      roots.push_back(element_temps.empty() ? v : v.subs(element_temps, subs_options::no_pattern));
+  }
 
   const SymbolNames names = symbol_names(p);
   CanonicalKeys keys(names);
@@ -306,10 +337,20 @@ StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) 
     size_t k;
   };
   std::optional<Candidate> best;
-  for (Mode mode : {Mode::Collect, Mode::Lift}) {
+  for (Mode mode : {Mode::Collect, Mode::Lift, Mode::Keep}) {
+    if (mode != Mode::Keep && !inline_ok) continue;
     Split split;
-    Stager stager(mode, element_symbols, keys, prepared_name + "_", split);
-    for (size_t i = 0; i < roots.size(); ++i) split.roots.push_back(stager.stage(roots[i], slot_labels[i]));
+    if (mode == Mode::Keep) {
+      Stager stager(Mode::Lift, element_or_temp, keys, prepared_name + "_", split);
+      for (auto t : element_temp_list) {
+        t.value = stager.stage(t.value, t.name);
+        split.temps.push_back(t);
+      }
+      for (size_t i = 0; i < slot_values.size(); ++i) split.roots.push_back(stager.stage(slot_values[i], slot_labels[i]));
+    } else {
+      Stager stager(mode, element_symbols, keys, prepared_name + "_", split);
+      for (size_t i = 0; i < roots.size(); ++i) split.roots.push_back(stager.stage(roots[i], slot_labels[i]));
+    }
     if (split.values.empty())
       throw std::invalid_argument("staging: no output depends on the uniform inputs; nothing to prepare");
     KernelInput pin;
@@ -320,7 +361,7 @@ StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) 
     std::vector<KernelInput> body_inputs{pin};
     body_inputs.insert(body_inputs.end(), element_inputs.begin(), element_inputs.end());
     Candidate c;
-    c.body = finish(p, p.name, body_inputs, {}, split.roots, p.outputs, "t");
+    c.body = finish(p, p.name, body_inputs, split.temps, split.roots, p.outputs, "t");
     c.body.labels[prepared_name] = split.labels;
     ProgramOutput prep{prepared_name, {}};
     for (size_t i = 0; i < split.values.size(); ++i) prep.slots.push_back({0, split.values[i]});
