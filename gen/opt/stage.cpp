@@ -337,8 +337,13 @@ StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) 
     size_t k;
   };
   std::optional<Candidate> best;
+  // Expanding a product of sums multiplies their term counts: past the -O1 inlining limit (levels.cpp's
+  // kMaxInlineTerms) the collected form is not tried.
+  bool collect_ok = inline_ok;
+  for (const auto& r : roots) collect_ok = collect_ok && estimate_terms(r, {}) <= 4000;
   for (Mode mode : {Mode::Collect, Mode::Lift, Mode::Keep}) {
     if (mode != Mode::Keep && !inline_ok) continue;
+    if (mode == Mode::Collect && !collect_ok) continue;
     Split split;
     if (mode == Mode::Keep) {
       Stager stager(Mode::Lift, element_or_temp, keys, prepared_name + "_", split);
