@@ -92,21 +92,24 @@ class Stager {
     return false;
   }
 
-  // A uniform-only value as a prepared symbol (numbers stay numbers); one symbol per value up to sign.
+  // A uniform-only value as a prepared symbol (numbers stay numbers); one symbol per value up to sign. The
+  // first occurrence is stored with its own sign, so a prepared value is the coefficient itself (the
+  // translation column, not its negation): callers may use the prepared values as a matrix.
   ex prepared(const ex& u, const std::string& label) {
     if (is_a<numeric>(u)) return u;
     const int sign = keys_.sign(u);
-    const ex magnitude = sign < 0 ? ex(-u) : u;
-    const std::string key = keys_.key(magnitude);
+    const std::string key = keys_.magnitude(u);
     auto it = index_.find(key);
     if (it == index_.end()) {
       const size_t n = out_.values.size();
       out_.syms.push_back(realsymbol(prefix_ + std::to_string(n)));
-      out_.values.push_back(magnitude);
+      out_.values.push_back(u);
       out_.labels.push_back(label);
+      signs_.push_back(sign);
       it = index_.emplace(key, n).first;
     }
-    return sign < 0 ? ex(-out_.syms[it->second]) : ex(out_.syms[it->second]);
+    const ex& sym = out_.syms[it->second];
+    return sign == signs_[it->second] ? ex(sym) : ex(-sym);
   }
 
   // A label for a per-element monomial: "x", "x*y^2", "1"; anything else "f".
@@ -210,7 +213,8 @@ class Stager {
   CanonicalKeys& keys_;
   std::string prefix_;
   Split& out_;
-  std::map<std::string, size_t> index_;
+  std::map<std::string, size_t> index_;  // by magnitude key
+  std::vector<int> signs_;               // the sign of each stored value
 };
 
 // The temporaries the expressions need (transitively), in program order.
