@@ -9,6 +9,7 @@
 #                                               # ccga, or a Gaalop definition.csv, a dependency then)
 #                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
 #                   [RETURN OUT]                # glsl only: --return OUT
+#                   [UNIFORM NAME ...]          # --uniform: stage the kernels (NAME_prepare + NAME)
 #                   [TEMPLATES <dir>]           # default: the tool's built-in templates/
 #                   [NO_WERROR])                # warnings stay warnings (default: --Werror, so a misspelt
 #                                               # name that silently became an input fails the build)
@@ -27,7 +28,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA" "SCRIPTS;TARGETS;PACK" ${ARGN})
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA" "SCRIPTS;TARGETS;PACK;UNIFORM" ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
   endif()
@@ -95,6 +96,10 @@ function(cgagen_generate target)
       set(_ext ${CGAGEN_EXT_${_t}})
       set(_out ${CG_OUTPUT_DIR}/${_name}${_ext})
       set(_args --target ${_t} ${CG_OPT} --name ${_name} ${_templates_arg} ${_algebra_args})
+      if(CG_UNIFORM)
+        list(JOIN CG_UNIFORM "," _uniform)
+        list(APPEND _args --uniform ${_uniform})
+      endif()
       if(NOT CG_NO_WERROR)
         list(APPEND _args --Werror)
       endif()

@@ -18,6 +18,7 @@
 #include "front/parser.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
+#include "opt/stage.hpp"
 
 namespace {
 
@@ -40,9 +41,13 @@ options:
                           executable when installed, else the source tree's templates/)
   --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float
   --return OUT            glsl: return output OUT instead of an out parameter
+  --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
+                          `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values
+                          and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
   --stats                 print op counts instead of code
   --stats-out FILE        write op counts to FILE besides the code
-  --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change
+  --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change;
+                          with uniforms: unstaged at A against staged at B
   --dump-ast              print the parsed script
   --Werror                treat warnings (a misspelt name that became an input) as errors
   --eval NAME=VALUE ...   evaluate the optimized kernel (values before or after SCRIPT); a multivector input as NAME=v1,v2,...
@@ -72,6 +77,7 @@ struct Options {
   opt::InputValues eval_inputs;
   bool werror = false;
   std::string algebra = "cga";
+  std::vector<std::string> uniforms;  // --uniform
 };
 
 double parse_number(const std::string& text, const std::string& what) {
@@ -139,6 +145,11 @@ Options parse_args(int argc, char** argv) {
         o.emit.return_output = value(i, a);
       } else if (a == "--algebra") {
         o.algebra = value(i, a);
+      } else if (a == "--uniform") {
+        std::stringstream ss(value(i, a));
+        std::string item;
+        while (std::getline(ss, item, ','))
+          if (!item.empty()) o.uniforms.push_back(item);
       } else if (a == "--stats") {
         o.stats = true;
       } else if (a == "--stats-out") {
@@ -255,6 +266,50 @@ front::SourceFile load_script(const std::string& path) {
   return front::SourceFile("<stdin>", text.str());
 }
 
+// A kernel with uniform inputs: the staged form (opt/stage.hpp) in every mode.
+int run_staged(const Options& o, const Kernel& kernel, const emit::EmitOptions& eo,
+               const std::vector<std::string>& uniforms, const std::string& name) {
+  auto staged_of = [&](opt::Level level) { return opt::stage(opt::optimize(kernel, level), uniforms); };
+  auto code_of = [&](const opt::StagedProgram& s) { return emit::emit({&s.prepare, &s.body}, eo); };
+  if (o.diff) {
+    opt::Program a = opt::optimize(kernel, o.diff->first);
+    opt::StagedProgram b = staged_of(o.diff->second);
+    std::string la = "-O" + std::to_string(static_cast<int>(a.level));
+    std::string lb = "-O" + std::to_string(static_cast<int>(b.body.level));
+    std::string d = opt::unified_diff(emit::emit(a, eo), code_of(b), name + " " + la, name + " " + lb + " staged");
+    write_text(o.output, (d.empty() ? "(no difference in the code)\n" : d) + "unstaged " + la + ":\n" +
+                             opt::format_stats(a) + "staged " + lb + ":\n" + opt::format_staged_stats(b));
+    return 0;
+  }
+  opt::Program program = opt::optimize(kernel, o.level);
+  opt::StagedProgram staged = opt::stage(program, uniforms);
+  if (o.eval) {
+    std::vector<opt::EvalLine> plain, split;
+    try {
+      plain = opt::evaluate(program, o.eval_inputs);
+      split = opt::evaluate_staged(staged, o.eval_inputs);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    write_text(o.output, opt::format_eval(split));
+    const opt::StagedCheck check = opt::compare_staged(split, plain);
+    if (!check.ok) {
+      std::cerr << "cgagen: error: the staged kernel (prepare then body) differs from the unstaged kernel by "
+                << check.max_rel_error << " (relative); please report the script\n";
+      return 1;
+    }
+    return 0;
+  }
+  if (o.stats) {
+    write_text(o.output, opt::format_staged_stats(staged) + opt::format_inputs(program));
+    return 0;
+  }
+  std::string code = code_of(staged);
+  if (!o.stats_out.empty()) write_text(o.stats_out, opt::format_staged_stats(staged));
+  write_text(o.output, code);
+  return 0;
+}
+
 int run(const Options& o) {
   try {
     algebra::use(algebra::load(o.algebra));
@@ -281,6 +336,13 @@ int run(const Options& o) {
     if (o.werror && !kernel.warnings.empty()) return 1;
     emit::EmitOptions eo = o.emit;
     eo.script_name = from_stdin ? "<stdin>" : std::filesystem::path(o.script).filename().string();
+    std::vector<std::string> uniforms;
+    try {
+      uniforms = opt::uniform_inputs(kernel, o.uniforms);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    if (!uniforms.empty()) return run_staged(o, kernel, eo, uniforms, name);
     if (o.diff) {
       opt::Program a = opt::optimize(kernel, o.diff->first);
       opt::Program b = opt::optimize(kernel, o.diff->second);

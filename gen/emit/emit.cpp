@@ -282,13 +282,14 @@ std::string as_text(const Syntax& sx, const std::string& s) { return sx.text ? s
 
 // The dot target: the program's dataflow, one node per input blade, temporary and output blade, an edge
 // from every symbol an expression reads.
-std::string dataflow(const opt::Program& program, const opt::SymbolNames& code) {
+template <class Label>
+std::string dataflow(const opt::Program& program, const opt::SymbolNames& code, const Label& label) {
   std::string s;
   auto node = [](const std::string& id) { return "\"" + id + "\""; };
   for (const auto& in : program.inputs)
     for (size_t k = 0; k < in.symbols.size(); ++k)
       s += "  " + node(code.at(in.symbols[k])) + " [shape=box" +
-           (in.is_multivector ? ", label=\"" + code.at(in.symbols[k]) + "\\n" + algebra::blade_name(in.blades[k]) + "\"" : "") +
+           (in.is_multivector ? ", label=\"" + code.at(in.symbols[k]) + "\\n" + label(in.name, k, in.blades[k]) + "\"" : "") +
            "];\n";
   auto edges = [&](const GiNaC::ex& value, const std::string& to) {
     std::set<std::string> from;
@@ -303,7 +304,7 @@ std::string dataflow(const opt::Program& program, const opt::SymbolNames& code) 
   for (const auto& o : program.outputs)
     for (size_t k = 0; k < o.slots.size(); ++k) {
       std::string id = o.name + "[" + std::to_string(k) + "]";
-      s += "  " + node(id) + " [shape=doubleoctagon, label=\"" + id + "\\n" + algebra::blade_name(o.slots[k].blade) +
+      s += "  " + node(id) + " [shape=doubleoctagon, label=\"" + id + "\\n" + label(o.name, k, o.slots[k].blade) +
            "\"];\n";
       edges(o.slots[k].value, id);
     }
@@ -314,6 +315,10 @@ std::string dataflow(const opt::Program& program, const opt::SymbolNames& code) 
 }  // namespace
 
 std::string emit(const opt::Program& program, const EmitOptions& options) {
+  return emit(std::vector<const opt::Program*>{&program}, options);
+}
+
+std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options) {
   const Target target = options.target;
   const Syntax& sx = target.syntax();
   const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +
@@ -337,16 +342,29 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
   };
   for (const auto& [name, p] : options.pack) {
     bool found = false;
-    for (const auto& in : program.inputs) found |= in.name == name;
-    for (const auto& o : program.outputs) found |= o.name == name;
+    for (const opt::Program* pr : programs) {
+      for (const auto& in : pr->inputs) found |= in.name == name;
+      for (const auto& o : pr->outputs) found |= o.name == name;
+    }
     if (!found) throw std::runtime_error("--pack names '" + name + "', which is neither an input nor an output");
   }
   if (!options.return_output.empty()) {
     bool found = false;
-    for (const auto& o : program.outputs) found |= o.name == options.return_output;
+    for (const opt::Program* pr : programs)
+      for (const auto& o : pr->outputs) found |= o.name == options.return_output;
     if (!found) throw std::runtime_error("--return names '" + options.return_output + "', which is not an output");
   }
 
+  // One program's functions (one per precision), blade lists and input comments.
+  struct Piece {
+    std::string functions, blade_lists, inputs_doc;
+  };
+  auto piece = [&](const opt::Program& program) {
+  // The label of element k of input or output NAME: its blade, or the program's label for it (staging).
+  auto label = [&](const std::string& name, size_t k, algebra::BladeIndex blade) {
+    auto it = program.labels.find(name);
+    return it != program.labels.end() && k < it->second.size() ? it->second[k] : algebra::blade_name(blade);
+  };
   opt::SymbolNames canon = opt::symbol_names(program);
   CanonicalKeys keys(canon);
 
@@ -420,7 +438,7 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
       for (size_t k = 0; k < n; ++k)
         body += line(fill_pattern(sx.assign, {{"elem", elem(o.name, k, p, true)},
                                               {"value", pr.print(o.slots[k].value)},
-                                              {"blade", as_text(sx, algebra::blade_name(o.slots[k].blade))},
+                                              {"blade", as_text(sx, label(o.name, k, o.slots[k].blade))},
                                               {"c", sx.comment}}));
       for (size_t k = n; p != Pack::Array && p != Pack::Float && k < pack_capacity(p); ++k)
         body += line(element(o.name, k, p) + " = 0.0;  // (padding)");
@@ -440,7 +458,7 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
 
   std::string functions;
   if (sx.kind == Syntax::Kind::Dataflow) {
-    functions = dataflow(program, code);
+    functions = dataflow(program, code, label);
   } else {
     for (size_t i = 0; i < sx.precisions.size(); ++i)
       functions += (i ? "\n" : "") + function_text(sx.precisions[i]);
@@ -450,7 +468,7 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
   for (const auto& o : program.outputs) {
     std::string list;
     for (size_t k = 0; k < o.slots.size(); ++k)
-      list += std::string(k ? ", " : "") + sx.blade_quote + as_text(sx, algebra::blade_name(o.slots[k].blade)) +
+      list += std::string(k ? ", " : "") + sx.blade_quote + as_text(sx, label(o.name, k, o.slots[k].blade)) +
               sx.blade_quote;
     blade_lists += fill_pattern(sx.blade_list, {{"fn", as_text(sx, program.name)},
                                                 {"out", as_ident(sx, o.name)},
@@ -464,10 +482,21 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
     inputs_doc += sx.comment + " input " + in.name;
     if (in.is_multivector) {
       inputs_doc += ":";
-      for (auto b : in.blades) inputs_doc += " " + algebra::blade_name(b);
+      for (size_t k = 0; k < in.blades.size(); ++k) inputs_doc += " " + label(in.name, k, in.blades[k]);
     }
     inputs_doc += "\n";
   }
+  return Piece{functions, blade_lists, inputs_doc};
+  };
+  std::string functions, blade_lists, inputs_doc;
+  for (size_t i = 0; i < programs.size(); ++i) {
+    Piece pc = piece(*programs[i]);
+    functions += (i ? "\n" : "") + pc.functions;
+    blade_lists += pc.blade_lists;
+    inputs_doc += pc.inputs_doc;
+  }
+  // The file is named after the last program (a staged kernel's body: the function a user calls per element).
+  const opt::Program& program = *programs.back();
   if (!blade_lists.empty() && blade_lists.back() == '\n') blade_lists.pop_back();
   if (!inputs_doc.empty() && inputs_doc.back() == '\n') inputs_doc.pop_back();
   return fill_template(file_tmpl,

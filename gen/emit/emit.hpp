@@ -92,6 +92,9 @@ struct EmitOptions {
 
 // The whole file text. Throws std::runtime_error on a missing template or a bad pack/return option.
 std::string emit(const opt::Program& program, const EmitOptions& options);
+// Several programs as functions of one file, in order (a staged kernel: {prepare, body}, opt/stage.hpp).
+// Each is printed exactly as emit() prints a single program; the file lists all their blade lists and inputs.
+std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options);
 
 // Replaces each {{key}} with values[key]; throws std::runtime_error (naming the template) for a
 // placeholder without a value or an unterminated one.

@@ -427,8 +427,12 @@ class Expander {
       kernel_.inputs.push_back(std::move(in));
     } else if (kind == "range") {
       range_pragma(s);
+    } else if (kind == "uniform") {
+      // Rates for the staging pass (opt/stage.cpp), which checks the names once all inputs are known.
+      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma uniform' needs at least one input name");
+      for (size_t i = 1; i < s.words.size(); ++i) kernel_.uniforms.push_back({s.words[i], word_loc(s, i)});
     } else {
-      throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input or range)");
+      throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range or uniform)");
     }
   }
 

@@ -55,12 +55,18 @@ struct ScalarRange {  // `#pragma range MIN <= NAME <= MAX`
   double min = 0, max = 0;
 };
 
+struct UniformName {  // one name of `#pragma uniform NAME...`, checked by the staging pass (opt/stage.hpp)
+  std::string name;
+  front::SourceLoc loc;
+};
+
 struct Kernel {
   std::string name;  // the function name (the script's file stem unless overridden)
   std::vector<KernelInput> inputs;
   std::vector<KernelValue> values;    // in script order
   std::vector<KernelOutput> outputs;  // in order of first marking as output
   std::vector<ScalarRange> ranges;
+  std::vector<UniformName> uniforms;  // `#pragma uniform` names, in script order
   std::vector<front::Warning> warnings;  // in script order
 };
 

@@ -8,6 +8,7 @@
 
 #include <ginac/ginac.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct Program {
   std::vector<ProgramOutput> outputs;
   // What the optimizer left out to stay within its work budget (--stats prints these as "note:" lines).
   std::vector<std::string> notes;
+  // Names for the elements of an input or output that are not blades (a staged kernel's prepared values,
+  // opt/stage.hpp): one label per element. Emitters and reports print these instead of blade names.
+  std::map<std::string, std::vector<std::string>> labels;
 };
 
 // Kernel -> Program at the given level (see docs/generator.md for what each level does).

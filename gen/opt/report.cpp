@@ -33,7 +33,9 @@ std::string format_inputs(const Program& p) {
     s += (i ? ", " : " ") + in.name;
     if (!in.is_multivector) continue;
     s += " (";
-    for (size_t b = 0; b < in.blades.size(); ++b) s += (b ? ", " : "") + algebra::blade_name(in.blades[b]);
+    const auto labels = p.labels.find(in.name);  // a staged kernel's prepared values are not blades
+    for (size_t b = 0; b < in.blades.size(); ++b)
+      s += (b ? ", " : "") + (labels != p.labels.end() ? labels->second.at(b) : algebra::blade_name(in.blades[b]));
     s += ")";
   }
   return s + "\n";

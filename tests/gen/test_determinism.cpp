@@ -89,3 +89,25 @@ TEST_CASE("runtime scripts: byte-identical output in every process", "[cli][dete
 TEST_CASE("test scripts: byte-identical output in every process", "[cli][determinism]") {
   check_scripts(std::filesystem::path(CGA_TEST_SCRIPTS));
 }
+
+TEST_CASE("staged kernels (issue 19): byte-identical output in every process", "[cli][determinism][stage]") {
+  require_aslr();
+  const std::string tp = (std::filesystem::path(CGA_SOURCE_DIR) / "runtime" / "scripts" / "transform_point.clu").string();
+  const std::string a1 = (std::filesystem::path(CGA_TEST_SCRIPTS) / "paper_a1.clu").string();
+  const std::vector<std::string> cases = {
+      "--uniform M " + tp, "--uniform M --stats " + tp,
+      "--uniform transX,transY,transZ,axis1X,axis1Y,axis1Z,angle1,d1,trans2X,trans2Y,trans2Z,axis2X,axis2Y,axis2Z,"
+      "angle2,d2,alpha " + a1};
+  const char* targets[] = {"cpp", "glsl", "cuda"};
+  for (const auto& args : cases) {
+    std::map<std::string, std::string> first;
+    for (int i = 0; i < 12; ++i) {
+      const std::string target = targets[i % 3];
+      std::string text = run("--target " + target + " " + args);
+      auto [it, fresh] = first.emplace(target, text);
+      INFO(args << " --target " << target << ", run " << i + 1);
+      REQUIRE(!text.empty());
+      if (!fresh) REQUIRE(text == it->second);
+    }
+  }
+}

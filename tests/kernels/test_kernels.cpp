@@ -56,6 +56,13 @@ namespace cuh {
 #undef __forceinline__
 }  // namespace cuh
 
+// The staged forms (issue 19, built by tests/kernels/CMakeLists.txt): NAME_prepare and NAME, named as the
+// unstaged kernels, so in their own namespace (the headers' standard includes are already done above).
+namespace staged {
+#include STAGED_TRANSFORM_POINT
+#include STAGED_PAPER_A1
+}  // namespace staged
+
 using MV = oracle::MV<double>;
 namespace k = cga::kernels;
 
@@ -545,5 +552,80 @@ TEST_CASE("cgagen --eval agrees with the compiled kernel", "[kernels][cli]") {
       CHECK(blade == k::transform_point_P_blades[i]);
       CHECK(v == Approx(P[i]).epsilon(1e-13).margin(1e-13));
     }
+  }
+}
+
+// ---- staged kernels (issue 19): prepare once, then the per-element body --------------------------------
+
+namespace {
+
+// got (the staged kernel) against want (the unstaged one): each value within tol * max(1, largest |want|).
+template <class T, size_t N>
+void check_same(const T (&got)[N], const T (&want)[N], double tol) {
+  double scale = 1;
+  for (T v : want) scale = std::max(scale, std::abs(static_cast<double>(v)));
+  for (size_t i = 0; i < N; ++i) {
+    INFO("value " << i << ": staged " << got[i] << ", unstaged " << want[i]);
+    REQUIRE(std::abs(static_cast<double>(got[i]) - static_cast<double>(want[i])) <= tol * scale);
+  }
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("staged transform_point: prepare(M) then body = the unstaged kernel = the oracle",
+                   "[kernels][stage]", double, float) {
+  using T = TestType;
+  const double tol = std::is_same_v<T, double> ? 1e-12 : 1e-5;
+  namespace s = staged::cga::kernels;
+  CHECK(s::transform_point_P_blades == k::transform_point_P_blades);
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    const bool exact = n % 2;
+    auto m = exact ? random_exact_motor<T>(rng) : rng.template array_of<T, 12>();
+    auto p = rng.template array_of<T, 3>();
+    T prepared[s::transform_point_prepare_prepared_blades.size()], P[4], Q[4];
+    s::transform_point_prepare(m.data(), prepared);
+    s::transform_point(prepared, p[0], p[1], p[2], P);
+    k::transform_point(m.data(), p[0], p[1], p[2], Q);
+    INFO((exact ? "exact motor" : "any 12 coefficients") << ", trial " << n);
+    check_same(P, Q, 2 * tol);
+    const MV M = from_coeffs(m.data(), kMotorBlades);
+    const MV X = oracle::up(double(p[0]), double(p[1]), double(p[2]));
+    check_against(P, s::transform_point_P_blades, M * X * oracle::reverse(M), tol, {"einf", "e1^e2^e3^einf^e0"});
+  }
+}
+
+TEST_CASE("staged paper_a1: prepare(key parameters) then body(X, Y, Z) = the unstaged kernel = the oracle",
+          "[kernels][stage]") {
+  namespace s = staged::cga::kernels;
+  Rng rng;
+  auto exp4 = [](const MV& b) {
+    MV b2 = b * b;
+    return MV::scalar(1.0) + b + b2 / 2.0 + b2 * b / 6.0 + b2 * b2 / 24.0;
+  };
+  for (int n = 0; n < kTrials; ++n) {
+    Vec3 t1{rng(), rng(), rng()}, ax1{rng(), rng(), rng()}, t2{rng(), rng(), rng()}, ax2{rng(), rng(), rng()};
+    double angle1 = rng(-3.2, 3.2), d1 = rng(0.1, 3), angle2 = rng(-3.2, 3.2), d2 = rng(0.1, 3), alpha = rng(0, 1);
+    double X = rng(), Y = rng(), Z = rng(), P[4], Q[4];
+    double prepared[s::paper_a1_prepare_prepared_blades.size()];
+    s::paper_a1_prepare(t1[0], t1[1], t1[2], ax1[0], ax1[1], ax1[2], angle1, d1, t2[0], t2[1], t2[2], ax2[0], ax2[1],
+                        ax2[2], angle2, d2, alpha, prepared);
+    s::paper_a1(prepared, X, Y, Z, P);
+    k::paper_a1(t1[0], t1[1], t1[2], ax1[0], ax1[1], ax1[2], angle1, d1, t2[0], t2[1], t2[2], ax2[0], ax2[1], ax2[2],
+                angle2, d2, alpha, X, Y, Z, Q);
+    INFO("trial " << n);
+    check_same(P, Q, 1e-12);
+    auto motor = [&](const Vec3& t, const Vec3& ax, double angle) {
+      MV tv = t[0] * oracle::e1<double>() + t[1] * oracle::e2<double>() + t[2] * oracle::e3<double>();
+      MV T = MV::scalar(1.0) - 0.5 * (tv ^ einf);
+      MV plane = oracle::dual(oracle::up(ax) ^ oracle::up(0.0, 0.0, 0.0) ^ einf);
+      return T * exp4((-angle / 2) * plane);
+    };
+    auto dilation = [&](double d) { return MV::scalar(1.0) + ((1 - d) / (1 + d)) * (einf ^ e0); };
+    MV TR = motor(t1, ax1, angle1) * (1 - alpha) + motor(t2, ax2, angle2) * alpha;
+    MV D = dilation(d1) + (dilation(d2) - dilation(d1)) * alpha;
+    MV F = TR * D;
+    check_against(P, s::paper_a1_vertexPos_blades, F * oracle::up(X, Y, Z) * oracle::reverse(F), 1e-12,
+                  {"einf", "e1^e2^e3^einf^e0"});
   }
 }

@@ -1,0 +1,193 @@
+// Expression forms the optimizer levels share: sizes and predicates, canonical coefficients, fractions
+// over a common denominator (combine_fractions) and recursive collection in a set of symbols (collect_in).
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include "opt/internal.hpp"
+#include "symbolic/multivector.hpp"
+
+namespace cgagen::opt::detail {
+
+using namespace GiNaC;
+
+// The size of e for the work budget: its symbol occurrences. Unlike a node count this does not depend on
+// GiNaC's process-dependent choices ((a-b)*x or -(b-a)*x), so budget decisions and notes are the same in
+// every process.
+size_t tree_size(const ex& e) {
+  size_t n = 0;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) n += is_a<symbol>(*it);
+  return n;
+}
+
+bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
+
+bool has_denominator(const ex& e) {
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (is_a<power>(*it) && is_a<numeric>(it->op(1)) && ex_to<numeric>(it->op(1)).is_negative()) return true;
+  return false;
+}
+
+void collect_symbols(const ex& e, ExSet& out) {
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (is_a<symbol>(*it)) out.insert(*it);
+}
+
+Rat canonical(const ex& e) {
+  ex x = expand(e);
+  if (has_denominator(x) && symbolic::is_zero_rational(x)) return {0, 1};
+  return {x, 1};
+}
+
+// e as (numerator, D) when e is a sum whose terms all have the same non-numeric denominator D (integer
+// powers with negative exponents); nullopt otherwise.
+std::optional<std::pair<ex, ex>> split_common_denominator(const ex& e) {
+  if (!is_a<add>(e)) return std::nullopt;
+  std::optional<ex> den;
+  exvector nums;
+  for (size_t i = 0; i < e.nops(); ++i) {
+    const ex& t = e.op(i);
+    exvector up, down;
+    auto take = [&](const ex& f) {
+      if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer() &&
+          ex_to<numeric>(f.op(1)).is_negative())
+        down.push_back(pow(f.op(0), -f.op(1)));
+      else
+        up.push_back(f);
+    };
+    if (is_a<mul>(t))
+      for (size_t j = 0; j < t.nops(); ++j) take(t.op(j));
+    else
+      take(t);
+    ex d = dynallocate<mul>(down);
+    if (is_a<numeric>(d)) return std::nullopt;
+    if (!den) den = d;
+    else if (!den->is_equal(d)) return std::nullopt;
+    nums.push_back(dynallocate<mul>(up));
+  }
+  return std::make_pair(ex(dynallocate<add>(nums)), *den);
+}
+
+// Above this size (tree_size) of one argument of a call or root, combine_fractions keeps calls and roots
+// opaque. The bundled scripts' arguments stay below 600 (circle3's radius); a fuzzer find had 10920.
+constexpr size_t kMaxNormalNodes = 1000;
+
+// The tree_size of the largest argument of a function call or non-integer power in e.
+size_t largest_call_argument(const ex& e) {
+  size_t n = 0;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+    if (is_a<function>(*it))
+      for (size_t i = 0; i < it->nops(); ++i) n = std::max(n, tree_size(it->op(i)));
+    else if (is_a<power>(*it) && !(is_a<numeric>(it->op(1)) && ex_to<numeric>(it->op(1)).is_integer()))
+      n = std::max(n, tree_size(it->op(0)));
+  }
+  return n;
+}
+
+Rat combine_fractions(const Rat& r) {
+  if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return r;
+  // When every term has the same denominator D the terms over D stay as many (they are distinct monomials),
+  // so only a common factor of the numerator and D can make the form shorter: one gcd instead of
+  // numer_denom's gcd per term (seconds on circle3).
+  if (auto split = split_common_denominator(r.num)) {
+    // gcd takes polynomials over the rationals: function calls and roots become temporary symbols first.
+    exmap repl;
+    const ex n = split->first.to_polynomial(repl), d = split->second.to_polynomial(repl);
+    if (is_a<numeric>(gcd(n, d))) return r;
+  }
+  // numer_denom also normalizes inside function arguments and roots, which simplifies small ones
+  // (sqrt(t)^2 = t) but takes minutes on a large quotient under sqrt(abs(...)). When an argument has more
+  // than kMaxNormalNodes nodes, calls and roots stay opaque (temporary symbols).
+  exmap opaque;
+  const bool large = largest_call_argument(r.num) > kMaxNormalNodes;
+  ex nd = (large ? r.num.to_rational(opaque) : r.num).numer_denom();
+  ex n = expand(nd.op(0)), d = expand(nd.op(1));
+  if (large) n = expand(n.subs(opaque, subs_options::no_pattern)), d = expand(d.subs(opaque, subs_options::no_pattern));
+  auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
+  if (n.is_zero()) return {0, 1};
+  if (size(n) + size(d) >= size(r.num)) return r;
+  if (is_a<numeric>(d)) return {expand(n / d), 1};
+  return {n, d};
+}
+
+// An upper estimate of the number of terms of expand(e) when the symbols in `sizes` stand for sums of that
+// many terms (used to keep -O1 from expanding products of large values).
+double estimate_terms(const ex& e, const std::map<ex, double, ex_is_less>& sizes) {
+  if (is_a<symbol>(e)) {
+    auto it = sizes.find(e);
+    return it == sizes.end() ? 1 : it->second;
+  }
+  if (is_a<add>(e)) {
+    double n = 0;
+    for (size_t i = 0; i < e.nops(); ++i) n += estimate_terms(e.op(i), sizes);
+    return n;
+  }
+  if (is_a<mul>(e)) {
+    double n = 1;
+    for (size_t i = 0; i < e.nops(); ++i) n *= estimate_terms(e.op(i), sizes);
+    return n;
+  }
+  if (is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer())
+    return std::pow(estimate_terms(e.op(0), sizes), ex_to<numeric>(e.op(1)).to_double());
+  return 1;
+}
+
+// e (an expanded sum) collected recursively: a polynomial in xs[0] whose coefficients are polynomials in
+// xs[1], and so on. Like GiNaC's collect(e, lst) but near-linear in the size of e (GiNaC's takes seconds on
+// a few hundred terms) and defined for every e: only direct factors x^n (n an integer) count, symbols under
+// roots, functions or denominator sums stay in the coefficients. Each term is split once (rebuilding a
+// product re-evaluates its factors, costly when one is a large denominator).
+ex collect_in(const ex& e, const std::vector<ex>& xs) {
+  struct Split {
+    std::vector<int> degree;  // per xs
+    ex rest;
+  };
+  std::map<ex, size_t, ex_is_less> index;
+  for (size_t i = 0; i < xs.size(); ++i) index.emplace(xs[i], i);
+  auto split = [&](const ex& t) {
+    Split s{std::vector<int>(xs.size(), 0), 1};
+    auto power_of = [&](const ex& f) -> bool {
+      const ex& base = is_a<power>(f) ? f.op(0) : f;
+      auto it = index.find(base);
+      if (it == index.end()) return false;
+      if (!is_a<power>(f)) return s.degree[it->second] += 1, true;
+      if (!is_a<numeric>(f.op(1)) || !ex_to<numeric>(f.op(1)).is_integer()) return false;
+      s.degree[it->second] += ex_to<numeric>(f.op(1)).to_int();
+      return true;
+    };
+    if (is_a<mul>(t)) {
+      exvector rest;
+      for (size_t j = 0; j < t.nops(); ++j)
+        if (!power_of(t.op(j))) rest.push_back(t.op(j));
+      s.rest = dynallocate<mul>(rest);
+    } else if (!power_of(t)) {
+      s.rest = t;
+    }
+    return s;
+  };
+  std::vector<Split> terms;
+  if (is_a<add>(e))
+    for (size_t i = 0; i < e.nops(); ++i) terms.push_back(split(e.op(i)));
+  else
+    terms.push_back(split(e));
+  std::function<ex(const std::vector<const Split*>&, size_t)> build = [&](const std::vector<const Split*>& group,
+                                                                          size_t k) -> ex {
+    if (k == xs.size()) {
+      exvector rests;
+      for (const Split* s : group) rests.push_back(s->rest);
+      return dynallocate<add>(rests);
+    }
+    std::map<int, std::vector<const Split*>> by_degree;
+    for (const Split* s : group) by_degree[s->degree[k]].push_back(s);
+    exvector out;
+    for (const auto& [d, sub] : by_degree) out.push_back(pow(xs[k], d) * build(sub, k + 1));
+    return dynallocate<add>(out);
+  };
+  std::vector<const Split*> all;
+  for (const auto& t : terms) all.push_back(&t);
+  return build(all, 0);
+}
+
+
+}  // namespace cgagen::opt::detail

@@ -1,0 +1,80 @@
+// Helpers the optimizer's files share (levels.cpp, pipeline.cpp, pass_*.cpp): expression predicates,
+// fraction and collection forms (forms.cpp), identifier generation and the CGAGEN_TIMING phase timer.
+// Not part of the opt library's interface (program.hpp is).
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "opt/program.hpp"
+
+namespace cgagen::opt::detail {
+
+using ExSet = std::set<GiNaC::ex, GiNaC::ex_is_less>;
+using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
+
+// CGAGEN_TIMING=1 prints how long each optimizer phase takes (to stderr), for finding hot spots.
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(std::string what) : what_(std::move(what)), start_(std::chrono::steady_clock::now()) {}
+  ~PhaseTimer() {
+    static const bool on = std::getenv("CGAGEN_TIMING") != nullptr;
+    if (!on) return;
+    auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    std::cerr << "cgagen timing: " << what_ << " " << ms << " ms\n";
+  }
+ private:
+  std::string what_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// The size of e for the work budget: its symbol occurrences. Unlike a node count this does not depend on
+// GiNaC's process-dependent choices ((a-b)*x or -(b-a)*x), so budget decisions and notes are the same in
+// every process.
+size_t tree_size(const GiNaC::ex& e);
+bool is_atomic(const GiNaC::ex& e);
+bool has_denominator(const GiNaC::ex& e);
+void collect_symbols(const GiNaC::ex& e, ExSet& out);
+
+// A coefficient as numerator / denominator, both expanded polynomials (in symbols and function calls).
+struct Rat {
+  GiNaC::ex num, den = 1;
+  GiNaC::ex value() const { return den.is_equal(1) ? num : num / den; }
+};
+Rat canonical(const GiNaC::ex& e);
+// Brings a small output coefficient with denominators over one common denominator when that makes it
+// shorter (u.u - 1 with u = x/n folds to 0 or to a plain expression).
+Rat combine_fractions(const Rat& r);
+// An upper estimate of the number of terms of expand(e) when the symbols in `sizes` stand for sums of that
+// many terms (used to keep -O1 from expanding products of large values).
+double estimate_terms(const GiNaC::ex& e, const std::map<GiNaC::ex, double, GiNaC::ex_is_less>& sizes);
+// e (an expanded sum) collected recursively: a polynomial in xs[0] whose coefficients are polynomials in
+// xs[1], and so on (see forms.cpp).
+GiNaC::ex collect_in(const GiNaC::ex& e, const std::vector<GiNaC::ex>& xs);
+
+// Unique identifier generation, avoiding the inputs' names.
+class Namer {
+ public:
+  explicit Namer(const std::vector<KernelInput>& inputs) {
+    for (const auto& in : inputs) {
+      taken_.insert(in.name);
+      for (const auto& s : in.symbols) taken_.insert(s.get_name());
+    }
+  }
+  std::string fresh(std::string base) {
+    while (taken_.count(base)) base += "_";
+    taken_.insert(base);
+    return base;
+  }
+ private:
+  std::set<std::string> taken_;
+};
+
+}  // namespace cgagen::opt::detail

@@ -1,0 +1,353 @@
+// The optimizer levels -O0, -O1, -O2: Kernel -> Program (see program.hpp and docs/generator.md). -O2 builds
+// several candidate forms (expanded, collected in the inputs, the script's statements), runs the pass
+// pipeline (pipeline.cpp) on each and keeps the cheapest.
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "opt/cse.hpp"
+#include "opt/program.hpp"
+
+namespace cgagen::opt {
+
+using namespace GiNaC;
+using namespace detail;
+
+Level parse_level(const std::string& text) {
+  if (text == "-O0" || text == "O0" || text == "0") return Level::O0;
+  if (text == "-O1" || text == "O1" || text == "1") return Level::O1;
+  if (text == "-O2" || text == "O2" || text == "2") return Level::O2;
+  throw std::invalid_argument("unknown optimization level '" + text + "' (expected -O0, -O1 or -O2)");
+}
+
+namespace {
+
+// Above this estimated size a value is not substituted into its users but kept as a temporary.
+constexpr double kMaxInlineTerms = 4000;
+// Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
+// The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
+constexpr size_t kMaxExpandedNodes = 4000;
+
+
+std::string sanitize(const std::string& s) {
+  std::string r;
+  for (char c : s) r += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
+  return r;
+}
+
+int blade_pos(const KernelValue& v, algebra::BladeIndex b) {
+  auto it = std::find(v.blades.begin(), v.blades.end(), b);
+  return it == v.blades.end() ? -1 : static_cast<int>(it - v.blades.begin());
+}
+
+Program skeleton(const Kernel& k, Level level) {
+  Program p;
+  p.name = k.name;
+  p.level = level;
+  p.inputs = k.inputs;
+  return p;
+}
+
+// -O0: every value coefficient as a temporary, as written.
+Program optimize_o0(const Kernel& k) {
+  Program p = skeleton(k, Level::O0);
+  Namer namer(k.inputs);
+  std::map<std::string, int> seen;
+  for (const auto& v : k.values) {
+    int n = ++seen[v.name];
+    std::string prefix = n == 1 ? "v_" : "v" + std::to_string(n) + "_";
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      p.temps.push_back({namer.fresh(prefix + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                         v.symbols[i], v.coeffs[i]});
+  }
+  for (const auto& o : k.outputs) {
+    ProgramOutput po{o.name, {}};
+    const auto& v = k.values.at(o.value);
+    for (auto b : o.blades) {
+      int i = blade_pos(v, b);
+      po.slots.push_back({b, i < 0 ? ex(0) : ex(v.symbols[i])});
+    }
+    p.outputs.push_back(std::move(po));
+  }
+  return p;
+}
+
+// Values substituted into each other, only for the coefficients the outputs need. A value coefficient
+// whose expansion would be too large keeps its earlier values as temporaries ("materialized").
+struct Substituted {
+  ExSet needed;                        // value symbols the outputs need (transitively)
+  std::map<ex, Rat, ex_is_less> full;  // value symbol -> coefficient over inputs and materialized values
+  std::vector<ex> materialized;        // value symbols kept as temporaries, in kernel order
+};
+
+Substituted substitute(const Kernel& k) {
+  Substituted s;
+  for (const auto& o : k.outputs)
+    for (const auto& sym : k.values.at(o.value).symbols) s.needed.insert(sym);
+  for (auto v = k.values.rbegin(); v != k.values.rend(); ++v)
+    for (size_t i = 0; i < v->blades.size(); ++i)
+      if (s.needed.count(v->symbols[i])) collect_symbols(v->coeffs[i], s.needed);
+  exmap subst;
+  std::map<ex, double, ex_is_less> sizes;
+  ExSet materialized;
+  for (const auto& v : k.values)
+    for (size_t i = 0; i < v.blades.size(); ++i) {
+      const ex& sym = v.symbols[i];
+      if (!s.needed.count(sym)) continue;
+      Rat r;
+      if (estimate_terms(v.coeffs[i], sizes) <= kMaxInlineTerms) {
+        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+      } else {
+        ExSet used;
+        collect_symbols(v.coeffs[i], used);
+        for (const auto& u : used)
+          // A value that is one input or one number (a point's x, its e0 coefficient 1) stays substituted:
+          // as a temporary it would only turn 1*z into products the later levels cannot fold.
+          if (s.full.count(u) && !materialized.count(u) && !is_atomic(s.full.at(u).value())) {
+            materialized.insert(u);
+            subst.erase(u);
+            sizes.erase(u);
+          }
+        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+      }
+      subst[sym] = r.value();
+      sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
+      s.full[sym] = r;
+    }
+  for (const auto& v : k.values)
+    for (const auto& sym : v.symbols)
+      if (materialized.count(sym)) s.materialized.push_back(sym);
+  return s;
+}
+
+// The materialized values as temporaries (named after the script's values).
+std::vector<Temp> materialized_temps(const Kernel& k, const Substituted& s) {
+  std::vector<Temp> temps;
+  Namer namer(k.inputs);
+  for (const auto& v : k.values)
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      if (std::find_if(s.materialized.begin(), s.materialized.end(),
+                       [&](const ex& m) { return m.is_equal(v.symbols[i]); }) != s.materialized.end())
+        temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])), v.symbols[i],
+                         s.full.at(v.symbols[i]).value()});
+  return temps;
+}
+
+// The output slots at -O1: each needed blade's substituted coefficient; identically-zero blades dropped
+// unless a pragma asked for them.
+struct SlotPlan {
+  std::string output;
+  algebra::BladeIndex blade;
+  Rat value;       // over inputs
+  ex value_sym;    // the value coefficient's symbol, or 0 for a blade the value lacks
+};
+
+std::vector<std::vector<SlotPlan>> plan_slots(const Kernel& k, const Substituted& s) {
+  std::vector<std::vector<SlotPlan>> plans;
+  for (const auto& o : k.outputs) {
+    const auto& v = k.values.at(o.value);
+    const bool keep_zeros = o.from_pragma;  // pragma'd blades are always returned, zero ones as literal 0
+    std::vector<SlotPlan> slots;
+    for (auto b : o.blades) {
+      int i = blade_pos(v, b);
+      SlotPlan sp{o.name, b, {0, 1}, ex(0)};
+      if (i >= 0) {
+        sp.value = combine_fractions(s.full.at(v.symbols[i]));
+        sp.value_sym = v.symbols[i];
+      }
+      if (sp.value.num.is_zero()) {
+        sp.value_sym = 0;
+        if (!keep_zeros) continue;
+      }
+      slots.push_back(sp);
+    }
+    if (slots.empty() && !o.blades.empty()) slots.push_back({o.name, o.blades.front(), {0, 1}, ex(0)});
+    plans.push_back(std::move(slots));
+  }
+  return plans;
+}
+
+// The script's own statements as temporaries (each value expanded over earlier values, only those the
+// outputs need), and the outputs as the values' symbols. A coefficient that is one input or one number (a
+// point's x, its e0 coefficient 1) is substituted into its users instead: as a temporary it would leave
+// products like 1*z that nothing folds later.
+struct StatementForm {
+  std::vector<Temp> temps;
+  std::vector<ex> roots;  // one per output slot, in plan order
+};
+
+StatementForm statement_form(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+  StatementForm f;
+  exmap atomic;
+  Namer namer(k.inputs);
+  for (const auto& v : k.values)
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      if (s.needed.count(v.symbols[i])) {
+        ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, subs_options::no_pattern)).value();
+        if (is_atomic(c))
+          atomic[v.symbols[i]] = c;
+        else
+          f.temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                             v.symbols[i], c});
+      }
+  for (const auto& slots : plans)
+    for (const auto& sp : slots) {
+      auto it = atomic.find(sp.value_sym);
+      f.roots.push_back(it == atomic.end() ? sp.value_sym : it->second);
+    }
+  return f;
+}
+
+// The size (tree_size) of the expanded (-O1) form: what the CSE passes and the printer would work through.
+size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vector<SlotPlan>>& plans) {
+  size_t n = 0;
+  for (const auto& slots : plans)
+    for (const auto& sp : slots) n += tree_size(sp.value.num) + tree_size(sp.value.den);
+  for (const auto& t : kept) n += tree_size(t.value);
+  return n;
+}
+
+std::string over_budget_note(const char* level, size_t size) {
+  return std::string(level) + " kept the script's statement form: the expanded form has " + std::to_string(size) +
+         " symbol occurrences (budget " + std::to_string(kMaxExpandedNodes) + ")";
+}
+
+Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+  Program p = skeleton(k, Level::O1);
+  p.temps = materialized_temps(k, s);
+  const size_t size = expanded_size(p.temps, plans);
+  if (size > kMaxExpandedNodes) {
+    StatementForm f = statement_form(k, s, plans);
+    p.temps = std::move(f.temps);
+    p.notes.push_back(over_budget_note("-O1", size));
+    size_t ri = 0;
+    for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
+      ProgramOutput po{k.outputs[oi].name, {}};
+      for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, f.roots.at(ri++)});
+      p.outputs.push_back(std::move(po));
+    }
+    return p;
+  }
+  for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
+    ProgramOutput po{k.outputs[oi].name, {}};
+    for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, sp.value.value()});
+    p.outputs.push_back(std::move(po));
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// -O2: common subexpressions.
+
+Program finish_o2(const Kernel& k, std::vector<Temp> in_temps, std::vector<ex> roots,
+                  const std::vector<std::vector<SlotPlan>>& plans) {
+  CseState cse(k.inputs, in_temps);
+  run_cse(cse, roots);
+  Program p = skeleton(k, Level::O2);
+  p.temps = cse.temps;
+  size_t ri = 0;
+  for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
+    ProgramOutput po{k.outputs[oi].name, {}};
+    for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, roots.at(ri++)});
+    p.outputs.push_back(std::move(po));
+  }
+  // Number the temporaries in evaluation order.
+  Namer namer(k.inputs);
+  for (size_t i = 0; i < p.temps.size(); ++i) p.temps[i].name = namer.fresh("t" + std::to_string(i));
+  return p;
+}
+
+long program_cost(const Program& p) { return program_stats(p).total.weighted(); }
+
+Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+  std::vector<Program> variants;
+  auto roots_with = [&](auto&& f) {
+    std::vector<ex> roots;
+    for (const auto& slots : plans)
+      for (const auto& sp : slots) roots.push_back(f(sp));
+    return roots;
+  };
+  // 1. The expanded -O1 forms, and 2. the same collected in the inputs, unless the -O1 form is too large
+  //    for the CSE passes to finish in time; on such scripts the statement form (3) has always been far
+  //    cheaper anyway (paper A.1: 328 against 1516, circle3: 165 against 1402 weighted ops).
+  const std::vector<Temp> kept = materialized_temps(k, s);
+  const size_t size = expanded_size(kept, plans);
+  std::vector<std::string> notes;
+  if (size > kMaxExpandedNodes) {
+    notes.push_back(over_budget_note("-O2", size));
+  } else {
+    {
+      PhaseTimer t("variant expanded");
+      variants.push_back(
+          finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
+    }
+    std::vector<std::vector<ex>> groups;
+    std::vector<ex> scalars;
+    for (const auto& in : k.inputs)
+      if (!in.is_multivector) scalars.push_back(in.symbols.at(0));
+    if (!scalars.empty()) groups.push_back(scalars);
+    for (const auto& in : k.inputs)
+      if (in.is_multivector) groups.emplace_back(in.symbols.begin(), in.symbols.end());
+    for (const auto& g : groups) {
+      std::vector<ex> roots;
+      PhaseTimer t("variant collected");
+      roots = roots_with([&](const SlotPlan& sp) {
+        ex n = collect_in(sp.value.num, g);
+        return sp.value.den.is_equal(1) ? n : n / collect_in(sp.value.den, g);
+      });
+      variants.push_back(finish_o2(k, kept, roots, plans));
+    }
+  }
+  // 3. The script's own statements (each value expanded over earlier values), which keeps products like
+  //    (M X) ~M factored.
+  {
+    StatementForm f = statement_form(k, s, plans);
+    PhaseTimer t("variant statements");
+    variants.push_back(finish_o2(k, f.temps, f.roots, plans));
+  }
+  PhaseTimer tc("costs");
+  size_t best = 0;
+  long best_cost = program_cost(variants[0]);
+  for (size_t i = 1; i < variants.size(); ++i) {
+    long c = program_cost(variants[i]);
+    if (c < best_cost) best = i, best_cost = c;
+  }
+  variants[best].notes = notes;
+  return variants[best];
+}
+
+}  // namespace
+
+namespace {
+Program optimize_level(const Kernel& kernel, Level level);
+}  // namespace
+
+Program optimize(const Kernel& kernel, Level level) {
+  // A fault of GiNaC's inside the optimizer is a bug of cgagen's, but the user still gets a located error
+  // (at the first output), never a library's message without a location.
+  try {
+    return optimize_level(kernel, level);
+  } catch (const front::CompileError&) {
+    throw;
+  } catch (const std::exception& e) {
+    const front::SourceLoc at = kernel.outputs.empty() ? front::SourceLoc{1, 1} : kernel.outputs.front().loc;
+    throw front::CompileError(at, std::string("cgagen could not optimize this kernel at -O") +
+                                      std::to_string(static_cast<int>(level)) + " (" + e.what() +
+                                      "); -O0 still works; please report the script");
+  }
+}
+
+namespace {
+
+Program optimize_level(const Kernel& kernel, Level level) {
+  if (level == Level::O0) return optimize_o0(kernel);
+  PhaseTimer all("optimize");
+  Substituted s = [&] { PhaseTimer t("substitute"); return substitute(kernel); }();
+  auto plans = [&] { PhaseTimer t("plan slots"); return plan_slots(kernel, s); }();
+  if (level == Level::O1) return optimize_o1(kernel, s, plans);
+  return optimize_o2(kernel, s, plans);
+}
+
+}  // namespace
+
+}  // namespace cgagen::opt

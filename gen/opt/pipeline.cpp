@@ -1,0 +1,78 @@
+// The -O2 pass pipeline: the order in which the common-subexpression passes run (one pass per file,
+// pass_*.cpp), and the bookkeeping they share (CseState, cse.hpp).
+#include <algorithm>
+#include <functional>
+#include <stdexcept>
+
+#include "opt/cse.hpp"
+
+namespace cgagen::opt::detail {
+
+using namespace GiNaC;
+
+CseState::CseState(const std::vector<KernelInput>& inputs, const std::vector<Temp>& initial)
+    : namer(inputs), keys(names) {
+  for (const auto& in : inputs)
+    for (const auto& s : in.symbols) names[s] = s.get_name();
+  for (const auto& t : initial) {
+    names[t.sym] = namer.fresh(t.name);
+    temps.push_back(t);
+  }
+}
+
+Temp CseState::make_temp(const ex& value) {
+  realsymbol s("t" + std::to_string(counter++));
+  std::string name = namer.fresh(s.get_name());
+  names[s] = name;
+  return Temp{name, s, value};
+}
+
+// Every expression with its sums oriented by the keys (lower.hpp), so that equal subexpressions are equal
+// trees whatever signs GiNaC's hash-dependent term order gave them.
+void orient_all(CseState& st, std::vector<ex>& roots) {
+  for (auto& t : st.temps) t.value = orient_sums(t.value, st.keys);
+  for (auto& r : roots) r = orient_sums(r, st.keys);
+}
+
+// Orders the temporaries so that each comes after those it uses (stable otherwise).
+void topo_sort(CseState& st) {
+  std::map<ex, size_t, ex_is_less> index;
+  for (size_t i = 0; i < st.temps.size(); ++i) index[st.temps[i].sym] = i;
+  std::vector<int> state(st.temps.size(), 0);
+  std::vector<Temp> out;
+  std::function<void(size_t)> visit = [&](size_t i) {
+    if (state[i] == 2) return;
+    if (state[i] == 1) throw std::logic_error("cgagen optimizer: cyclic temporaries");
+    state[i] = 1;
+    ExSet syms;
+    collect_symbols(st.temps[i].value, syms);
+    std::vector<size_t> deps;
+    for (const auto& s : syms)
+      if (auto it = index.find(s); it != index.end()) deps.push_back(it->second);
+    std::sort(deps.begin(), deps.end());
+    for (size_t d : deps) visit(d);
+    state[i] = 2;
+    out.push_back(st.temps[i]);
+  };
+  for (size_t i = 0; i < st.temps.size(); ++i) visit(i);
+  st.temps = std::move(out);
+}
+
+// The pipeline. Sharing passes first (pairs, then whole subtrees), sign clean-up, inlining of what ended up
+// used once, sum factoring last (a factored form hides products from the sharing passes).
+void run_cse(CseState& st, std::vector<ex>& roots) {
+  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
+  { PhaseTimer t("  cse pairs"); pair_products(st, roots); }
+  topo_sort(st);
+  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
+  { PhaseTimer t("  cse subtrees"); shared_subtrees(st, roots); }
+  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
+  { PhaseTimer t("  cse negations"); fold_negations(st, roots); }
+  { PhaseTimer t("  cse inline"); inline_single_use(st, roots); }
+  { PhaseTimer t("  cse factors"); factor_all_sums(st, roots); }
+  drop_aliases(st, roots);
+  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
+  { PhaseTimer t("  cse negations"); fold_negations(st, roots); }
+}
+
+}  // namespace cgagen::opt::detail
