@@ -42,6 +42,7 @@ class Parser {
       if (peek().kind == TokKind::RBrace) throw CompileError(peek().loc, "unexpected '}'");
       if (StmtPtr st = statement()) s.statements.push_back(std::move(st));
     }
+    s.warnings = std::move(warnings_);
     return s;
   }
 
@@ -160,6 +161,12 @@ class Parser {
     st->name = std::string(name.text);
     st->value = expression().expr;
     if (peek().kind == TokKind::Assign) throw CompileError(peek().loc, "expected ';' after statement");
+    // Inside a macro, an assignment that ends its line without ';' is accepted, as Gaalop's parser recovers
+    // from it (its own QuestionLineMacro test script is written so), with a warning.
+    if (macro_depth_ > 0 && peek().kind != TokKind::Semi && peek().loc.line > prev_end_.line) {
+      warnings_.push_back({prev_end_, "missing ';' after the assignment to '" + st->name + "' (accepted, as Gaalop does)"});
+      return st;
+    }
     expect(TokKind::Semi, "expected ';' after statement");
     return st;
   }
@@ -170,6 +177,11 @@ class Parser {
     take();  // '='
     Token open = take();
     Nest nest(*this, open.loc);
+    ++macro_depth_;
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{macro_depth_};
     auto st = std::make_shared<Stmt>();
     st->kind = Stmt::Kind::MacroDef;
     st->loc = name.loc;
@@ -398,6 +410,8 @@ class Parser {
   std::deque<Token> ahead_;
   SourceLoc prev_end_{1, 1};
   int nesting_ = 0;
+  int macro_depth_ = 0;  // macro bodies being parsed
+  std::vector<std::pair<SourceLoc, std::string>> warnings_;
 };
 
 }  // namespace
