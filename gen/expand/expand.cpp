@@ -4,6 +4,7 @@
 #include "expand/expand.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdint>
 #include <cstdio>
@@ -256,6 +257,14 @@ class Expander {
   // first test of whether a coefficient can be zero; only near-zero ones pay for the exact check.
   GiNaC::exmap samples_;
   std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
+  // The same at a second point whose inputs have either sign (magnitudes in [0.3, 1.7)). A coefficient that
+  // is clearly nonzero there is not identically zero, whatever the positive samples say: |d| - d, the
+  // distance check of a trilateration, vanishes for every positive d. That verdict costs one evaluation of
+  // the statement, where the exact test inlines and expands the whole chain of values (minutes for GPS).
+  // Three points: random signs, the same inputs negated (so every input is negative at one of the two), and
+  // independent random signs.
+  std::array<GiNaC::exmap, 3> signed_samples_;
+  std::uint64_t signed_state_ = 0xD1B54A32D192ED03ull;
   std::vector<Mark> marks_;                        // in order of first marking
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
@@ -357,6 +366,7 @@ class Expander {
       if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
       samples_[sym] = *at_sample;
+      add_signed_value(sym, c);
       probes_.define(sym, c);
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
@@ -475,6 +485,8 @@ class Expander {
       for (auto b : blades) {
         GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
         samples_[sym] = next_sample();
+    add_signed_input(sym);
+        add_signed_input(sym);
         probes_.add_input(sym);
         in.symbols.push_back(sym);
         ref.set(b, sym);
@@ -602,6 +614,42 @@ class Expander {
     return GiNaC::numeric(0.3 + 1.4 * static_cast<double>(sample_state_ >> 11) / 9007199254740992.0);
   }
 
+  double next_signed_value() {
+    signed_state_ = signed_state_ * 6364136223846793005ull + 1442695040888963407ull;
+    const double m = 0.3 + 1.4 * static_cast<double>(signed_state_ >> 11) / 9007199254740992.0;
+    return (signed_state_ >> 7) & 1 ? -m : m;
+  }
+
+  void add_signed_input(const GiNaC::symbol& sym) {
+    const double a = next_signed_value();
+    signed_samples_[0][sym] = GiNaC::numeric(a);
+    signed_samples_[1][sym] = GiNaC::numeric(-a);
+    signed_samples_[2][sym] = GiNaC::numeric(next_signed_value());
+  }
+
+  void add_signed_value(const GiNaC::symbol& sym, const ex& c) {
+    for (size_t k = 0; k < signed_samples_.size(); ++k) signed_samples_[k][sym] = signed_sample(c, k);
+  }
+
+  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there.
+  ex signed_sample(const ex& c, size_t k) {
+    try {
+      ex v = GiNaC::evalf(c.subs(signed_samples_[k]));
+      if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
+    } catch (const std::exception&) {
+      // a pole at this point
+    }
+    return GiNaC::numeric(0);
+  }
+
+  // Nodes of e as a tree (shared subexpressions counted at every use: what expand() and a preorder walk
+  // visit), counting stops past `cap`.
+  static size_t tree_size(const ex& e, size_t cap) {
+    size_t n = 1;
+    for (size_t i = 0; i < e.nops() && n <= cap; ++i) n += tree_size(e.op(i), cap - n);
+    return n;
+  }
+
   // c evaluated at the sample point, or nullopt when c is identically zero with the values inlined.
   // When c cannot be evaluated there (a pole, a function GiNaC leaves unevaluated) it is kept.
   std::optional<ex> sample(const ex& c) {
@@ -624,7 +672,16 @@ class Expander {
       case symbolic::ProbePoints::Verdict::Nonzero: return false;
       case symbolic::ProbePoints::Verdict::Unknown: break;
     }
-    return symbolic::is_identically_zero(inline_values(c));
+    // Far from 0 at a signed point: not identically zero (rounding at that size cannot reach 1e-6).
+    for (size_t k = 0; k < signed_samples_.size(); ++k)
+      if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(signed_sample(c, k))) > GiNaC::numeric(1, 1000000)) return false;
+    // The exact test inlines the chain of values; past this many tree nodes it would take minutes and
+    // gigabytes, so the coefficient is kept: a coefficient kept that is in fact zero costs code, never a
+    // wrong value.
+    constexpr size_t kMaxInlinedNodes = 200000;
+    const ex inlined = inline_values(c);
+    if (tree_size(inlined, kMaxInlinedNodes) > kMaxInlinedNodes) return false;
+    return symbolic::is_identically_zero(inlined);
   }
 
   // e with every value symbol replaced by its definition, recursively, down to the inputs.
@@ -680,6 +737,7 @@ class Expander {
     in.blades = {0};
     GiNaC::realsymbol sym(unique_symbol_name(n));  // real: abs(a)^2 is a^2, not a*conjugate(a)
     samples_[sym] = next_sample();
+    add_signed_input(sym);
     probes_.add_input(sym);
     in.symbols = {sym};
     kernel_.inputs.push_back(in);
