@@ -218,6 +218,7 @@ class Expander {
     }
     if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", budget.spent());
     finish_outputs();
+    drop_unused_values();
     apply_in2out();
     return std::move(kernel_);
   }
@@ -377,6 +378,33 @@ class Expander {
     if (bind) globals_[s.name] = ref;  // (a macro's output does not become a global name)
     if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
     kernel_.values.push_back(std::move(kv));
+  }
+
+  // Values that no output needs (directly or through other values) are not part of the kernel: -O0 would
+  // emit them as dead temporaries (issue 14, bug 5: a rotated point whose square turned out 0).
+  void drop_unused_values() {
+    std::set<ex, GiNaC::ex_is_less> needed;
+    std::vector<bool> keep(kernel_.values.size(), false);
+    for (const auto& o : kernel_.outputs) keep[static_cast<size_t>(o.value)] = true;
+    for (size_t i = kernel_.values.size(); i-- > 0;) {
+      const KernelValue& v = kernel_.values[i];
+      if (!keep[i])
+        for (const auto& sym : v.symbols)
+          if (needed.count(sym)) keep[i] = true;
+      if (!keep[i]) continue;
+      for (const auto& c : v.coeffs)
+        for (auto it = c.preorder_begin(); it != c.preorder_end(); ++it)
+          if (GiNaC::is_a<GiNaC::symbol>(*it)) needed.insert(*it);
+    }
+    std::vector<int> index(kernel_.values.size(), -1);
+    std::vector<KernelValue> kept;
+    for (size_t i = 0; i < kernel_.values.size(); ++i)
+      if (keep[i]) {
+        index[i] = static_cast<int>(kept.size());
+        kept.push_back(std::move(kernel_.values[i]));
+      }
+    kernel_.values = std::move(kept);
+    for (auto& o : kernel_.outputs) o.value = index[static_cast<size_t>(o.value)];
   }
 
   void mark(const std::string& name, SourceLoc loc) {
@@ -681,7 +709,32 @@ class Expander {
     constexpr size_t kMaxInlinedNodes = 200000;
     const ex inlined = inline_values(c);
     if (tree_size(inlined, kMaxInlinedNodes) > kMaxInlinedNodes) return false;
-    return symbolic::is_identically_zero(inlined);
+    return symbolic::is_identically_zero(trig_reduced(zero_preserving_core(inlined)));
+  }
+
+  // sqrt(X), abs(X) and X^k (k > 0) are zero exactly where X is: the zero test looks at X (bug 5 of
+  // issue 14: sqrt(abs(P.P)) of a rotated point P, whose P.P cancels only once expanded).
+  static ex zero_preserving_core(ex e) {
+    for (;;) {
+      if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
+          GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_positive())
+        e = e.op(0);
+      else if (GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == "abs")
+        e = e.op(0);
+      else
+        return e;
+    }
+  }
+
+  // e with sin(u)^2 written as 1 - cos(u)^2 and expanded, so that the identity sin^2 + cos^2 = 1 (a rotor
+  // times its reverse, a rotated point squaring to 0) cancels in the expansion. Even powers of sin only:
+  // the result is a polynomial in cos(u) and sin(u) of degree <= 1 in sin(u), a normal form.
+  static ex trig_reduced(const ex& e) {
+    if (!e.has(GiNaC::sin(GiNaC::wild()))) return e;
+    const ex w = GiNaC::wild();
+    ex x = e.expand();
+    x = x.subs(GiNaC::pow(GiNaC::sin(w), 2) == 1 - GiNaC::pow(GiNaC::cos(w), 2), GiNaC::subs_options::algebraic);
+    return x.expand();
   }
 
   // e with every value symbol replaced by its definition, recursively, down to the inputs.
