@@ -95,6 +95,13 @@ class Parser {
       case TokKind::LBrace:
         throw CompileError(t.loc, "unexpected '{' (braces only enclose a macro body: Name = { ... })");
       case TokKind::Ident:
+        // Gaalop 2.0's precompiler had if/else, loop and break; cgagen has no control flow yet. Say so
+        // instead of "expected ',' or ')' in call to 'if'".
+        if (((t.text == "if" || t.text == "while") && peek(1).kind == TokKind::LParen) ||
+            ((t.text == "loop" || t.text == "else" || t.text == "break") && peek(1).kind != TokKind::Assign))
+          throw CompileError(t.loc, "'" + std::string(t.text) + "': control flow (if/else, loop, break of Gaalop 2.0's "
+                                    "precompiler) is not supported; write each case as its own script, or "
+                                    "repetitions out");
         if (peek(1).kind == TokKind::Assign) {
           if (peek(2).kind == TokKind::LBrace) return macro();
           return assignment(Marker::None, take());

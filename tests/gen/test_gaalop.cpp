@@ -101,6 +101,10 @@ TEST_CASE("pragmas cgagen refuses say what and why, at the pragma", "[gaalop]") 
   check_error("#pragma insert int k = 0;\n?p = x*e1;", "1:9", "'#pragma insert' is not supported");
   check_error("#pragma unroll 3\n?p = x*e1;", "1:9", "loops are not supported");
   check_error("#pragma frobnicate\n?p = x;", "1:9", "unknown pragma 'frobnicate'");
+  // Gaalop 2.0's control flow: a clear error at the keyword (was "expected ',' or ')' in call to 'if'").
+  check_error("?p = x;\nif (x) { ?p = 2*x; }", "2:1", "control flow (if/else, loop, break");
+  check_error("?p = x;\nloop { p = p*x; }", "2:1", "control flow (if/else, loop, break");
+  check_eval("loop = 2*x;\n?p = loop;", "x=2", {{"p/1", 4}});  // still an ordinary name when assigned
 }
 
 TEST_CASE("scalar functions of Gaalop's MathFunction: floor, ceil, fact, invert", "[gaalop]") {
