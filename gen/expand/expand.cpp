@@ -275,7 +275,9 @@ class Expander {
     std::vector<std::string> inputs, outputs;
   };
   std::optional<In2Out> in2out_;    // #pragma in2out, applied once the outputs are known
-  bool normalize_outputs_ = false;  // #pragma normalize seen: later `?x = e;` output e / abs(e)
+  bool normalize_outputs_ = false;
+  std::vector<int> evaluated_values_;   // values of '!x = e;' (kept though no output needs them)
+  std::set<std::string> only_evaluate_;  // names of '#pragma onlyEvaluate' (their values are kept)  // #pragma normalize seen: later `?x = e;` output e / abs(e)
 
   // ---- statements --------------------------------------------------------------------------------
 
@@ -376,6 +378,7 @@ class Expander {
       definitions_[sym] = c;
     }
     if (bind) globals_[s.name] = ref;  // (a macro's output does not become a global name)
+    if (s.marker == front::Marker::EvalOnly) evaluated_values_.push_back(static_cast<int>(kernel_.values.size()));
     if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
     kernel_.values.push_back(std::move(kv));
   }
@@ -386,6 +389,10 @@ class Expander {
     std::set<ex, GiNaC::ex_is_less> needed;
     std::vector<bool> keep(kernel_.values.size(), false);
     for (const auto& o : kernel_.outputs) keep[static_cast<size_t>(o.value)] = true;
+    // '!x = e;' and '#pragma onlyEvaluate x' ask for x to be evaluated: their values stay (as in Gaalop).
+    for (int i : evaluated_values_) keep[static_cast<size_t>(i)] = true;
+    for (size_t i = 0; i < kernel_.values.size(); ++i)
+      if (only_evaluate_.count(kernel_.values[i].name)) keep[i] = true;
     for (size_t i = kernel_.values.size(); i-- > 0;) {
       const KernelValue& v = kernel_.values[i];
       if (!keep[i])
@@ -475,12 +482,15 @@ class Expander {
       for (const auto& n : names) output_pragmas_[n] = {word_loc(s, 1), blades};
     } else if (kind == "onlyEvaluate") {
       // Gaalop keeps these values as temporaries of its own (a boundary for its inlining); they are never
-      // outputs. cgagen's outputs are the same either way; a name that is never assigned is an error.
+      // outputs. Here their values stay in the kernel like those of '!x = e;' (emitted at -O0); the outputs
+      // are the same either way. A name that is never assigned is an error.
       if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma onlyEvaluate' needs at least one name");
       for (size_t i = 1; i < s.words.size(); ++i)
         if (!script_names_.count(s.words[i]))
           throw CompileError(word_loc(s, i), "'#pragma onlyEvaluate' names '" + s.words[i] +
                                                  "', which the script never assigns");
+        else
+          only_evaluate_.insert(s.words[i]);
     } else if (kind == "in2out") {
       in2out_pragma(s);
     } else if (kind == "normalize") {
