@@ -506,9 +506,9 @@ class Expander {
                                          "generated code, and one script here feeds several target languages");
     } else if (kind == "segments" || kind == "triangles") {
       // Drawing hints for Gaalop's visualizer (Ganja); they compute nothing, and code generation ignores them.
-    } else if (kind == "unroll" || kind == "count") {
-      throw CompileError(word_loc(s, 0), "'#pragma " + kind + "' belongs to a loop, and loops are not supported "
-                                         "(write the repetitions out)");
+    } else if (kind == "count") {
+      throw CompileError(word_loc(s, 0), "'#pragma count' (a loop counter of Gaalop 2.0) is not supported: loops "
+                                         "run a constant number of times ('#pragma unroll N' before 'loop')");
     } else if (kind == "input") {
       auto blades = pragma_blades(s, "input");
       const std::string& name = s.words[1];

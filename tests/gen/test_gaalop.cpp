@@ -99,12 +99,23 @@ TEST_CASE("pragmas: normalize, in2out, output groups, onlyEvaluate", "[gaalop]")
 TEST_CASE("pragmas cgagen refuses say what and why, at the pragma", "[gaalop]") {
   check_error("#pragma return p typed V as V(<e1>)\n?p = x*e1;", "1:9", "'#pragma return' is not supported");
   check_error("#pragma insert int k = 0;\n?p = x*e1;", "1:9", "'#pragma insert' is not supported");
-  check_error("#pragma unroll 3\n?p = x*e1;", "1:9", "loops are not supported");
+  check_error("#pragma count 3\n?p = x*e1;", "1:9", "'#pragma count' (a loop counter of Gaalop 2.0) is not supported");
   check_error("#pragma frobnicate\n?p = x;", "1:9", "unknown pragma 'frobnicate'");
   // Gaalop 2.0's control flow: a clear error at the keyword (was "expected ',' or ')' in call to 'if'").
-  check_error("?p = x;\nif (x) { ?p = 2*x; }", "2:1", "control flow (if/else, loop, break");
-  check_error("?p = x;\nloop { p = p*x; }", "2:1", "control flow (if/else, loop, break");
+  check_error("?p = x;\nif (x) { ?p = 2*x; }", "2:1", "control flow (if/else, break");
+  check_error("?p = x;\nloop { p = p*x; }", "2:1", "'loop' needs '#pragma unroll N'");
+  check_error("?p = x;\nelse { p = p*x; }", "2:1", "control flow (if/else, break");
   check_eval("loop = 2*x;\n?p = loop;", "x=2", {{"p/1", 4}});  // still an ordinary name when assigned
+}
+
+TEST_CASE("loops with a constant trip count are unrolled: #pragma unroll N, loop", "[gaalop]") {
+  check_eval("p = x;\n#pragma unroll 3\nloop {\n  p = p*2;\n}\n?p;", "x=1.5", {{"p/1", 12}});
+  check_eval("p = x;\n//#pragma unroll 2\nloop p = p + e1;\n?p;", "x=1", {{"p/1", 1}, {"p/e1", 2}});
+  // nested: 2 * 3 additions
+  check_eval("p = x;\n#pragma unroll 2\nloop {\n#pragma unroll 3\nloop p = p + 1;\n}\n?p;", "x=0", {{"p/1", 6}});
+  check_error("#pragma unroll n\nloop p = 1;\n?p;", "1:16", "expects a trip count");
+  check_error("#pragma unroll 2\n?p = x;", "2:1", "expected 'loop' after '#pragma unroll'");
+  check_error("#pragma unroll 2\nloop { M = { _P(1) } }\n?p = x;", "2:8", "a macro cannot be defined inside a loop");
 }
 
 TEST_CASE("scalar functions of Gaalop's MathFunction: floor, ceil, fact, invert", "[gaalop]") {
