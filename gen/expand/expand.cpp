@@ -4,6 +4,8 @@
 #include "expand/expand.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -130,6 +132,13 @@ bool is_basis_name(const std::string& n) {
   return names.count(n) > 0;
 }
 
+// floor of a real rational number, exactly.
+GiNaC::numeric floor_numeric(const GiNaC::numeric& x) {
+  GiNaC::numeric q = GiNaC::iquo(x.numer(), x.denom());  // truncates toward zero
+  if (x.is_negative() && q * x.denom() != x.numer()) q -= 1;
+  return q;
+}
+
 // The built-in functions: scalar functions of one scalar, and the others by their argument count.
 using Fn1 = std::function<ex(const ex&)>;
 const std::map<std::string, Fn1>& scalar_functions() {
@@ -139,6 +148,10 @@ const std::map<std::string, Fn1>& scalar_functions() {
       {"tan", [](const ex& x) { return GiNaC::tan(x); }},   {"asin", [](const ex& x) { return GiNaC::asin(x); }},
       {"acos", [](const ex& x) { return GiNaC::acos(x); }}, {"atan", [](const ex& x) { return GiNaC::atan(x); }},
       {"log", [](const ex& x) { return GiNaC::log(x); }},
+      // floor, ceil and fact (Gaalop's MathFunction) are exact on constants; call() refuses run-time values.
+      {"floor", [](const ex& x) { return ex(GiNaC::numeric(floor_numeric(GiNaC::ex_to<GiNaC::numeric>(x)))); }},
+      {"ceil", [](const ex& x) { return ex(-GiNaC::numeric(floor_numeric(-GiNaC::ex_to<GiNaC::numeric>(x)))); }},
+      {"fact", [](const ex& x) { return GiNaC::factorial(x); }},
   };
   return fns;
 }
@@ -146,7 +159,8 @@ const std::map<std::string, size_t>& builtin_arity() {
   static const std::map<std::string, size_t> arity = {
       {"atan2", 2},        {"exp", 1},     {"VecN3", 3},        {"createPoint", 3}, {"TranslatorN3", 3},
       {"RotorN3", 4},      {"SphereN3", 4},  // also SphereN3(P, r), handled before the arity check
-      {"coefficient", 2}};
+      {"coefficient", 2},  {"invert", 1},  {"Normalize", 1}, {"ExtractFirstPoint", 1}, {"ExtractSecondPoint", 1},
+      {"Dual", 1}};
   return arity;
 }
 
@@ -192,6 +206,7 @@ class Expander {
   Kernel run(const front::Script& script) {
     symbolic::WorkBudget budget;
     define_algebra_builtins();
+    for (const auto& [loc, message] : script.warnings) kernel_.warnings.push_back({loc, message});
     for (const auto& s : script.statements)
       if (s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::MacroDef) script_names_.insert(s->name);
     for (const auto& s : script.statements) {
@@ -210,6 +225,8 @@ class Expander {
     }
     if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", budget.spent());
     finish_outputs();
+    drop_unused_values();
+    apply_in2out();
     return std::move(kernel_);
   }
 
@@ -248,10 +265,26 @@ class Expander {
   // first test of whether a coefficient can be zero; only near-zero ones pay for the exact check.
   GiNaC::exmap samples_;
   std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
+  // The same at a second point whose inputs have either sign (magnitudes in [0.3, 1.7)). A coefficient that
+  // is clearly nonzero there is not identically zero, whatever the positive samples say: |d| - d, the
+  // distance check of a trilateration, vanishes for every positive d. That verdict costs one evaluation of
+  // the statement, where the exact test inlines and expands the whole chain of values (minutes for GPS).
+  // Three points: random signs, the same inputs negated (so every input is negative at one of the two), and
+  // independent random signs.
+  std::array<GiNaC::exmap, 3> signed_samples_;
+  std::uint64_t signed_state_ = 0xD1B54A32D192ED03ull;
   std::vector<Mark> marks_;                        // in order of first marking
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
   std::map<std::string, OutputPragma> output_pragmas_;
+  struct In2Out {
+    SourceLoc loc;
+    std::vector<std::string> inputs, outputs;
+  };
+  std::optional<In2Out> in2out_;    // #pragma in2out, applied once the outputs are known
+  bool normalize_outputs_ = false;  // #pragma normalize seen: later `?x = e;` output e / abs(e)
+  std::vector<int> evaluated_values_;   // values of '!x = e;' (kept though no output needs them)
+  std::set<std::string> only_evaluate_;  // names of '#pragma onlyEvaluate' (their values are kept)
 
   // The current algebra's built-in macros (algebra_builtins.cpp; none for CGA), defined before the script
   // so that a script's own definition of the same name replaces them.
@@ -281,7 +314,16 @@ class Expander {
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
       case Stmt::Kind::Assign: break;
     }
-    if (s.value) {
+    if (s.value && normalize_outputs_ && s.marker == front::Marker::Output) {
+      // #pragma normalize: x_unnormalized = e; ?x = x_unnormalized / abs(x_unnormalized);
+      check_assignable(s);
+      Stmt raw = s;
+      raw.name = s.name + "_unnormalized";
+      raw.marker = front::Marker::None;
+      record_value(raw, eval(*s.value));
+      const Multivector& u = globals_.at(raw.name);
+      record_value(s, divide(u, magnitude(u), *s.value));
+    } else if (s.value) {
       check_assignable(s);
       Multivector v = eval(*s.value);
       record_value(s, v);
@@ -298,10 +340,28 @@ class Expander {
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
       case Stmt::Kind::Assign: break;
     }
-    if (!s.value) return;  // "?x;" inside a macro marks nothing: macro locals are not outputs
+    const bool output = s.marker == front::Marker::Output || s.marker == front::Marker::Visual;
+    if (!s.value) {
+      // "?k;" inside a macro: the local's current value becomes an output, as in Gaalop.
+      if (!output) return;
+      auto it = frames_.back().locals.find(s.name);
+      if (it == frames_.back().locals.end()) throw CompileError(s.loc, "output '" + s.name + "' is never assigned");
+      macro_output(s, it->second);
+      return;
+    }
     check_assignable(s);
     Multivector v = eval(*s.value);
-    frames_.back().locals[s.name] = std::move(v);
+    frames_.back().locals[s.name] = v;
+    if (output) macro_output(s, v);  // "?k = e;" inside a macro: also an output (Gaalop's QuestionLineMacro)
+  }
+
+  // An output marked inside a macro: named after the local, or MACRO_local where the script has a top-level
+  // name of that spelling. A macro called twice outputs the value of its last call (the last assignment).
+  void macro_output(const Stmt& s, const Multivector& v) {
+    Stmt out = s;
+    out.name = script_names_.count(s.name) ? frames_.back().macro + "_" + s.name : s.name;
+    record_value(out, v, /*bind=*/false);
+    mark(out.name, s.loc);
   }
 
   void check_assignable(const Stmt& s) {
@@ -323,7 +383,7 @@ class Expander {
   }
 
   // One KernelValue per assignment; later statements see the name through the value's own symbols.
-  void record_value(const Stmt& s, const Multivector& v) {
+  void record_value(const Stmt& s, const Multivector& v, bool bind = true) {
     int count = ++assignments_[s.name];
     std::string base = count == 1 ? s.name : s.name + "_" + std::to_string(count);
     KernelValue kv;
@@ -335,6 +395,7 @@ class Expander {
       if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
       samples_[sym] = *at_sample;
+      add_signed_value(sym, c);
       probes_.define(sym, c);
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
@@ -342,9 +403,41 @@ class Expander {
       ref.set(b, sym);
       definitions_[sym] = c;
     }
-    globals_[s.name] = ref;
+    if (bind) globals_[s.name] = ref;  // (a macro's output does not become a global name)
+    if (s.marker == front::Marker::EvalOnly) evaluated_values_.push_back(static_cast<int>(kernel_.values.size()));
     if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
     kernel_.values.push_back(std::move(kv));
+  }
+
+  // Values that no output needs (directly or through other values) are not part of the kernel: -O0 would
+  // emit them as dead temporaries (issue 14, bug 5: a rotated point whose square turned out 0).
+  void drop_unused_values() {
+    std::set<ex, GiNaC::ex_is_less> needed;
+    std::vector<bool> keep(kernel_.values.size(), false);
+    for (const auto& o : kernel_.outputs) keep[static_cast<size_t>(o.value)] = true;
+    // '!x = e;' and '#pragma onlyEvaluate x' ask for x to be evaluated: their values stay (as in Gaalop).
+    for (int i : evaluated_values_) keep[static_cast<size_t>(i)] = true;
+    for (size_t i = 0; i < kernel_.values.size(); ++i)
+      if (only_evaluate_.count(kernel_.values[i].name)) keep[i] = true;
+    for (size_t i = kernel_.values.size(); i-- > 0;) {
+      const KernelValue& v = kernel_.values[i];
+      if (!keep[i])
+        for (const auto& sym : v.symbols)
+          if (needed.count(sym)) keep[i] = true;
+      if (!keep[i]) continue;
+      for (const auto& c : v.coeffs)
+        for (auto it = c.preorder_begin(); it != c.preorder_end(); ++it)
+          if (GiNaC::is_a<GiNaC::symbol>(*it)) needed.insert(*it);
+    }
+    std::vector<int> index(kernel_.values.size(), -1);
+    std::vector<KernelValue> kept;
+    for (size_t i = 0; i < kernel_.values.size(); ++i)
+      if (keep[i]) {
+        index[i] = static_cast<int>(kept.size());
+        kept.push_back(std::move(kernel_.values[i]));
+      }
+    kernel_.values = std::move(kept);
+    for (auto& o : kernel_.outputs) o.value = index[static_cast<size_t>(o.value)];
   }
 
   void mark(const std::string& name, SourceLoc loc) {
@@ -403,8 +496,45 @@ class Expander {
     if (s.words.empty()) throw CompileError(s.loc, "empty '#pragma'");
     const std::string& kind = s.words[0];
     if (kind == "output") {
-      auto blades = pragma_blades(s, "output");
-      output_pragmas_[s.words[1]] = {word_loc(s, 1), std::move(blades)};
+      // Gaalop also names a group of outputs that share the blades: #pragma output {a, b} e1 e2.
+      size_t last = 1;
+      std::vector<std::string> names = output_group(s, last);
+      Stmt rest = s;  // the blades after the group, where pragma_blades expects them (words[2...])
+      rest.words.assign(s.words.begin(), s.words.begin() + 2);
+      rest.words.insert(rest.words.end(), s.words.begin() + static_cast<long>(last) + 1, s.words.end());
+      rest.word_locs.assign(s.word_locs.begin(), s.word_locs.begin() + std::min<size_t>(2, s.word_locs.size()));
+      for (size_t i = last + 1; i < s.word_locs.size(); ++i) rest.word_locs.push_back(s.word_locs[i]);
+      auto blades = pragma_blades(rest, "output");
+      for (const auto& n : names) output_pragmas_[n] = {word_loc(s, 1), blades};
+    } else if (kind == "onlyEvaluate") {
+      // Gaalop keeps these values as temporaries of its own (a boundary for its inlining); they are never
+      // outputs. Here their values stay in the kernel like those of '!x = e;' (emitted at -O0); the outputs
+      // are the same either way. A name that is never assigned is an error.
+      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma onlyEvaluate' needs at least one name");
+      for (size_t i = 1; i < s.words.size(); ++i)
+        if (!script_names_.count(s.words[i]))
+          throw CompileError(word_loc(s, i), "'#pragma onlyEvaluate' names '" + s.words[i] +
+                                                 "', which the script never assigns");
+        else
+          only_evaluate_.insert(s.words[i]);
+    } else if (kind == "in2out") {
+      in2out_pragma(s);
+    } else if (kind == "normalize") {
+      // From here on every `?x = e;` outputs x = e / abs(e) (Gaalop rewrites the source the same way).
+      if (s.words.size() != 1) throw CompileError(word_loc(s, 1), "'#pragma normalize' takes no words");
+      normalize_outputs_ = true;
+    } else if (kind == "return") {
+      throw CompileError(word_loc(s, 0), "'#pragma return' is not supported: it wraps outputs in a type written "
+                                         "as target-language text (Gaalop: C# and Python only), which cgagen cannot "
+                                         "check for its other targets; use the outputs as arrays, or --return/--pack");
+    } else if (kind == "insert") {
+      throw CompileError(word_loc(s, 0), "'#pragma insert' is not supported: it pastes text verbatim into the "
+                                         "generated code, and one script here feeds several target languages");
+    } else if (kind == "segments" || kind == "triangles") {
+      // Drawing hints for Gaalop's visualizer (Ganja); they compute nothing, and code generation ignores them.
+    } else if (kind == "count") {
+      throw CompileError(word_loc(s, 0), "'#pragma count' (a loop counter of Gaalop 2.0) is not supported: loops "
+                                         "run a constant number of times ('#pragma unroll N' before 'loop')");
     } else if (kind == "input") {
       auto blades = pragma_blades(s, "input");
       const std::string& name = s.words[1];
@@ -419,6 +549,8 @@ class Expander {
       for (auto b : blades) {
         GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
         samples_[sym] = next_sample();
+    add_signed_input(sym);
+        add_signed_input(sym);
         probes_.add_input(sym);
         in.symbols.push_back(sym);
         ref.set(b, sym);
@@ -432,8 +564,93 @@ class Expander {
       if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma uniform' needs at least one input name");
       for (size_t i = 1; i < s.words.size(); ++i) kernel_.uniforms.push_back({s.words[i], word_loc(s, i)});
     } else {
-      throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range or uniform)");
+      throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
+                                         "onlyEvaluate, in2out, normalize, segments or triangles)");
     }
+  }
+
+  // The names of '#pragma output NAME ...' or '#pragma output {A, B, ...} ...' (the braces may be spread
+  // over several words); `last` is set to the index of the group's last word.
+  std::vector<std::string> output_group(const Stmt& s, size_t& last) {
+    last = 1;
+    if (s.words.size() < 2 || s.words[1].empty() || s.words[1][0] != '{') return {s.words.size() > 1 ? s.words[1] : ""};
+    std::string text;
+    for (last = 1; last < s.words.size(); ++last) {
+      text += s.words[last] + " ";
+      if (s.words[last].find('}') != std::string::npos) break;
+    }
+    if (last == s.words.size()) throw CompileError(word_loc(s, 1), "expected '}' to close the output group");
+    if (s.words[last].back() != '}') throw CompileError(word_loc(s, last), "expected a space after '}' in the output group");
+    std::vector<std::string> names;
+    std::string cur;
+    for (char c : text.substr(1, text.find('}') - 1) + ",") {
+      if (c == ',') {
+        if (cur.empty()) throw CompileError(word_loc(s, 1), "empty name in the output group");
+        names.push_back(cur);
+        cur.clear();
+      } else if (c != ' ') {
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
+          throw CompileError(word_loc(s, 1), std::string("unexpected '") + c + "' in the output group");
+        cur += c;
+      }
+    }
+    return names;
+  }
+
+  // #pragma in2out a, b -> c, d: the generated function's inputs and outputs, in this order. As in Gaalop,
+  // every input and every output must be listed, and only those; checked once the script is expanded.
+  void in2out_pragma(const Stmt& s) {
+    std::string text;
+    for (size_t i = 1; i < s.words.size(); ++i) text += s.words[i] + " ";
+    size_t arrow = text.find("->");
+    if (arrow == std::string::npos || text.find("->", arrow + 2) != std::string::npos)
+      throw CompileError(s.loc, "'#pragma in2out' expects INPUT, ... -> OUTPUT, ... with one '->'");
+    auto split = [&](const std::string& part) {
+      std::vector<std::string> names;
+      std::string cur;
+      for (char c : part + ",") {
+        if (c == ',') {
+          if (!cur.empty()) names.push_back(cur);
+          cur.clear();
+        } else if (c != ' ') {
+          cur += c;
+        }
+      }
+      return names;
+    };
+    if (in2out_) throw CompileError(s.loc, "a second '#pragma in2out'");
+    in2out_ = In2Out{s.loc, split(text.substr(0, arrow)), split(text.substr(arrow + 2))};
+  }
+
+  void apply_in2out() {
+    if (!in2out_) return;
+    const In2Out& io = *in2out_;
+    std::vector<KernelInput> inputs;
+    for (const auto& n : io.inputs) {
+      auto it = std::find_if(kernel_.inputs.begin(), kernel_.inputs.end(), [&](const KernelInput& k) { return k.name == n; });
+      if (it == kernel_.inputs.end())
+        throw CompileError(io.loc, "'#pragma in2out' lists '" + n + "', which is not an input of the script");
+      if (std::any_of(inputs.begin(), inputs.end(), [&](const KernelInput& k) { return k.name == n; }))
+        throw CompileError(io.loc, "'#pragma in2out' lists input '" + n + "' twice");
+      inputs.push_back(*it);
+    }
+    for (const auto& k : kernel_.inputs)
+      if (std::find(io.inputs.begin(), io.inputs.end(), k.name) == io.inputs.end())
+        throw CompileError(io.loc, "'#pragma in2out' does not list input '" + k.name + "'");
+    std::vector<KernelOutput> outputs;
+    for (const auto& n : io.outputs) {
+      auto it = std::find_if(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& k) { return k.name == n; });
+      if (it == kernel_.outputs.end())
+        throw CompileError(io.loc, "'#pragma in2out' lists '" + n + "', which is not an output of the script");
+      if (std::any_of(outputs.begin(), outputs.end(), [&](const KernelOutput& k) { return k.name == n; }))
+        throw CompileError(io.loc, "'#pragma in2out' lists output '" + n + "' twice");
+      outputs.push_back(*it);
+    }
+    for (const auto& k : kernel_.outputs)
+      if (std::find(io.outputs.begin(), io.outputs.end(), k.name) == io.outputs.end())
+        throw CompileError(io.loc, "'#pragma in2out' does not list output '" + k.name + "'");
+    kernel_.inputs = std::move(inputs);
+    kernel_.outputs = std::move(outputs);
   }
 
   void range_pragma(const Stmt& s) {
@@ -465,6 +682,42 @@ class Expander {
     return GiNaC::numeric(0.3 + 1.4 * static_cast<double>(sample_state_ >> 11) / 9007199254740992.0);
   }
 
+  double next_signed_value() {
+    signed_state_ = signed_state_ * 6364136223846793005ull + 1442695040888963407ull;
+    const double m = 0.3 + 1.4 * static_cast<double>(signed_state_ >> 11) / 9007199254740992.0;
+    return (signed_state_ >> 7) & 1 ? -m : m;
+  }
+
+  void add_signed_input(const GiNaC::symbol& sym) {
+    const double a = next_signed_value();
+    signed_samples_[0][sym] = GiNaC::numeric(a);
+    signed_samples_[1][sym] = GiNaC::numeric(-a);
+    signed_samples_[2][sym] = GiNaC::numeric(next_signed_value());
+  }
+
+  void add_signed_value(const GiNaC::symbol& sym, const ex& c) {
+    for (size_t k = 0; k < signed_samples_.size(); ++k) signed_samples_[k][sym] = signed_sample(c, k);
+  }
+
+  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there.
+  ex signed_sample(const ex& c, size_t k) {
+    try {
+      ex v = GiNaC::evalf(c.subs(signed_samples_[k]));
+      if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
+    } catch (const std::exception&) {
+      // a pole at this point
+    }
+    return GiNaC::numeric(0);
+  }
+
+  // Nodes of e as a tree (shared subexpressions counted at every use: what expand() and a preorder walk
+  // visit), counting stops past `cap`.
+  static size_t tree_size(const ex& e, size_t cap) {
+    size_t n = 1;
+    for (size_t i = 0; i < e.nops() && n <= cap; ++i) n += tree_size(e.op(i), cap - n);
+    return n;
+  }
+
   // c evaluated at the sample point, or nullopt when c is identically zero with the values inlined.
   // When c cannot be evaluated there (a pole, a function GiNaC leaves unevaluated) it is kept.
   std::optional<ex> sample(const ex& c) {
@@ -489,7 +742,41 @@ class Expander {
       case symbolic::ProbePoints::Verdict::Nonzero: return false;
       case symbolic::ProbePoints::Verdict::Unknown: break;
     }
-    return symbolic::is_identically_zero(inline_values(c));
+    // Far from 0 at a signed point: not identically zero (rounding at that size cannot reach 1e-6).
+    for (size_t k = 0; k < signed_samples_.size(); ++k)
+      if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(signed_sample(c, k))) > GiNaC::numeric(1, 1000000)) return false;
+    // The exact test inlines the chain of values; past this many tree nodes it would take minutes and
+    // gigabytes, so the coefficient is kept: a coefficient kept that is in fact zero costs code, never a
+    // wrong value.
+    constexpr size_t kMaxInlinedNodes = 200000;
+    const ex inlined = inline_values(c);
+    if (tree_size(inlined, kMaxInlinedNodes) > kMaxInlinedNodes) return false;
+    return symbolic::is_identically_zero(trig_reduced(zero_preserving_core(inlined)));
+  }
+
+  // sqrt(X), abs(X) and X^k (k > 0) are zero exactly where X is: the zero test looks at X (bug 5 of
+  // issue 14: sqrt(abs(P.P)) of a rotated point P, whose P.P cancels only once expanded).
+  static ex zero_preserving_core(ex e) {
+    for (;;) {
+      if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
+          GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_positive())
+        e = e.op(0);
+      else if (GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == "abs")
+        e = e.op(0);
+      else
+        return e;
+    }
+  }
+
+  // e with sin(u)^2 written as 1 - cos(u)^2 and expanded, so that the identity sin^2 + cos^2 = 1 (a rotor
+  // times its reverse, a rotated point squaring to 0) cancels in the expansion. Even powers of sin only:
+  // the result is a polynomial in cos(u) and sin(u) of degree <= 1 in sin(u), a normal form.
+  static ex trig_reduced(const ex& e) {
+    if (!e.has(GiNaC::sin(GiNaC::wild()))) return e;
+    const ex w = GiNaC::wild();
+    ex x = e.expand();
+    x = x.subs(GiNaC::pow(GiNaC::sin(w), 2) == 1 - GiNaC::pow(GiNaC::cos(w), 2), GiNaC::subs_options::algebraic);
+    return x.expand();
   }
 
   // e with every value symbol replaced by its definition, recursively, down to the inputs.
@@ -545,6 +832,7 @@ class Expander {
     in.blades = {0};
     GiNaC::realsymbol sym(unique_symbol_name(n));  // real: abs(a)^2 is a^2, not a*conjugate(a)
     samples_[sym] = next_sample();
+    add_signed_input(sym);
     probes_.add_input(sym);
     in.symbols = {sym};
     kernel_.inputs.push_back(in);
@@ -700,12 +988,35 @@ class Expander {
     if (!(fn == "SphereN3" && e.args.size() == 2)) check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
     for (const auto& a : e.args) args.push_back(eval(*a));
     return guarded(e.loc, [&]() -> Multivector {
-      if (fn == "abs" && !scalar_part_if_scalar(args[0]).is_scalar()) {
-        // Gaalop's abs of a multivector: its magnitude sqrt(|<L ~L>_0|).
-        return Multivector(GiNaC::sqrt(GiNaC::abs((args[0] * args[0].reverse()).scalar())));
+      if (fn == "abs" && !scalar_part_if_scalar(args[0]).is_scalar()) return magnitude(args[0]);
+      if (fn == "floor" || fn == "ceil" || fn == "fact") {
+        // Exact on constants. On a run-time value they would need a function some targets lack (a factorial
+        // of a real is tgamma(x+1), absent from GLSL) and one the optimizer cannot reason about (floor is
+        // not smooth), so a value that is not a number is a located error.
+        const ex x = scalar_arg(fn, args, e, 0);
+        if (!GiNaC::is_a<GiNaC::numeric>(x) || !GiNaC::ex_to<GiNaC::numeric>(x).is_real())
+          throw CompileError(e.args[0]->loc, "'" + fn + "' takes a constant argument in cgagen (a number, not a "
+                                             "value that depends on the inputs)");
+        if (fn == "fact" && (!GiNaC::ex_to<GiNaC::numeric>(x).is_nonneg_integer() ||
+                             GiNaC::ex_to<GiNaC::numeric>(x) > 170))
+          throw CompileError(e.args[0]->loc, "'fact' takes an integer from 0 to 170");
+        return Multivector(f1->second(x));
       }
       if (f1 != scalar1.end()) return Multivector(f1->second(scalar_arg(fn, args, e, 0)));
       if (fn == "exp") return exp(args[0], e);
+      // invert (Gaalop's MathFunction INVERT): the inverse of a multivector, 1/X as the division defines it.
+      if (fn == "invert") return divide(Multivector(ex(1)), args[0], *e.args[0]);
+      if (fn == "Dual") return args[0].dual();
+      // Normalize(X) = X / abs(X), abs being the magnitude sqrt(|<X ~X>_0|) (as #pragma normalize rewrites).
+      if (fn == "Normalize") return divide(args[0], magnitude(args[0]), *e.args[0]);
+      // The two points of a point pair PP (in the form Gaalop's GPS example intersects spheres into):
+      // (PP +- sqrt(|PP.PP|)) / (einf.PP); first with +, second with -. Not normalized (e0 weight != 1).
+      if (fn == "ExtractFirstPoint" || fn == "ExtractSecondPoint") {
+        const Multivector& pp = args[0];
+        Multivector root = Multivector(GiNaC::sqrt(GiNaC::abs(scalar_part_if_scalar(inner(pp, pp)).scalar())));
+        Multivector num = fn == "ExtractFirstPoint" ? pp + root : pp - root;
+        return divide(num, inner(Multivector::einf(), pp), *e.args[0]);
+      }
       if (fn == "coefficient") return coefficient(args[0], args[1], *e.args[1]);
       if (fn == "SphereN3" && args.size() == 2) {
         // SphereN3(P, r): the dual sphere around the conformal point P, P - r^2/2 einf.
@@ -736,6 +1047,11 @@ class Expander {
       Multivector plane = Multivector::blade(10, -s[0]) + Multivector::blade(7, s[1]) + Multivector::blade(6, -s[2]);
       return Multivector(GiNaC::cos(half)) + (GiNaC::sin(half) / len) * plane;
     });
+  }
+
+  // Gaalop's abs of a multivector: its magnitude sqrt(|<L ~L>_0|).
+  static Multivector magnitude(const Multivector& m) {
+    return Multivector(GiNaC::sqrt(GiNaC::abs((m * m.reverse()).scalar())));
   }
 
   // coefficient(mv, blade): the scalar c with which mv holds c * blade, for a blade given as one basis

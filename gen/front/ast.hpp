@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cgagen::front {
@@ -82,6 +83,9 @@ struct Stmt {
 
 struct Script {
   std::vector<StmtPtr> statements;
+  // Forms the parser accepts as Gaalop's does but that are probably slips (a ';' missing at the end of a
+  // line inside a macro): where, and what; the expander reports them as warnings.
+  std::vector<std::pair<SourceLoc, std::string>> warnings;
 };
 
 }  // namespace cgagen::front

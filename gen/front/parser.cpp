@@ -40,8 +40,13 @@ class Parser {
     Script s;
     while (peek().kind != TokKind::End) {
       if (peek().kind == TokKind::RBrace) throw CompileError(peek().loc, "unexpected '}'");
+      if (is_unroll()) {
+        unrolled_loop(s.statements);
+        continue;
+      }
       if (StmtPtr st = statement()) s.statements.push_back(std::move(st));
     }
+    s.warnings = std::move(warnings_);
     return s;
   }
 
@@ -81,6 +86,51 @@ class Parser {
     Parser& p_;
   };
 
+  // ---- loops -------------------------------------------------------------------------------------
+  // Gaalop 2.0: "#pragma unroll N" then "loop STATEMENT" or "loop { STATEMENTS }". The trip count is a
+  // constant, so the loop is unrolled here: the body's statements N times (nodes are shared, immutable).
+  static constexpr long kMaxUnroll = 1000;
+
+  bool is_unroll() {
+    return peek().kind == TokKind::Pragma && !peek().words.empty() && peek().words[0] == "unroll";
+  }
+
+  void unrolled_loop(std::vector<StmtPtr>& out) {
+    Token p = take();
+    const SourceLoc count_loc = p.word_locs.size() > 1 ? p.word_locs[1] : p.loc;
+    const bool digits = p.words.size() == 2 && !p.words[1].empty() && p.words[1].size() <= 4 &&
+                        p.words[1].find_first_not_of("0123456789") == std::string::npos;
+    if (!digits) throw CompileError(count_loc, "'#pragma unroll' expects a trip count, a whole number");
+    const long n = std::stol(p.words[1]);
+    if (n > kMaxUnroll) throw CompileError(count_loc, "'#pragma unroll' trip count above " + std::to_string(kMaxUnroll));
+    if (peek().kind != TokKind::Ident || peek().text != "loop")
+      throw CompileError(peek().loc, "expected 'loop' after '#pragma unroll'");
+    Token loop = take();
+    Nest nest(*this, loop.loc);
+    std::vector<StmtPtr> body;
+    if (accept(TokKind::LBrace)) {
+      for (;;) {
+        if (peek().kind == TokKind::RBrace) break;
+        if (peek().kind == TokKind::End) fail_after("expected '}' to close the loop opened at " + at_text(loop.loc));
+        if (is_unroll()) {
+          unrolled_loop(body);
+          continue;
+        }
+        if (StmtPtr st = statement()) body.push_back(std::move(st));
+      }
+      take();  // '}'
+    } else if (is_unroll()) {
+      unrolled_loop(body);
+    } else if (StmtPtr st = statement()) {
+      body.push_back(std::move(st));
+    }
+    for (const auto& st : body)
+      if (st->kind == Stmt::Kind::MacroDef) throw CompileError(st->loc, "a macro cannot be defined inside a loop");
+    if (static_cast<double>(body.size()) * static_cast<double>(n) + static_cast<double>(out.size()) > 10000)
+      throw CompileError(loop.loc, "the unrolled loop would have more than 10000 statements");
+    for (long k = 0; k < n; ++k) out.insert(out.end(), body.begin(), body.end());
+  }
+
   // ---- statements ----------------------------------------------------------------------------------
   // One statement, or null for one that has no effect (";" and CLUCalc display settings).
   StmtPtr statement() {
@@ -94,6 +144,15 @@ class Parser {
       case TokKind::LBrace:
         throw CompileError(t.loc, "unexpected '{' (braces only enclose a macro body: Name = { ... })");
       case TokKind::Ident:
+        // Gaalop 2.0's precompiler had if/else, loop and break; cgagen has no control flow yet. Say so
+        // instead of "expected ',' or ')' in call to 'if'".
+        if (t.text == "loop" && peek(1).kind != TokKind::Assign)
+          throw CompileError(t.loc, "'loop' needs '#pragma unroll N' on the line before it: only loops with a "
+                                    "constant trip count are supported (they are unrolled)");
+        if (((t.text == "if" || t.text == "while") && peek(1).kind == TokKind::LParen) ||
+            ((t.text == "else" || t.text == "break") && peek(1).kind != TokKind::Assign))
+          throw CompileError(t.loc, "'" + std::string(t.text) + "': control flow (if/else, break of Gaalop 2.0's "
+                                    "precompiler) is not supported; write each case as its own script");
         if (peek(1).kind == TokKind::Assign) {
           if (peek(2).kind == TokKind::LBrace) return macro();
           return assignment(Marker::None, take());
@@ -160,6 +219,12 @@ class Parser {
     st->name = std::string(name.text);
     st->value = expression().expr;
     if (peek().kind == TokKind::Assign) throw CompileError(peek().loc, "expected ';' after statement");
+    // Inside a macro, an assignment that ends its line without ';' is accepted, as Gaalop's parser recovers
+    // from it (its own QuestionLineMacro test script is written so), with a warning.
+    if (macro_depth_ > 0 && peek().kind != TokKind::Semi && peek().loc.line > prev_end_.line) {
+      warnings_.push_back({prev_end_, "missing ';' after the assignment to '" + st->name + "' (accepted, as Gaalop does)"});
+      return st;
+    }
     expect(TokKind::Semi, "expected ';' after statement");
     return st;
   }
@@ -170,6 +235,11 @@ class Parser {
     take();  // '='
     Token open = take();
     Nest nest(*this, open.loc);
+    ++macro_depth_;
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{macro_depth_};
     auto st = std::make_shared<Stmt>();
     st->kind = Stmt::Kind::MacroDef;
     st->loc = name.loc;
@@ -398,6 +468,8 @@ class Parser {
   std::deque<Token> ahead_;
   SourceLoc prev_end_{1, 1};
   int nesting_ = 0;
+  int macro_depth_ = 0;  // macro bodies being parsed
+  std::vector<std::pair<SourceLoc, std::string>> warnings_;
 };
 
 }  // namespace

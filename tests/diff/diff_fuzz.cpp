@@ -1,0 +1,266 @@
+// The differential fuzzer's driver: generates programs (generator.hpp), evaluates each through cgagen's own
+// pipeline at -O0, -O1 and -O2 (parse, expand, optimize, and the evaluator that computes what the emitted
+// code computes: the same path as `cgagen --eval`) and through the oracle interpreter (interpreter.hpp),
+// and requires agreement to 1e-9 relative (to the output's largest coefficient) or a refusal by both.
+// Refusals for cgagen's work budget are counted, not failures (the budget is a deliberate limit). Every
+// --compile-every'th program's emitted C++ is compiled with the system compiler (one run at the end).
+// Committed regressions (--regressions DIR, *.clu whose first line is "// inputs: a=1 b=-0.5 ...") are
+// replayed first. Exit 0 when everything agrees; the failing scripts are printed (and, with --work-dir,
+// written to WORK/finds/).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <set>
+#include <string>
+
+#include "algebra/blade.hpp"
+#include "emit/emit.hpp"
+#include "expand/expand.hpp"
+#include "front/parser.hpp"
+#include "generator.hpp"
+#include "interpreter.hpp"
+#include "opt/program.hpp"
+#include "opt/report.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  bool refused = false;
+  bool budget = false;  // refused for cgagen's work budget
+  std::string message;
+  struct Coeffs : std::array<double, oracle::kBlades> {
+    std::array<bool, oracle::kBlades> present{};  // cgagen: the blades it returned
+  };
+  std::map<std::string, Coeffs> outputs;  // null-basis coefficients (Gaalop order)
+};
+
+std::map<std::string, unsigned> null_index() {
+  std::map<std::string, unsigned> m;
+  const auto& names = oracle::null_blade_names();
+  for (unsigned k = 0; k < oracle::kBlades; ++k) m[names[k]] = k;
+  return m;
+}
+
+Result run_cgagen(const cgagen::front::Script& script, const std::map<std::string, double>& inputs,
+                  cgagen::opt::Level level, std::string* cpp, const std::string& name) {
+  static const std::map<std::string, unsigned> index = null_index();
+  Result r;
+  try {
+    cgagen::Kernel k = cgagen::expand(script, name);
+    cgagen::opt::Program p = cgagen::opt::optimize(k, level);
+    cgagen::opt::InputValues in;
+    for (const auto& ki : k.inputs) {
+      auto it = inputs.find(ki.name);
+      if (it == inputs.end()) throw std::runtime_error("no value for input " + ki.name);
+      in[ki.name] = {it->second};
+    }
+    for (const auto& line : cgagen::opt::evaluate(p, in)) {
+      auto& o = r.outputs[line.output];
+      auto ix = index.find(cgagen::algebra::blade_name(line.blade));
+      if (ix == index.end()) throw std::runtime_error("blade name not in the oracle: " + cgagen::algebra::blade_name(line.blade));
+      o[ix->second] = line.value;
+      o.present[ix->second] = true;
+    }
+    if (cpp) {
+      cgagen::emit::EmitOptions eo;
+      *cpp = cgagen::emit::emit(p, eo);
+    }
+  } catch (const cgagen::front::CompileError& e) {
+    r.refused = true;
+    r.message = e.what();
+    r.budget = r.message.find("work budget") != std::string::npos;
+  } catch (const std::exception& e) {
+    r.refused = true;
+    r.message = std::string("internal: ") + e.what();  // never acceptable: a library message escaped
+  }
+  return r;
+}
+
+Result run_oracle(const cgagen::front::Script& script, const std::map<std::string, double>& inputs) {
+  Result r;
+  try {
+    diff::Outputs o = diff::interpret(script, inputs);
+    for (const auto& n : o.order) {
+      const auto c = oracle::to_null_basis(o.values.at(n));
+      std::copy(c.begin(), c.end(), r.outputs[n].begin());
+    }
+  } catch (const std::exception& e) {
+    r.refused = true;
+    r.message = e.what();
+  }
+  return r;
+}
+
+// "" when a and b agree; else what differs. Outputs named in `pragma_outputs` have a '#pragma output'
+// blade list: cgagen returns only those blades, so only the blades it returns are compared. A value below
+// 1e-7 of the output's scale counts as zero (a square root of a rounded zero is ~1e-8, where the exact
+// pipeline gives 0: issue 14's bug 5).
+std::string compare(const Result& cg, const Result& ref, const std::set<std::string>& pragma_outputs) {
+  if (cg.refused || ref.refused) {
+    if (cg.refused && ref.refused) return "";
+    return cg.refused ? "cgagen refused (" + cg.message + "), the oracle gives values"
+                      : "the oracle refused (" + ref.message + "), cgagen gives values";
+  }
+  if (cg.outputs.size() != ref.outputs.size()) return "different numbers of outputs";
+  for (const auto& [name, want] : ref.outputs) {
+    auto it = cg.outputs.find(name);
+    if (it == cg.outputs.end()) return "cgagen lacks output " + name;
+    double scale = 1;
+    for (double v : want) scale = std::max(scale, std::abs(v));
+    for (unsigned k = 0; k < oracle::kBlades; ++k) {
+      const double got = it->second[k], w = want[k];
+      if (std::isnan(got) && std::isnan(w)) continue;
+      if (pragma_outputs.count(name) && !it->second.present[k]) continue;
+      if (std::abs(got) < 1e-7 * scale && std::abs(w) < 1e-7 * scale) continue;
+      if (!(std::abs(got - w) <= 1e-9 * scale)) {
+        std::ostringstream s;
+        s.precision(17);
+        s << name << " " << oracle::null_blade_names()[k] << ": cgagen " << got << ", oracle " << w;
+        return s.str();
+      }
+    }
+  }
+  return "";
+}
+
+struct Stats {
+  int programs = 0, agreed_values = 0, both_refused = 0, budget = 0, failures = 0;
+};
+
+// Checks one script; returns "" or the failure.
+std::string check(const std::string& text, const std::map<std::string, double>& inputs, const std::string& name,
+                  Stats& st, std::string* cpp) {
+  cgagen::front::SourceFile file(name + ".clu", text);
+  cgagen::front::Script script;
+  try {
+    script = cgagen::front::parse(file);
+  } catch (const cgagen::front::CompileError& e) {
+    return std::string("the generator wrote a script that does not parse: ") + e.what();
+  }
+  const Result ref = run_oracle(script, inputs);
+  std::set<std::string> pragma_outputs;
+  for (const auto& s : script.statements)
+    if (s->kind == cgagen::front::Stmt::Kind::Pragma && s->words.size() > 1 && s->words[0] == "output")
+      pragma_outputs.insert(s->words[1]);
+  bool any_budget = false;
+  std::string failure;
+  for (auto level : {cgagen::opt::Level::O0, cgagen::opt::Level::O1, cgagen::opt::Level::O2}) {
+    const Result cg = run_cgagen(script, inputs, level, level == cgagen::opt::Level::O2 ? cpp : nullptr, name);
+    if (cg.budget) {
+      any_budget = true;
+      continue;
+    }
+    if (cg.message.rfind("internal:", 0) == 0) failure = "-O" + std::to_string(static_cast<int>(level)) + ": " + cg.message;
+    else if (std::string d = compare(cg, ref, pragma_outputs); !d.empty()) failure = "-O" + std::to_string(static_cast<int>(level)) + ": " + d;
+    if (!failure.empty()) break;
+  }
+  ++st.programs;
+  if (!failure.empty()) ++st.failures;
+  else if (any_budget) ++st.budget;
+  else if (ref.refused) ++st.both_refused;
+  else ++st.agreed_values;
+  return failure;
+}
+
+std::string inputs_line(const std::map<std::string, double>& in) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "// inputs:";
+  for (const auto& [k, v] : in) s << " " << k << "=" << v;
+  return s.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::uint64_t seed = 1;
+  int count = 300, compile_every = 0;
+  std::string work, regressions;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto val = [&]() -> std::string {
+      if (i + 1 >= argc) { std::cerr << "diff_fuzz: " << a << " needs a value\n"; std::exit(2); }
+      return argv[++i];
+    };
+    if (a == "--seed") seed = std::stoull(val());
+    else if (a == "--count") count = std::stoi(val());
+    else if (a == "--compile-every") compile_every = std::stoi(val());
+    else if (a == "--work-dir") work = val();
+    else if (a == "--regressions") regressions = val();
+    else { std::cerr << "usage: diff_fuzz [--seed S] [--count N] [--compile-every K] [--work-dir D] [--regressions DIR]\n"; return 2; }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  Stats st;
+  int failures = 0;
+  if (!work.empty()) fs::create_directories(fs::path(work) / "finds");
+  // Committed finds first.
+  if (!regressions.empty() && fs::exists(regressions)) {
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(regressions))
+      if (e.path().extension() == ".clu") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      std::ifstream in(f);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      const std::string text = ss.str();
+      std::map<std::string, double> inputs;
+      std::istringstream first(text.substr(0, text.find('\n')));
+      std::string word;
+      first >> word >> word;  // "//" "inputs:"
+      while (first >> word) inputs[word.substr(0, word.find('='))] = std::stod(word.substr(word.find('=') + 1));
+      std::string fail = check(text, inputs, "regression", st, nullptr);
+      if (!fail.empty()) {
+        ++failures;
+        std::cout << "REGRESSION " << f.filename().string() << ": " << fail << "\n";
+      }
+    }
+  }
+  std::string compile_unit = "#include <cmath>\n";
+  int compiled = 0;
+  for (int i = 0; i < count; ++i) {
+    const std::uint64_t s = seed * 1000003ull + static_cast<std::uint64_t>(i);
+    diff::Program p = diff::generate(s);
+    std::string cpp;
+    const bool sample = compile_every > 0 && i % compile_every == 0;
+    const std::string name = "diff_" + std::to_string(i);
+    std::string fail = check(p.text, p.inputs, name, st, sample ? &cpp : nullptr);
+    if (!fail.empty()) {
+      ++failures;
+      const std::string script = inputs_line(p.inputs) + "\n" + p.text;
+      std::cout << "FIND (seed " << s << "): " << fail << "\n" << script << "\n";
+      if (!work.empty()) std::ofstream(fs::path(work) / "finds" / ("seed_" + std::to_string(s) + ".clu")) << script;
+    }
+    if (sample && !cpp.empty()) {
+      // Each kernel header has its own #pragma once; a unit of several includes them as text.
+      std::string body = cpp;
+      auto at = body.find("#pragma once");
+      if (at != std::string::npos) body.erase(at, 12);
+      compile_unit += body;
+      ++compiled;
+    }
+  }
+  if (compiled > 0 && !work.empty()) {
+    const fs::path unit = fs::path(work) / "sample.cpp";
+    std::ofstream(unit) << compile_unit;
+    const std::string cmd = "c++ -std=c++20 -fsyntax-only -Wall -Werror " + unit.string() + " 2>&1";
+    const int rc = std::system(cmd.c_str());
+    if (rc != 0) {
+      ++failures;
+      std::cout << "the emitted C++ of " << compiled << " sampled programs does not compile: " << unit << "\n";
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "diff_fuzz: " << st.programs << " programs (seed " << seed << "): " << st.agreed_values
+            << " agree on values, " << st.both_refused << " refused by both, " << st.budget
+            << " over cgagen's work budget, " << failures << " failures; " << compiled
+            << " emitted kernels compiled; " << seconds << " s\n";
+  return failures == 0 ? 0 : 1;
+}
