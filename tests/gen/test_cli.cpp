@@ -99,7 +99,7 @@ TEST_CASE("dump-ast prints the statements", "[cli]") {
 // Issue 11: the fuzzer's find (the paper's A.1 with `einf` misspelt `eiof` and `translationCGA2` misspelt
 // `translationCGA4`) compiles at every level, warns about both names where they are used, lists them as
 // inputs in --stats, and fails under --Werror.
-TEST_CASE("misspelt names that became inputs are warned about; --Werror makes them errors", "[cli]") {
+TEST_CASE("misspelt names that became inputs are warned about, --Werror makes them errors", "[cli]") {
   const std::string path = std::string(CGA_SOURCE_DIR) + "/fuzz/regressions/paper_a1_mutant_timeout.clu";
   const std::string eiof = path + ":17:29: warning: 'eiof' is used before it is assigned and becomes an input; "
                                   "did you mean 'einf'?\nDilation = 1+ (1-d1)/(1+d1)*eiof^e0;\n" +
@@ -130,7 +130,7 @@ TEST_CASE("misspelt names that became inputs are warned about; --Werror makes th
                    "e1^e2^einf^e0, e1^e3^einf^e0, e2^e3^einf^e0), x, y, z\n") != std::string::npos);
 }
 
-TEST_CASE("work budget: an over-budget statement fails fast with a located error; large forms fall back", "[cli]") {
+TEST_CASE("work budget: an over-budget statement fails fast with a located error, large forms fall back", "[cli]") {
   const std::string bad = std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/bad/over_budget.clu";
   for (const char* level : {"-O0", "-O2"}) {
     auto r = run(std::string(level) + " " + bad);

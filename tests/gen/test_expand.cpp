@@ -301,7 +301,7 @@ TEST_CASE("RotorN3, TranslatorN3, createPoint, multivector inputs and range prag
 
 // ---- semantics and kernel structure ------------------------------------------------------------------
 
-TEST_CASE("values refer to earlier values by their symbols; inputs in order of first use") {
+TEST_CASE("values refer to earlier values by their symbols, inputs in order of first use") {
   const Kernel k = expand_text("a = y*e1 + x*e2;\n?b = a*a;\n");
   REQUIRE(k.inputs.size() == 2);
   CHECK(k.inputs[0].name == "y");
@@ -318,7 +318,7 @@ TEST_CASE("values refer to earlier values by their symbols; inputs in order of f
   CHECK(k.outputs[0].blades == std::vector<algebra::BladeIndex>{0});
 }
 
-TEST_CASE("an output refers to the last assignment; '!' assignments are never outputs") {
+TEST_CASE("an output refers to the last assignment, '!' assignments are never outputs") {
   const Kernel k = expand_text("?x = 1;\nx = x + e1;\n!y = 2;\n?x;\n?z = e2;\n");
   REQUIRE(k.values.size() == 4);
   REQUIRE(k.outputs.size() == 2);
@@ -333,7 +333,7 @@ TEST_CASE("an output refers to the last assignment; '!' assignments are never ou
   CHECK(v.outputs[0].name == "w");
 }
 
-TEST_CASE("numbers are exact rationals; ep and em are the orthonormal vectors") {
+TEST_CASE("numbers are exact rationals, ep and em are the orthonormal vectors") {
   const Kernel k = expand_text("?n = 0.5 + 1e-3 + 2.5E2 + .25;\n?p = ep*ep;\n?m = em*em;\n?pm = ep.em;\n");
   const auto out = [&](int i) { return k.values.at(k.outputs.at(i).value); };
   REQUIRE(out(0).coeffs.size() == 1);

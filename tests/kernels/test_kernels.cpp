@@ -411,7 +411,7 @@ void check_close(const Vec3& got, const Vec3& want, double tol) {
   }
 }
 
-TEST_CASE("circle3: m = -c einf c / ((c einf c).einf), r; circumcentre and radius of plain geometry", "[kernels]") {
+TEST_CASE("circle3: m = -c einf c / ((c einf c).einf), r, circumcentre and radius of plain geometry", "[kernels]") {
   Rng rng;
   int checked = 0;
   for (int n = 0; n < kTrials; ++n) {
@@ -497,7 +497,7 @@ TEST_CASE("paper_motor: T R D with the exact exp moves points like GLM translate
   }
 }
 
-TEST_CASE("rotor_n3: T R X ~R ~T and M R; the point rotated about n (Rodrigues) and moved by t", "[kernels]") {
+TEST_CASE("rotor_n3: T R X ~R ~T and M R, the point rotated about n (Rodrigues) and moved by t", "[kernels]") {
   Rng rng;
   for (int n = 0; n < kTrials; ++n) {
     Vec3 nv{rng(), rng(), rng()};

@@ -458,7 +458,7 @@ TEST_CASE("a clip with one key holds it at every time, in every mode") {
   }
 }
 
-TEST_CASE("times outside the clip are clamped to its first and last key; non-finite times are refused") {
+TEST_CASE("times outside the clip are clamped to its first and last key, non-finite times are refused") {
   // Keys that start after 0 and end before the duration: before the first key, the first key holds.
   const Transform a = key({1, 0, 0}, 0.2f, 1.0f), b = key({0, 2, 0}, 1.1f, 1.0f);
   const Clip clip = one_joint_clip({0.5f, 1.5f}, {a, b}, 2.0f);

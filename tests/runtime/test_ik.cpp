@@ -239,7 +239,7 @@ TEST_CASE("two-bone IK: soften approaches full extension smoothly and never stra
   }
 }
 
-TEST_CASE("two-bone IK: twist turns the solved chain about the start-target axis; the end still reaches", "[ik]") {
+TEST_CASE("two-bone IK: twist turns the solved chain about the start-target axis, the end still reaches", "[ik]") {
   Rng rng(97u);
   for (int i = 0; i < 200; ++i) {
     const Case k = random_case(rng);
