@@ -28,6 +28,7 @@
 #include "cga/testing/twist_strip.hpp"
 #include "options.hpp"
 #include "raster.hpp"
+#include "web.hpp"
 
 using namespace cga;
 using Clock = std::chrono::steady_clock;
@@ -146,12 +147,14 @@ struct PosePipeline {
   }
 
   // The model pose and the palettes at fade step u (weight u on clip b).
-  void run(const Fade& f, float u) {
+  void run(const Fade& f, float u) { run(f, u, u); }
+  // The same with the weight w on clip b apart from the clip times (the web page's two sliders).
+  void run(const Fade& f, float u, float w) {
     sample(*f.a, f.time_a(u), mode, a);
     sample(*f.b, f.time_b(u), mode, b);
     const BlendLayer layers[2] = {
-        {1.0f - u, a.motors, a.transforms, a.dual_quats, a.scales},
-        {u, b.motors, b.transforms, b.dual_quats, b.scales}};
+        {1.0f - w, a.motors, a.transforms, a.dual_quats, a.scales},
+        {w, b.motors, b.transforms, b.dual_quats, b.scales}};
     BlendingJob blend;
     blend.mode = mode, blend.layers = layers;
     blend.out_motors = blended.motors, blend.out_transforms = blended.transforms,
@@ -468,6 +471,24 @@ int run(const demo::Options& opt) {
       fmt::print("\n");
     }
   }
+  // ---- the web page (--web DIR): the runtime's palettes for every motor mode on a grid of clip times and
+  // fade weights, skinned in the browser (web.cpp, docs/web.md)
+  if (!opt.web_dir.empty()) {
+    progress.stage("writing the web page into " + opt.web_dir);
+    demo::WebInput web;
+    web.character = &ch, web.model = std::filesystem::path(opt.model).filename().string(), web.size = size;
+    web.fade_description = fade.description;
+    web.modes = {Interpolation::paper, Interpolation::nlerp, Interpolation::screw};
+    std::map<Interpolation, PosePipeline> pipelines;
+    for (Interpolation m : web.modes) pipelines.emplace(m, PosePipeline(m, sk, ch.meshes, inverse_binds));
+    web.pose = [&](Interpolation m, float u, float w) {
+      PosePipeline& p = pipelines.at(m);
+      p.run(fade, u, w);
+      return p.motor_palettes;
+    };
+    fmt::print("web page  {}\n", demo::write_web_page(web, opt.web_dir));
+  }
+
   // ---- the GPU path: the mid-fade pose skinned again by the GLSL shaders built from the generated kernels
   // (vertex shader + transform feedback, and compute), checked against the CPU jobs; then the pictures,
   // drawn by OpenGL (headless EGL: llvmpipe without a GPU).
