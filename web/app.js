@@ -213,14 +213,19 @@ async function createWebGL2(canvas) {
   };
 }
 
-// ---- WebGPU: skin.wgsl (with the generated kernel): a render pipeline and a compute pipeline
-async function createWebGPU(canvas) {
+// ---- WebGPU: skin.wgsl (with the generated kernel): a render pipeline and a compute pipeline.
+// present "canvas": draw into the canvas's WebGPU context. "copy": draw into a texture, read it back and put
+// it into a 2D canvas; slower, but headless Chromium (no compositor) loses the WebGPU instance on the first
+// frame presented to a canvas (the next await fails with "A valid external Instance reference no longer
+// exists"), while a fresh device that never touches a canvas keeps working. main() tries "canvas" first.
+async function createWebGPU(canvas, present) {
   const adapter = await navigator.gpu.requestAdapter();
   if (!adapter) return null;
   const device = await adapter.requestDevice();
-  const context = canvas.getContext("webgpu");
-  const format = navigator.gpu.getPreferredCanvasFormat();
-  context.configure({device, format, alphaMode: "opaque"});
+  const context = present === "canvas" ? canvas.getContext("webgpu") : canvas.getContext("2d");
+  const format = present === "canvas" ? navigator.gpu.getPreferredCanvasFormat() : "rgba8unorm";
+  if (present === "canvas") context.configure({device, format, alphaMode: "opaque"});
+  let target = null;  // the "copy" path's colour texture
   device.pushErrorScope("validation");
   const module = device.createShaderModule({code: $("wgsl").textContent});
   const errors = (await module.getCompilationInfo()).messages.filter((m) => m.type === "error");
@@ -277,18 +282,22 @@ async function createWebGPU(canvas) {
   const info = adapter.info || {};
   return {
     name: "webgpu",
-    describe: () => "WebGPU: " + [info.vendor, info.architecture, info.description].filter(Boolean).join(" / "),
+    describe: () => "WebGPU: " + [info.vendor, info.architecture, info.description].filter(Boolean).join(" / ") +
+                    (present === "copy" ? " (frames copied into a 2D canvas)" : ""),
     setPalette(which, floats) { device.queue.writeBuffer(gpu[which].palette, 0, floats); },
     async draw(which, heat) {
       const g = gpu[which];
-      if (!depth || depth.width !== canvas.width || depth.height !== canvas.height)
+      if (!depth || depth.width !== canvas.width || depth.height !== canvas.height) {
         depth = device.createTexture({size: [canvas.width, canvas.height], format: "depth24plus", usage: GPUTextureUsage.RENDER_ATTACHMENT});
+        if (present === "copy")
+          target = device.createTexture({size: [canvas.width, canvas.height], format, usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC});
+      }
       const pw = Math.floor(canvas.width / 4), h = canvas.height;
       const vp = viewProjection(g.scene, pw / h, true);
       for (let m = 0; m < 4; ++m) writeUniforms(g, m, vp, heat);
       const enc = device.createCommandEncoder();
       const pass = enc.beginRenderPass({
-        colorAttachments: [{view: context.getCurrentTexture().createView(), loadOp: "clear", storeOp: "store",
+        colorAttachments: [{view: (present === "canvas" ? context.getCurrentTexture() : target).createView(), loadOp: "clear", storeOp: "store",
                             clearValue: {r: 0.12, g: 0.12, b: 0.14, a: 1}}],
         depthStencilAttachment: {view: depth.createView(), depthLoadOp: "clear", depthStoreOp: "store", depthClearValue: 1},
       });
@@ -301,8 +310,22 @@ async function createWebGPU(canvas) {
         pass.drawIndexed(g.scene.indices.length);
       }
       pass.end();
+      if (present === "canvas") {
+        device.queue.submit([enc.finish()]);
+        await device.queue.onSubmittedWorkDone();
+        return;
+      }
+      const w = canvas.width, h2 = canvas.height, row = Math.ceil(4 * w / 256) * 256;
+      const read = device.createBuffer({size: row * h2, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST});
+      enc.copyTextureToBuffer({texture: target}, {buffer: read, bytesPerRow: row}, [w, h2]);
       device.queue.submit([enc.finish()]);
-      await device.queue.onSubmittedWorkDone();
+      await read.mapAsync(GPUMapMode.READ);
+      const bytes = new Uint8Array(read.getMappedRange());
+      const image = new ImageData(w, h2);
+      for (let y = 0; y < h2; ++y) image.data.set(bytes.subarray(y * row, y * row + 4 * w), 4 * w * y);
+      read.unmap();
+      read.destroy();
+      context.putImageData(image, 0, 0);
     },
     async readback(which, method) {
       const g = gpu[which];
@@ -425,27 +448,34 @@ async function main() {
   resize(canvas);
   labelPanels();
   const test = location.hash === "#selftest";
+  // A canvas keeps the first kind of context it gave: each new attempt gets a fresh canvas.
+  const freshCanvas = () => {
+    const c = document.createElement("canvas");
+    c.id = "view";
+    $("view").replaceWith(c);
+    resize(c);
+    return c;
+  };
   let renderer = null, fallback = "";
   if (navigator.gpu && location.hash !== "#webgl2") {
-    try {
-      renderer = await createWebGPU(canvas);
-      if (!renderer) fallback = "navigator.gpu gave no adapter; ";
-    } catch (e) {
-      fallback = "WebGPU failed (" + e.message + "); ";
-      renderer = null;
+    for (const present of ["canvas", "copy"]) {
+      try {
+        const c = present === "canvas" ? canvas : freshCanvas();
+        renderer = await createWebGPU(c, present);
+        if (!renderer) {
+          fallback = "navigator.gpu gave no adapter; ";
+          break;
+        }
+        await renderer.draw("character", heatUniforms("character"));  // the probe: presenting works
+        break;
+      } catch (e) {
+        fallback = "WebGPU failed (" + e.message + "); ";
+        renderer = null;
+      }
     }
+    if (renderer) fallback = "";
   }
-  if (!renderer) {
-    if (fallback && !navigator.gpu) fallback = "";
-    const fresh = renderer === null && fallback ? (() => {  // a canvas that had a webgpu context cannot do webgl2
-      const c = document.createElement("canvas");
-      c.id = "view";
-      canvas.replaceWith(c);
-      resize(c);
-      return c;
-    })() : canvas;
-    renderer = await createWebGL2(fresh);
-  }
+  if (!renderer) renderer = await createWebGL2(fallback ? freshCanvas() : canvas);
   const update = setupControls(renderer);
   $("status").textContent = fallback + renderer.describe();
   const lines = [];
