@@ -3,7 +3,10 @@
 // controls. Opened as index.html#selftest it skins a fixed frame with every method, reads the vertices back,
 // compares them with the CPU jobs' vertices in CGA_DATA and writes "PATH ok|fail MAXDEV" into #cga-result
 // (also the first line of the promise window.cgagenResult, which tests/targets/browser_run.py waits for).
-// #webgl2 forces the WebGL 2 path. No libraries: a few matrices are all the page needs.
+// Options in the fragment, joined by "&": selftest, webgl2 (force the WebGL 2 path), heat (heat map on),
+// twist (the twist strip view), mismatch (the self-test compares each method with the next one's CPU
+// vertices: it must fail; tests/web checks that the comparison can). No libraries: a few matrices are all
+// the page needs.
 "use strict";
 
 const METHOD_COLORS = [[0.85, 0.55, 0.35], [0.45, 0.65, 0.85], [0.85, 0.75, 0.35], [0.45, 0.80, 0.50]];
@@ -419,7 +422,8 @@ function resize(canvas) {
 }
 
 // Max distance between the GPU's and the CPU's skinned positions over every method, relative to the size.
-async function selftest(renderer) {
+// shift = 1 compares method m with method m + 1's reference (the mismatch check).
+async function selftest(renderer, shift) {
   const mode = CGA_DATA.modes.indexOf(CGA_DATA.selftest.mode);
   renderer.setPalette("character", characterPalette(mode, CGA_DATA.selftest.time, CGA_DATA.selftest.weight));
   renderer.setPalette("twist", twistPalette(CGA_DATA.twist.angles - 1));
@@ -432,7 +436,7 @@ async function selftest(renderer) {
       const got = await renderer.readback(which, m);
       let dev = 0;
       for (let v = 0; v < n; ++v) {
-        const r = 3 * (m * n + v);
+        const r = 3 * (((m + shift) % 4) * n + v);
         const d = Math.hypot(got[3 * v] - ref[r], got[3 * v + 1] - ref[r + 1], got[3 * v + 2] - ref[r + 2]);
         dev = Math.max(dev, Number.isFinite(d) ? d / size : Infinity);
       }
@@ -447,7 +451,8 @@ async function main() {
   const canvas = $("view");
   resize(canvas);
   labelPanels();
-  const test = location.hash === "#selftest";
+  const options = new Set(location.hash.replace(/^#/, "").split("&"));
+  const test = options.has("selftest");
   // A canvas keeps the first kind of context it gave: each new attempt gets a fresh canvas.
   const freshCanvas = () => {
     const c = document.createElement("canvas");
@@ -457,7 +462,7 @@ async function main() {
     return c;
   };
   let renderer = null, fallback = "";
-  if (navigator.gpu && location.hash !== "#webgl2") {
+  if (navigator.gpu && !options.has("webgl2")) {
     for (const present of ["canvas", "copy"]) {
       try {
         const c = present === "canvas" ? canvas : freshCanvas();
@@ -476,19 +481,25 @@ async function main() {
     if (renderer) fallback = "";
   }
   if (!renderer) renderer = await createWebGL2(fallback ? freshCanvas() : canvas);
+  if (options.has("heat")) $("heat").checked = true;
+  if (options.has("twist")) $("scene").value = "twist";
   const update = setupControls(renderer);
   $("status").textContent = fallback + renderer.describe();
   const lines = [];
   if (test) {
-    const r = await selftest(renderer);
+    const r = await selftest(renderer, options.has("mismatch") ? 1 : 0);
     const line = renderer.name + " " + (r.worst <= TOLERANCE ? "ok" : "fail") + " " + r.worst.toExponential(2);
     $("cga-result").textContent = line;
     lines.push(line, "detail " + r.details.join(", "));
-    // Frame time: 20 frames of the character (4 panels each), every one waited for.
+    // Frame time: 20 frames of the character (4 panels each), every one waited for; the self-test's frame
+    // stays on the screen.
     state.playing = false;
+    $("time").value = CGA_DATA.selftest.time, $("weight").value = CGA_DATA.selftest.weight;
+    $("mode").value = CGA_DATA.modes.indexOf(CGA_DATA.selftest.mode);
     update();
     const t0 = performance.now();
     for (let i = 0; i < 20; ++i) await renderer.draw("character", heatUniforms("character"));
+    if (state.scene !== "character") await renderer.draw(state.scene, heatUniforms(state.scene));
     lines.push("frame_ms " + ((performance.now() - t0) / 20).toFixed(2) + " (" + character.vertexCount +
                " vertices x 4 panels; " + renderer.describe() + ")");
     return lines.join("\n");
