@@ -41,11 +41,14 @@ function makeScene(src, floatsPerPalette) {
 
 const character = makeScene(CGA_DATA.character, CGA_DATA.character.entries * CGA_DATA.entryFloats);
 const twist = makeScene(CGA_DATA.twist, CGA_DATA.twist.entries * CGA_DATA.entryFloats);
+// Where the character is in each pose (bounding box centre, same order as the palettes): the camera follows.
+const characterCenters = decodeFloats(CGA_DATA.character.centers);
 
 // The palette of the character at (mode, time step, weight step), or of the strip at angle step a.
 function characterPalette(mode, t, w) {
   const n = character.floatsPerPalette;
   const i = (mode * CGA_DATA.times + t) * CGA_DATA.weights + w;
+  character.center = Array.from(characterCenters.subarray(3 * i, 3 * i + 3));
   return character.palettes.subarray(i * n, (i + 1) * n);
 }
 function twistPalette(a) {
@@ -74,7 +77,7 @@ function viewProjection(scene, aspect, zeroToOne) {
   const upAxis = [0, 0, 0];
   upAxis[scene.up] = 1;
   const a = (scene.up + 1) % 3, b = (scene.up + 2) % 3;  // the ground plane's axes
-  const dist = 2.6 * scene.radius * camera.zoom;
+  const dist = 3.0 * scene.radius * camera.zoom;
   const eye = scene.center.slice();
   eye[a] += dist * Math.cos(camera.pitch) * Math.sin(camera.yaw);
   eye[b] += dist * Math.cos(camera.pitch) * Math.cos(camera.yaw);

@@ -149,7 +149,7 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
   const PageMesh body = concatenate(meshes);
 
   // Palettes: mode-major, then time step, then weight step, then entries.
-  std::vector<float> palettes;
+  std::vector<float> palettes, centers;
   std::vector<std::string> mode_names;
   const int selftest_t = in.times / 2, selftest_w = in.weights / 2;
   std::vector<Palettes> selftest_pal;
@@ -162,6 +162,18 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
             in.pose(mode, float(t) / float(in.times - 1), float(w) / float(in.weights - 1));
         std::vector<Palettes> pal;
         for (const MotorPalette& mp : per_mesh) pal.push_back(from_motors(mp)), append_entries(pal.back(), palettes);
+        // The camera follows the character: the centre of its bounding box in this pose (cga-motors).
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (std::size_t m = 0; m < meshes.size(); ++m) {
+          SkinnedOutput o;
+          SkinningJob job = make_skinning_job(SkinningMethod::cga_motors, *meshes[m], o);
+          job.motors = pal[m].motors;
+          if (!job.Run()) throw std::runtime_error("web: CPU skinning failed: " + job.ValidationError());
+          for (std::size_t v = 0; v < o.px.size(); ++v)
+            lo = glm::min(lo, glm::vec3(o.px[v], o.py[v], o.pz[v])), hi = glm::max(hi, glm::vec3(o.px[v], o.py[v], o.pz[v]));
+        }
+        const glm::vec3 c = 0.5f * (lo + hi);
+        centers.insert(centers.end(), {c.x, c.y, c.z});
         if (mode == Interpolation::screw && t == selftest_t && w == selftest_w)
           selftest_pal = pal, selftest_mode = "screw";
       }
@@ -193,9 +205,9 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
   data += "  methods: [\"lbs\", \"dqs\", \"cga-points\", \"cga-motors\"],\n";
   data += fmt::format("  modes: [{}], times: {}, weights: {}, entryFloats: {}, vertexFloats: {},\n",
                       fmt::join(mode_names, ", "), in.times, in.weights, kEntryFloats, kVertexFloats);
-  data += fmt::format("  character: {{entries: {}, vertexCount: {}, vertices: \"{}\", indices: \"{}\", palettes: \"{}\"}},\n",
+  data += fmt::format("  character: {{entries: {}, vertexCount: {}, vertices: \"{}\", indices: \"{}\", palettes: \"{}\", centers: \"{}\"}},\n",
                       body.entries, body.vertices.size() / kVertexFloats, base64(body.vertices), base64(body.indices),
-                      base64(palettes));
+                      base64(palettes), base64(centers));
   data += fmt::format("  twist: {{entries: {}, vertexCount: {}, angles: {}, size: {:.9g}, vertices: \"{}\", indices: \"{}\", palettes: \"{}\", reference: \"{}\"}},\n",
                       strip.entries, strip.vertices.size() / kVertexFloats, angles, cyl.spec.length,
                       base64(strip.vertices), base64(strip.indices), base64(twist_palettes), base64(twist_reference));
