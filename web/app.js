@@ -382,6 +382,10 @@ function setupControls(renderer) {
     state.heat = {on: $("heat").checked, a: +$("heat-a").value, b: +$("heat-b").value, scale: +$("heat-scale").value};
     $("weight-value").textContent = (state.weight / (CGA_DATA.weights - 1)).toFixed(2);
     $("twist-value").textContent = Math.round(180 * state.twist / (CGA_DATA.twist.angles - 1)) + "\u00b0";
+    $("legend").style.display = state.heat.on ? "inline" : "none";
+    $("legend").textContent = "heat: |" + CGA_DATA.methods[state.heat.a] + " - " + CGA_DATA.methods[state.heat.b] +
+        "| per vertex, blue 0, green " + (50 * state.heat.scale).toPrecision(2) + "%, red >= " +
+        (100 * state.heat.scale).toPrecision(2) + "% of the " + (state.scene === "twist" ? "strip's length" : "character's size");
     renderer.setPalette("character", characterPalette(state.mode, state.time, state.weight));
     renderer.setPalette("twist", twistPalette(state.twist));
   };
@@ -503,8 +507,10 @@ async function main() {
     const t0 = performance.now();
     for (let i = 0; i < 20; ++i) await renderer.draw("character", heatUniforms("character"));
     if (state.scene !== "character") await renderer.draw(state.scene, heatUniforms(state.scene));
-    lines.push("frame_ms " + ((performance.now() - t0) / 20).toFixed(2) + " (" + character.vertexCount +
-               " vertices x 4 panels; " + renderer.describe() + ")");
+    const ms = (performance.now() - t0) / 20;
+    lines.push("frame_ms " + ms.toFixed(2) + " (" + character.vertexCount + " vertices x 4 panels; " +
+               renderer.describe() + ")");
+    $("status").textContent = fallback + renderer.describe() + " - frame " + ms.toFixed(1) + " ms";
     return lines.join("\n");
   }
   let last = performance.now(), tick = 0;
