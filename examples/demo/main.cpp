@@ -473,7 +473,9 @@ int run(const demo::Options& opt) {
   }
   // ---- the web page (--web DIR): the runtime's palettes for every motor mode on a grid of clip times and
   // fade weights, skinned in the browser (web.cpp, docs/web.md)
-  if (!opt.web_dir.empty()) {
+  if (!opt.web_dir.empty() && ch.meshes.empty()) {
+    fmt::print("web page  skipped: the file has no skinned mesh to show\n\n");
+  } else if (!opt.web_dir.empty()) {
     progress.stage("writing the web page into " + opt.web_dir);
     demo::WebInput web;
     web.character = &ch, web.model = std::filesystem::path(opt.model).filename().string(), web.size = size;
@@ -486,7 +488,8 @@ int run(const demo::Options& opt) {
       p.run(fade, u, w);
       return p.motor_palettes;
     };
-    fmt::print("web page  {}\n", demo::write_web_page(web, opt.web_dir));
+    fmt::print("web page  {}\n  open it in a browser (file:// is fine; WebGPU, else WebGL 2); add #selftest to check it\n\n",
+               demo::write_web_page(web, opt.web_dir));
   }
 
   // ---- the GPU path: the mid-fade pose skinned again by the GLSL shaders built from the generated kernels
