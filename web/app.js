@@ -478,6 +478,7 @@ async function main() {
           fallback = "navigator.gpu gave no adapter; ";
           break;
         }
+        renderer.setPalette("character", characterPalette(0, 0, 0));
         await renderer.draw("character", heatUniforms("character"));  // the probe: presenting works
         break;
       } catch (e) {
