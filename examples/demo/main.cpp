@@ -147,14 +147,12 @@ struct PosePipeline {
   }
 
   // The model pose and the palettes at fade step u (weight u on clip b).
-  void run(const Fade& f, float u) { run(f, u, u); }
-  // The same with the weight w on clip b apart from the clip times (the web page's two sliders).
-  void run(const Fade& f, float u, float w) {
+  void run(const Fade& f, float u) {
     sample(*f.a, f.time_a(u), mode, a);
     sample(*f.b, f.time_b(u), mode, b);
     const BlendLayer layers[2] = {
-        {1.0f - w, a.motors, a.transforms, a.dual_quats, a.scales},
-        {w, b.motors, b.transforms, b.dual_quats, b.scales}};
+        {1.0f - u, a.motors, a.transforms, a.dual_quats, a.scales},
+        {u, b.motors, b.transforms, b.dual_quats, b.scales}};
     BlendingJob blend;
     blend.mode = mode, blend.layers = layers;
     blend.out_motors = blended.motors, blend.out_transforms = blended.transforms,
@@ -484,8 +482,11 @@ int run(const demo::Options& opt) {
     std::map<Interpolation, PosePipeline> pipelines;
     for (Interpolation m : web.modes) pipelines.emplace(m, PosePipeline(m, sk, ch.meshes, inverse_binds));
     web.pose = [&](Interpolation m, float u, float w) {
+      // The clip times of step u held fixed, so that the fade's step w only sets the weight.
+      Fade at = fade;
+      at.a0 = at.a1 = fade.time_a(u), at.b0 = at.b1 = fade.time_b(u);
       PosePipeline& p = pipelines.at(m);
-      p.run(fade, u, w);
+      p.run(at, w);
       return p.motor_palettes;
     };
     fmt::print("web page  {}\n  open it in a browser (file:// is fine; WebGPU, else WebGL 2); add #selftest to check it\n\n",
