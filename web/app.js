@@ -4,7 +4,8 @@
 // compares them with the CPU jobs' vertices in CGA_DATA and writes "PATH ok|fail MAXDEV" into #cga-result
 // (also the first line of the promise window.cgagenResult, which tests/targets/browser_run.py waits for).
 // Options in the fragment, joined by "&": selftest, webgl2 (force the WebGL 2 path), heat (heat map on),
-// twist (the twist strip view), mismatch (the self-test compares each method with the next one's CPU
+// twist (the twist strip view), frames (the result comes after 5 frames of the animation loop, playing:
+// tests/web's check of the interactive path), mismatch (the self-test compares each method with the next one's CPU
 // vertices: it must fail; tests/web checks that the comparison can). No libraries: a few matrices are all
 // the page needs.
 "use strict";
@@ -514,7 +515,8 @@ async function main() {
     $("status").textContent = fallback + renderer.describe() + " - frame " + ms.toFixed(1) + " ms";
     return lines.join("\n");
   }
-  let last = performance.now(), tick = 0;
+  let last = performance.now(), tick = 0, drawn = 0, loopDone = null;
+  const looped = new Promise((resolve) => { loopDone = resolve; });
   const loop = async () => {
     resize($("view"));
     if (state.playing && ++tick % 4 === 0) {
@@ -530,10 +532,11 @@ async function main() {
       last = t0;
       $("status").textContent = fallback + renderer.describe() + " - frame " + frameMs.toFixed(2) + " ms";
     }
+    if (++drawn === 5) loopDone("interactive " + drawn + " frames, time step " + state.time + ", frame " + frameMs.toFixed(1) + " ms");
     requestAnimationFrame(loop);
   };
   requestAnimationFrame(loop);
-  return "interactive";
+  return options.has("frames") ? looped : "interactive";
 }
 
 window.cgagenResult = main().catch((e) => {
