@@ -5,7 +5,8 @@ Loads PAGE_DIR/index.html#selftest through tests/targets/browser_run.py (DevTool
 page's window.cgagenResult, with a timeout), with API's flags (webgpu: Dawn on SwiftShader; webgl2: WebGPU
 off, ANGLE on SwiftShader). The first line of the result must be "API ok MAXDEV" with MAXDEV <= 1e-4 (the
 page compares the GPU's skinned vertices of every method with the CPU jobs' vertices embedded by the
-exporter); with --expect-fail it must be "API fail MAXDEV" with MAXDEV > 1e-4 (the mismatch check). Saves
+exporter), and the page must load nothing from elsewhere (no URL, fetch, script src, link or import); with
+--expect-fail it must be "API fail MAXDEV" with MAXDEV > 1e-4 (the mismatch check). Saves
 OUT_PREFIX.png (a screenshot) and OUT_PREFIX.txt; prints the page's frame time, labelled as what it is: a CPU
 emulation. Exit status 0 when the check holds, else 1 with the reason.
 """
@@ -29,6 +30,13 @@ def main():
     page = os.path.join(os.path.abspath(page_dir), "index.html")
     if not os.path.isfile(page):
         print("FAIL no page %s (cga-demo --web did not write it)" % page)
+        return 1
+    # Self-contained: nothing the browser would load from elsewhere (file:// forbids fetch(); no network).
+    with open(page, encoding="utf-8") as f:
+        html = f.read()
+    outside = re.findall(r"https?://|fetch\(|<script[^>]*\bsrc=|<link\b|import\(|\bimport\s", html)
+    if outside:
+        print("FAIL the page refers to outside resources: %s" % sorted(set(outside)))
         return 1
     for stale in (prefix + ".txt", prefix + ".png"):
         if os.path.exists(stale):
