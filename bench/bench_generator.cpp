@@ -79,9 +79,10 @@ struct OpCounts {
 };
 
 // The "total:" line of `cgagen --stats -O<level>`.
-OpCounts stats_at(const fs::path& script, int level) {
+OpCounts stats_at(const fs::path& script, int level, const std::string& algebra) {
   const fs::path out = scratch_dir() / (script.stem().string() + ".stats.txt");
-  const int rc = run_process({cgagen_path(), "--stats", fmt::format("-O{}", level), script.string()}, out.string());
+  const int rc = run_process({cgagen_path(), "--algebra", algebra, "--stats", fmt::format("-O{}", level), script.string()},
+                             out.string());
   if (rc != 0) throw std::runtime_error(fmt::format("cgagen --stats -O{} {} failed (exit {})", level, script.string(), rc));
   const std::string text = read_file(out);
   static const std::regex total(R"(total:\s*(\d+) add, (\d+) mul, (\d+) div, (\d+) call)");
@@ -91,20 +92,21 @@ OpCounts stats_at(const fs::path& script, int level) {
   return {std::stol(m[1]), std::stol(m[2]), std::stol(m[3]), std::stol(m[4])};
 }
 
-void bm_generate(benchmark::State& state, const fs::path& script) {
+void bm_generate(benchmark::State& state, const fs::path& script, const std::string& algebra) {
   if (cgagen_path().empty()) {
     state.SkipWithError("this build has no cgagen tool (set CGAGEN=PATH)");
     return;
   }
   std::array<OpCounts, 3> ops;
   try {
-    for (int level = 0; level < 3; ++level) ops[level] = stats_at(script, level);
+    for (int level = 0; level < 3; ++level) ops[level] = stats_at(script, level, algebra);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
     return;
   }
   const fs::path out = scratch_dir() / (script.stem().string() + ".hpp");
-  const std::vector<std::string> argv = {cgagen_path(), "--target", "cpp", "-O2", "-o", out.string(), script.string()};
+  const std::vector<std::string> argv = {cgagen_path(), "--algebra", algebra, "--target", "cpp", "-O2",
+                                         "-o",          out.string(), script.string()};
   int failures = 0;
   for (auto _ : state) failures += run_process(argv, "") != 0;
   if (failures) {
@@ -147,13 +149,25 @@ void register_generator_benchmarks() {
     const std::string name = "generator/" + script.stem().string() +
                              (script.parent_path() == fs::path(scripts_dir()) ? "" : " (worst case)");
     // A run takes tens to hundreds of ms: a few iterations are enough and keep the whole bench short.
-    benchmark::RegisterBenchmark(name.c_str(), bm_generate, script)
+    benchmark::RegisterBenchmark(name.c_str(), bm_generate, script, std::string("cga"))
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->Iterations(5);
     add_figure({name, section, script.filename().string(), Metric::ms_per_iter, "", "", std::nullopt,
                 {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
   }
+#ifdef CGA_BENCH_CCGA_200
+  // The largest algebra: a 200-line script in ccga (16 vectors), docs/generator.md "Algebras".
+  {
+    const std::string name = "generator/ccga_200 (--algebra ccga)";
+    benchmark::RegisterBenchmark(name.c_str(), bm_generate, fs::path(CGA_BENCH_CCGA_200), std::string("ccga"))
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(3);
+    add_figure({name, section, "ccga_200.clu", Metric::ms_per_iter, "", "", std::nullopt,
+                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
+  }
+#endif
 }
 
 }  // namespace cga::bench

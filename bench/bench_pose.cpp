@@ -13,8 +13,11 @@
 #include <fmt/format.h>
 
 #include "bench_common.hpp"
+#include "cga/runtime/additive.hpp"
 #include "cga/runtime/jobs.hpp"
+#include "cga/runtime/motor.hpp"
 #include "cga/runtime/loader.hpp"
+#include "cga/baselines/pose_jobs.hpp"
 #include "summary.hpp"
 
 namespace cga::bench {
@@ -26,7 +29,7 @@ constexpr float kFrame = 1.0f / 60.0f;
 
 struct PoseScene {
   Character character;
-  std::vector<InverseBind> inverse_binds;  // per skinned mesh
+  std::vector<baseline::InverseBind> inverse_binds;  // per skinned mesh
   std::size_t palette_entries = 0;
 };
 
@@ -36,7 +39,7 @@ const PoseScene& pose_scene() {
     s->character = load_character(models_dir() + "/" + kCharacter);
     if (s->character.clips.empty()) throw std::runtime_error(std::string(kCharacter) + " has no clip");
     for (const SkinnedMesh& mesh : s->character.meshes) {
-      s->inverse_binds.push_back(make_inverse_bind(mesh));
+      s->inverse_binds.push_back(baseline::make_inverse_bind(mesh));
       s->palette_entries += mesh.joint_remap.size();
     }
     return s;
@@ -51,7 +54,7 @@ struct PaletteBuffers {
   explicit PaletteBuffers(std::size_t n) : motors(n), matrices(n), dual_quats(n) {}
 };
 
-void bm_pose(benchmark::State& state, Interpolation mode) {
+void bm_pose(benchmark::State& state, Interpolation mode, bool partial) {
   const PoseScene* scene = nullptr;
   try {
     scene = &pose_scene();
@@ -63,36 +66,64 @@ void bm_pose(benchmark::State& state, Interpolation mode) {
   const Clip& clip_a = ch.clips[0];
   const Clip& clip_b = ch.clips.size() > 1 ? ch.clips[1] : ch.clips[0];
   const std::size_t joints = static_cast<std::size_t>(ch.skeleton.joint_count());
-  PoseBuffer a(joints), b(joints), blended(joints), model(joints);
+  baseline::PoseBuffer a(joints), b(joints), blended(joints), model(joints);
   std::vector<PaletteBuffers> palettes;
   for (const SkinnedMesh& mesh : ch.meshes) palettes.emplace_back(mesh.joint_remap.size());
 
-  SamplingJob sample_a{&clip_a, 0.0f, mode, a.motors, a.transforms, a.dual_quats, a.scales};
-  SamplingJob sample_b{&clip_b, 0.0f, mode, b.motors, b.transforms, b.dual_quats, b.scales};
-  const BlendLayer layers[2] = {{1.0f - kCrossFade, a.motors, a.transforms, a.dual_quats, a.scales},
-                                {kCrossFade, b.motors, b.transforms, b.dual_quats, b.scales}};
-  const BlendingJob blend{mode, layers, blended.motors, blended.transforms, blended.dual_quats, blended.scales};
-  const LocalToModelJob to_model{&ch.skeleton,   mode,           blended.motors,  blended.transforms,
-                                 blended.dual_quats, blended.scales, model.motors, model.matrices,
-                                 model.dual_quats,   model.scales};
-  std::vector<SkinningPaletteJob> palette_jobs;
-  for (std::size_t m = 0; m < ch.meshes.size(); ++m)
-    palette_jobs.push_back({mode, ch.meshes[m].joint_remap, &scene->inverse_binds[m], model.motors,
-                            model.matrices, model.dual_quats, model.scales, palettes[m].motors,
-                            palettes[m].matrices, palettes[m].dual_quats});
+  // One representation's jobs per mode: the runtime's motor jobs, or the GLM baselines'.
+  using namespace baseline;
+  SamplingJob motor_a{&clip_a, 0.0f, mode, a.motors}, motor_b{&clip_b, 0.0f, mode, b.motors};
+  // Partial blending: the second layer weighs 1 on the second half of the joints, 0.3 on the first.
+  std::vector<float> mask(joints, 1.0f);
+  for (std::size_t j = 0; j < joints / 2; ++j) mask[j] = 0.3f;
+  const BlendLayer motor_layers[2] = {{1.0f - kCrossFade, a.motors},
+                                      {kCrossFade, b.motors, partial ? std::span<const float>(mask) : std::span<const float>()}};
+  const BlendingJob motor_blend{mode, motor_layers, blended.motors};
+  const LocalToModelJob motor_model{&ch.skeleton, blended.motors, model.motors};
+  std::vector<SkinningPaletteJob> motor_palettes;
+  TransformSamplingJob trs_a{&clip_a, 0.0f, a.transforms}, trs_b{&clip_b, 0.0f, b.transforms};
+  const TransformLayer trs_layers[2] = {{1.0f - kCrossFade, a.transforms}, {kCrossFade, b.transforms}};
+  const TransformBlendingJob trs_blend{trs_layers, blended.transforms};
+  const MatrixLocalToModelJob matrix_model{&ch.skeleton, blended.transforms, model.matrices};
+  std::vector<MatrixPaletteJob> matrix_palettes;
+  DualQuatSamplingJob dq_a{&clip_a, 0.0f, a.dual_quats, a.scales}, dq_b{&clip_b, 0.0f, b.dual_quats, b.scales};
+  const DualQuatLayer dq_layers[2] = {{1.0f - kCrossFade, a.dual_quats, a.scales},
+                                      {kCrossFade, b.dual_quats, b.scales}};
+  const DualQuatBlendingJob dq_blend{dq_layers, blended.dual_quats, blended.scales};
+  const DualQuatLocalToModelJob dq_model{&ch.skeleton, blended.dual_quats, blended.scales, model.dual_quats,
+                                         model.scales};
+  std::vector<DualQuatPaletteJob> dq_palettes;
+  for (std::size_t m = 0; m < ch.meshes.size(); ++m) {
+    const baseline::InverseBind& ib = scene->inverse_binds[m];
+    motor_palettes.push_back({ch.meshes[m].joint_remap, ib.motors, model.motors, palettes[m].motors});
+    matrix_palettes.push_back({ch.meshes[m].joint_remap, ib.matrices, model.matrices, palettes[m].matrices});
+    dq_palettes.push_back({ch.meshes[m].joint_remap, ib.dual_quats, model.dual_quats, model.scales,
+                           palettes[m].dual_quats});
+  }
+  const auto run_pose = [&](float ta, float tb) {
+    bool ok = true;
+    if (mode == Interpolation::glm_matrix) {
+      trs_a.time = ta, trs_b.time = tb;
+      ok = trs_a.Run() && trs_b.Run() && trs_blend.Run() && matrix_model.Run();
+      for (const MatrixPaletteJob& job : matrix_palettes) ok &= job.Run();
+    } else if (mode == Interpolation::glm_dualquat) {
+      dq_a.time = ta, dq_b.time = tb;
+      ok = dq_a.Run() && dq_b.Run() && dq_blend.Run() && dq_model.Run();
+      for (const DualQuatPaletteJob& job : dq_palettes) ok &= job.Run();
+    } else {
+      motor_a.time = ta, motor_b.time = tb;
+      ok = motor_a.Run() && motor_b.Run() && motor_blend.Run() && motor_model.Run();
+      for (const SkinningPaletteJob& job : motor_palettes) ok &= job.Run();
+    }
+    return ok;
+  };
 
   const float duration_a = clip_a.duration > 0 ? clip_a.duration : 1.0f;
   const float duration_b = clip_b.duration > 0 ? clip_b.duration : 1.0f;
   float t = 0.0f;
   bool ok = true;
   for (auto _ : state) {
-    sample_a.time = std::fmod(t, duration_a);
-    sample_b.time = std::fmod(t + 0.5f * duration_b, duration_b);
-    ok &= sample_a.Run();
-    ok &= sample_b.Run();
-    ok &= blend.Run();
-    ok &= to_model.Run();
-    for (const SkinningPaletteJob& job : palette_jobs) ok &= job.Run();
+    ok &= run_pose(std::fmod(t, duration_a), std::fmod(t + 0.5f * duration_b, duration_b));
     benchmark::DoNotOptimize(palettes.front().motors.data());
     benchmark::DoNotOptimize(palettes.front().matrices.data());
     benchmark::ClobberMemory();
@@ -107,6 +138,31 @@ void bm_pose(benchmark::State& state, Interpolation mode) {
   state.counters["joints"] = static_cast<double>(joints);
 }
 
+// An additive layer (weight 0.6) on a 54-joint base pose, both random rigid motors: the screw weighting
+// (motor log/exp per joint) against the normalized lerp toward the identity.
+void bm_additive(benchmark::State& state, Interpolation mode) {
+  constexpr std::size_t kJoints = 54;
+  std::vector<Motor> base(kJoints), delta(kJoints), out(kJoints);
+  for (std::size_t j = 0; j < kJoints; ++j) {
+    const float a = 0.1f * static_cast<float>(j);
+    Transform x, y;
+    x.rotation = glm::angleAxis(a, glm::normalize(glm::vec3(1.0f, a, 2.0f)));
+    x.translation = glm::vec3(a, 1.0f, -a);
+    y.rotation = glm::angleAxis(0.5f + a, glm::normalize(glm::vec3(a, 1.0f, 0.5f)));
+    y.translation = glm::vec3(0.2f, -a, 0.3f);
+    base[j] = motor_from_transform(x), delta[j] = motor_from_transform(y);
+  }
+  const AdditiveLayer layers[1] = {{0.6f, delta}};
+  const AdditiveBlendingJob job{mode, base, layers, out};
+  bool ok = true;
+  for (auto _ : state) {
+    ok &= job.Run();
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  if (!ok) state.SkipWithError("AdditiveBlendingJob::Run returned false");
+}
+
 }  // namespace
 
 void register_pose_benchmarks() {
@@ -114,11 +170,26 @@ void register_pose_benchmarks() {
   const std::string baseline = "pose/glm-matrix";
   for (Interpolation mode : kAllInterpolations) {
     const std::string name = "pose/" + std::string(to_string(mode));
-    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode, false)->Unit(benchmark::kMicrosecond);
     const bool ours = uses_motors(mode);
     add_figure({name, section, std::string(to_string(mode)) + (ours ? "" : " (baseline)"), Metric::us_per_iter,
                 baseline, "glm-matrix", ours ? std::optional<Target>(Target{1.0, "<= 1.0 µs"}) : std::nullopt,
                 {}});
+  }
+  // Additive layer weighting, screw (exp(w log Δ)) vs nlerp toward the identity.
+  const std::string additive = "Additive layer on 54 joints (weight 0.6)";
+  for (Interpolation mode : {Interpolation::screw, Interpolation::nlerp}) {
+    const std::string name = "pose/additive-" + std::string(to_string(mode));
+    benchmark::RegisterBenchmark(name.c_str(), bm_additive, mode)->Unit(benchmark::kMicrosecond);
+    add_figure({name, additive, std::string(to_string(mode)) + " weighting", Metric::us_per_iter,
+                mode == Interpolation::nlerp ? "" : "pose/additive-nlerp", "nlerp", std::nullopt, {}});
+  }
+  // Partial blending (per-joint weights on the second layer): the per-joint path of BlendingJob.
+  for (Interpolation mode : {Interpolation::paper, Interpolation::nlerp}) {
+    const std::string name = "pose/" + std::string(to_string(mode)) + "-partial";
+    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode, true)->Unit(benchmark::kMicrosecond);
+    add_figure({name, section, std::string(to_string(mode)) + ", per-joint weights", Metric::us_per_iter, baseline,
+                "glm-matrix", std::nullopt, {}});
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "bench_common.hpp"
 #include "cga/runtime/jobs.hpp"
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
@@ -73,25 +74,16 @@ bool add_pose_palettes(const Character& ch, float time, SkinScene& scene) {
   scene.dual_quats.assign(scene.meshes.size(), {});
   scene.motors.assign(scene.meshes.size(), {});
   for (Interpolation mode : {Interpolation::paper, Interpolation::glm_matrix, Interpolation::glm_dualquat}) {
-    PoseBuffer local(n), model(n);
-    if (!SamplingJob{&clip, time, mode, local.motors, local.transforms, local.dual_quats, local.scales}.Run())
-      return false;
-    if (!LocalToModelJob{&ch.skeleton,  mode,          local.motors,      local.transforms, local.dual_quats,
-                         local.scales,  model.motors,  model.matrices,    model.dual_quats, model.scales}
-             .Run())
+    baseline::PoseBuffer local(n), model(n);
+    if (!baseline::sample(mode, clip, time, local) || !baseline::local_to_model(mode, ch.skeleton, local, model))
       return false;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
       const SkinnedMesh& mesh = scene.meshes[m];
-      const InverseBind ib = make_inverse_bind(mesh);
-      const std::size_t k = mesh.joint_remap.size();
-      scene.motors[m].resize(mode == Interpolation::paper ? k : scene.motors[m].size());
-      scene.matrices[m].resize(mode == Interpolation::glm_matrix ? k : scene.matrices[m].size());
-      scene.dual_quats[m].resize(mode == Interpolation::glm_dualquat ? k : scene.dual_quats[m].size());
-      const SkinningPaletteJob job{mode,           mesh.joint_remap, &ib,
-                                   model.motors,   model.matrices,   model.dual_quats,
-                                   model.scales,   scene.motors[m],  scene.matrices[m],
-                                   scene.dual_quats[m]};
-      if (!job.Run()) return false;
+      baseline::PaletteBuffer pal(mesh.joint_remap.size());
+      if (!baseline::palette(mode, mesh.joint_remap, baseline::make_inverse_bind(mesh), model, pal)) return false;
+      if (mode == Interpolation::paper) scene.motors[m] = pal.motors;
+      if (mode == Interpolation::glm_matrix) scene.matrices[m] = pal.matrices;
+      if (mode == Interpolation::glm_dualquat) scene.dual_quats[m] = pal.dual_quats;
     }
   }
   return true;

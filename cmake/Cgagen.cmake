@@ -5,6 +5,8 @@
 #                   OUTPUT_DIR <dir>
 #                   [TARGETS cpp glsl ...]      # default: cpp; any of cmake/CgagenTargets.cmake
 #                   [OPT -O2]                   # default: -O2
+#                   [ALGEBRA name|file.csv]     # default: cga; --algebra (2d 3d 2dpga 3dpga cra sta gac qga dcga
+#                                               # ccga, or a Gaalop definition.csv, a dependency then)
 #                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
 #                   [RETURN OUT]                # glsl only: --return OUT
 #                   [TEMPLATES <dir>]           # default: the tool's built-in templates/
@@ -25,7 +27,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES" "SCRIPTS;TARGETS;PACK" ${ARGN})
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA" "SCRIPTS;TARGETS;PACK" ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
   endif()
@@ -66,6 +68,20 @@ function(cgagen_generate target)
     list(APPEND _glsl_args --return ${CG_RETURN})
   endif()
 
+  # ALGEBRA: a built-in name is passed as is; anything else is a definition file the outputs depend on.
+  set(_algebra_args)
+  set(_algebra_dep)
+  if(CG_ALGEBRA)
+    set(_builtin_algebras 2d 3d 2dpga 3dpga cra sta cga gac qga dcga ccga)
+    if(CG_ALGEBRA IN_LIST _builtin_algebras)
+      set(_algebra_args --algebra ${CG_ALGEBRA})
+    else()
+      get_filename_component(_algebra_file ${CG_ALGEBRA} ABSOLUTE)
+      set(_algebra_args --algebra ${_algebra_file})
+      set(_algebra_dep ${_algebra_file})
+    endif()
+  endif()
+
   file(MAKE_DIRECTORY ${CG_OUTPUT_DIR})
   set(_outputs)
   foreach(_script ${CG_SCRIPTS})
@@ -78,7 +94,7 @@ function(cgagen_generate target)
       endif()
       set(_ext ${CGAGEN_EXT_${_t}})
       set(_out ${CG_OUTPUT_DIR}/${_name}${_ext})
-      set(_args --target ${_t} ${CG_OPT} --name ${_name} ${_templates_arg})
+      set(_args --target ${_t} ${CG_OPT} --name ${_name} ${_templates_arg} ${_algebra_args})
       if(NOT CG_NO_WERROR)
         list(APPEND _args --Werror)
       endif()
@@ -94,7 +110,7 @@ function(cgagen_generate target)
       add_custom_command(
         OUTPUT ${_byproducts}
         COMMAND ${_tool} ${_args} -o ${_out} ${_script}
-        DEPENDS ${_script} ${_templates} ${_tool_dep}
+        DEPENDS ${_script} ${_templates} ${_tool_dep} ${_algebra_dep}
         COMMENT "cgagen ${_name}${_ext}"
         VERBATIM)
       list(APPEND _outputs ${_byproducts})

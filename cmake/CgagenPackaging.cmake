@@ -67,6 +67,13 @@ install(TARGETS cga_runtime EXPORT cgagenTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.hpp")
+# cga::baselines: the GLM pose jobs cga::gpu's lbs/dqs palettes come from.
+set_target_properties(cga_baselines PROPERTIES EXPORT_NAME baselines)
+install(TARGETS cga_baselines EXPORT cgagenTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/baselines/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.hpp")
 if(TARGET cga_gpu)
   set_target_properties(cga_gpu PROPERTIES EXPORT_NAME gpu)
   install(TARGETS cga_gpu EXPORT cgagenTargets

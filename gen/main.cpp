@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "algebra/algebra.hpp"
 #include "emit/emit.hpp"
 #include "expand/expand.hpp"
 #include "front/diagnostics.hpp"
@@ -28,6 +29,8 @@ Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code. SCRIPT - rea
 standard input (diagnostics then name <stdin>, the function is named kernel unless --name is given).
 
 options:
+  --algebra NAME|FILE     the geometric algebra (default cga): 2d 3d 2dpga 3dpga cra sta cga gac qga
+                          dcga ccga, or a Gaalop definition.csv file
   --target NAME           output language (default cpp); --target list prints the targets
   --target-extension NAME print the file extension of target NAME
   -O0 | -O1 | -O2         optimization level (default -O2)
@@ -68,6 +71,7 @@ struct Options {
   bool eval = false;
   opt::InputValues eval_inputs;
   bool werror = false;
+  std::string algebra = "cga";
 };
 
 double parse_number(const std::string& text, const std::string& what) {
@@ -133,6 +137,8 @@ Options parse_args(int argc, char** argv) {
         o.emit.pack[v.substr(0, eq)] = emit::parse_pack(v.substr(eq + 1));
       } else if (a == "--return") {
         o.emit.return_output = value(i, a);
+      } else if (a == "--algebra") {
+        o.algebra = value(i, a);
       } else if (a == "--stats") {
         o.stats = true;
       } else if (a == "--stats-out") {
@@ -250,6 +256,13 @@ front::SourceFile load_script(const std::string& path) {
 }
 
 int run(const Options& o) {
+  try {
+    algebra::use(algebra::load(o.algebra));
+  } catch (const algebra::AlgebraError& e) {  // "file:line: error: ..." for a bad definition file
+    const std::string m = e.what();
+    std::cerr << (m.find(": error: ") != std::string::npos ? "" : "cgagen: error: ") << m << "\n";
+    return 1;
+  }
   front::SourceFile file = load_script(o.script);
   const bool from_stdin = o.script == "-";
   try {

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 
@@ -18,27 +19,12 @@ using namespace cga;
 namespace {
 
 // Model-space joint positions of `clip` at time t in `mode`.
-void joint_positions(const Skeleton& sk, const Clip& clip, float t, Interpolation mode, PoseBuffer& local,
-                     PoseBuffer& model, std::vector<glm::vec3>& out) {
-  SamplingJob s;
-  s.clip = &clip, s.time = t, s.mode = mode;
-  s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
-  s.out_scales = local.scales;
-  LocalToModelJob l2m;
-  l2m.skeleton = &sk, l2m.mode = mode;
-  l2m.local_motors = local.motors, l2m.local_transforms = local.transforms, l2m.local_dual_quats = local.dual_quats,
-  l2m.local_scales = local.scales;
-  l2m.model_motors = model.motors, l2m.model_matrices = model.matrices, l2m.model_dual_quats = model.dual_quats,
-  l2m.model_scales = model.scales;
-  if (!s.Run() || !l2m.Run()) throw std::runtime_error("sampling or hierarchy job rejected its input");
+void joint_positions(const Skeleton& sk, const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& local,
+                     baseline::PoseBuffer& model, std::vector<glm::vec3>& out) {
+  if (!baseline::sample(mode, clip, t, local) || !baseline::local_to_model(mode, sk, local, model))
+    throw std::runtime_error("sampling or hierarchy job rejected its input");
   out.resize(sk.joint_count());
-  for (int j = 0; j < sk.joint_count(); ++j) {
-    switch (mode) {
-      case Interpolation::glm_matrix: out[j] = glm::vec3(model.matrices[j][3]); break;
-      case Interpolation::glm_dualquat: out[j] = dual_quat_translation(model.dual_quats[j]); break;
-      default: out[j] = motor_transform_point(model.motors[j], glm::vec3(0.0f)); break;
-    }
-  }
+  for (int j = 0; j < sk.joint_count(); ++j) out[j] = baseline::joint_position(mode, model, j);
 }
 
 // The clip keeping only the keys at `kept` frame times (joints with a single key keep it).
@@ -114,7 +100,7 @@ int main(int argc, char** argv) {
     for (const std::string& w : ch.warnings) fmt::print(stderr, "warning: {}\n", w);
 
     const Skeleton& sk = ch.skeleton;
-    PoseBuffer local(sk.joint_count()), model(sk.joint_count());
+    baseline::PoseBuffer local(sk.joint_count()), model(sk.joint_count());
     std::vector<std::vector<glm::vec3>> truth(frames.size());
     for (std::size_t f = 0; f < frames.size(); ++f)
       joint_positions(sk, clip, frames[f], Interpolation::glm_matrix, local, model, truth[f]);

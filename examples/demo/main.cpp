@@ -19,6 +19,7 @@
 #include "cga/gpu/context.hpp"
 #include "cga/gpu/render.hpp"
 #include "cga/gpu/skinning.hpp"
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/motor.hpp"
@@ -121,14 +122,14 @@ struct PosePipeline {
   Interpolation mode;
   const Skeleton* skeleton;
   const std::vector<SkinnedMesh>* meshes;
-  const std::vector<InverseBind>* inverse_binds;
-  PoseBuffer a, b, blended, model;
+  const std::vector<baseline::InverseBind>* inverse_binds;
+  baseline::PoseBuffer a, b, blended, model;
   std::vector<MotorPalette> motor_palettes;
   std::vector<MatrixPalette> matrix_palettes;
   std::vector<DualQuatPalette> dq_palettes;
 
   PosePipeline(Interpolation m, const Skeleton& sk, const std::vector<SkinnedMesh>& ms,
-               const std::vector<InverseBind>& ib)
+               const std::vector<baseline::InverseBind>& ib)
       : mode(m), skeleton(&sk), meshes(&ms), inverse_binds(&ib), a(sk.joint_count()), b(sk.joint_count()),
         blended(sk.joint_count()), model(sk.joint_count()) {
     for (const SkinnedMesh& mesh : ms) {
@@ -138,48 +139,46 @@ struct PosePipeline {
     }
   }
 
-  static void sample(const Clip& clip, float t, Interpolation mode, PoseBuffer& out) {
-    SamplingJob s;
-    s.clip = &clip, s.time = t, s.mode = mode;
-    s.out_motors = out.motors, s.out_transforms = out.transforms, s.out_dual_quats = out.dual_quats,
-    s.out_scales = out.scales;
-    if (!s.Run()) throw std::runtime_error(fmt::format("sampling clip '{}' at {} s ({}) failed", clip.name, t, to_string(mode)));
-  }
-
-  // The model pose and the palettes at fade step u (weight u on clip b).
+  // The model pose and the palettes at fade step u (weight u on clip b), by the jobs of the mode's
+  // representation: the runtime's motor jobs, or the GLM baselines (cga/baselines/pose_jobs.hpp).
   void run(const Fade& f, float u) {
-    sample(*f.a, f.time_a(u), mode, a);
-    sample(*f.b, f.time_b(u), mode, b);
-    const BlendLayer layers[2] = {
-        {1.0f - u, a.motors, a.transforms, a.dual_quats, a.scales},
-        {u, b.motors, b.transforms, b.dual_quats, b.scales}};
-    BlendingJob blend;
-    blend.mode = mode, blend.layers = layers;
-    blend.out_motors = blended.motors, blend.out_transforms = blended.transforms,
-    blend.out_dual_quats = blended.dual_quats, blend.out_scales = blended.scales;
-    if (!blend.Run()) throw std::runtime_error(fmt::format("cross-fade ({}) failed", to_string(mode)));
-    LocalToModelJob l2m;
-    l2m.skeleton = skeleton, l2m.mode = mode;
-    l2m.local_motors = blended.motors, l2m.local_transforms = blended.transforms,
-    l2m.local_dual_quats = blended.dual_quats, l2m.local_scales = blended.scales;
-    l2m.model_motors = model.motors, l2m.model_matrices = model.matrices, l2m.model_dual_quats = model.dual_quats,
-    l2m.model_scales = model.scales;
-    if (!l2m.Run()) throw std::runtime_error(fmt::format("hierarchy ({}) failed", to_string(mode)));
-    for (std::size_t m = 0; m < meshes->size(); ++m) {
-      SkinningPaletteJob p;
-      p.mode = mode, p.joint_remap = (*meshes)[m].joint_remap, p.inverse_bind = &(*inverse_binds)[m];
-      p.model_motors = model.motors, p.model_matrices = model.matrices, p.model_dual_quats = model.dual_quats,
-      p.model_scales = model.scales;
-      p.out_motors = motor_palettes[m], p.out_matrices = matrix_palettes[m], p.out_dual_quats = dq_palettes[m];
-      if (!p.Run())
-        throw std::runtime_error(fmt::format("palette of mesh '{}' ({}) failed", (*meshes)[m].name, to_string(mode)));
+    using namespace baseline;
+    const float ta = f.time_a(u), tb = f.time_b(u);
+    bool ok = true;
+    if (mode == Interpolation::glm_matrix) {
+      const TransformLayer layers[2] = {{1.0f - u, a.transforms}, {u, b.transforms}};
+      ok = TransformSamplingJob{f.a, ta, a.transforms}.Run() && TransformSamplingJob{f.b, tb, b.transforms}.Run() &&
+           TransformBlendingJob{layers, blended.transforms}.Run() &&
+           MatrixLocalToModelJob{skeleton, blended.transforms, model.matrices}.Run();
+      for (std::size_t m = 0; ok && m < meshes->size(); ++m)
+        ok = MatrixPaletteJob{(*meshes)[m].joint_remap, (*inverse_binds)[m].matrices, model.matrices,
+                              matrix_palettes[m]}.Run();
+    } else if (mode == Interpolation::glm_dualquat) {
+      const DualQuatLayer layers[2] = {{1.0f - u, a.dual_quats, a.scales}, {u, b.dual_quats, b.scales}};
+      ok = DualQuatSamplingJob{f.a, ta, a.dual_quats, a.scales}.Run() &&
+           DualQuatSamplingJob{f.b, tb, b.dual_quats, b.scales}.Run() &&
+           DualQuatBlendingJob{layers, blended.dual_quats, blended.scales}.Run() &&
+           DualQuatLocalToModelJob{skeleton, blended.dual_quats, blended.scales, model.dual_quats, model.scales}.Run();
+      for (std::size_t m = 0; ok && m < meshes->size(); ++m)
+        ok = DualQuatPaletteJob{(*meshes)[m].joint_remap, (*inverse_binds)[m].dual_quats, model.dual_quats,
+                                model.scales, dq_palettes[m]}.Run();
+    } else {
+      const BlendLayer layers[2] = {{1.0f - u, a.motors}, {u, b.motors}};
+      ok = SamplingJob{f.a, ta, mode, a.motors}.Run() && SamplingJob{f.b, tb, mode, b.motors}.Run() &&
+           BlendingJob{mode, layers, blended.motors}.Run() && LocalToModelJob{skeleton, blended.motors, model.motors}.Run();
+      for (std::size_t m = 0; ok && m < meshes->size(); ++m)
+        ok = SkinningPaletteJob{(*meshes)[m].joint_remap, (*inverse_binds)[m].motors, model.motors,
+                                motor_palettes[m]}.Run();
     }
+    if (!ok)
+      throw std::runtime_error(fmt::format("the {} pose pipeline refused its input (clips '{}' at {} s, '{}' at {} s)",
+                                           to_string(mode), f.a->name, ta, f.b->name, tb));
   }
 
   glm::vec3 joint_position(int j) const {
     switch (mode) {
       case Interpolation::glm_matrix: return glm::vec3(model.matrices[j][3]);
-      case Interpolation::glm_dualquat: return dual_quat_translation(model.dual_quats[j]);
+      case Interpolation::glm_dualquat: return baseline::dual_quat_translation(model.dual_quats[j]);
       default: return motor_transform_point(model.motors[j], glm::vec3(0.0f));
     }
   }
@@ -259,7 +258,7 @@ struct PosedCharacter {
 // cga-points / cga-motors <- generated motor kernels), at key frames of the first clip, where every mode
 // reproduces the keys: what differs is only the representation and the skinning method.
 void key_frame_deviations(const Character& ch, const Fade& fade, const std::vector<SkinningMethod>& methods,
-                          const std::vector<InverseBind>& inverse_binds, float size) {
+                          const std::vector<baseline::InverseBind>& inverse_binds, float size) {
   const Clip& clip = *fade.a;
   std::vector<float> times;
   for (const JointKeys& k : clip.keys)
@@ -330,8 +329,8 @@ int run(const demo::Options& opt) {
   const Fade fade = choose_fade(ch, opt.clips, &rest);
   fmt::print("fade      {}\n\n", fade.description);
 
-  std::vector<InverseBind> inverse_binds;
-  for (const SkinnedMesh& m : ch.meshes) inverse_binds.push_back(make_inverse_bind(m));
+  std::vector<baseline::InverseBind> inverse_binds;
+  for (const SkinnedMesh& m : ch.meshes) inverse_binds.push_back(baseline::make_inverse_bind(m));
 
   // ---- poses: time per pose and joint deviation from the GLM matrix baseline, per mode
   progress.stage(fmt::format("posing {} frames of the cross-fade in {} modes", opt.frames, modes.size()));

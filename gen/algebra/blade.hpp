@@ -1,9 +1,12 @@
-// The 32 basis blades of CGA R(4,1) over the null basis {e1, e2, e3, einf, e0}, in Gaalop's order:
+// Blade order, names and parsing of the algebra being compiled (algebra::current(), algebra.hpp).
+// In CGA R(4,1), the default, these are the 32 basis blades over the null basis {e1, e2, e3, einf, e0}, in
+// Gaalop's order:
 //   index 0: 1;  1-5: e1 e2 e3 einf e0;
 //   6-15:  the 2-blades, 16-25: the 3-blades, 26-30: the 4-blades, lexicographic in the names' order
 //          e1 < e2 < e3 < einf < e0 (so 6 = e1^e2, 7 = e1^e3, 8 = e1^einf, 9 = e1^e0, 10 = e2^e3, ...);
 //   31: e1^e2^e3^einf^e0.
-// A blade is also named by its bitmap over the null basis: bit 0 e1, bit 1 e2, bit 2 e3, bit 3 einf, bit 4 e0.
+// A blade is also named by its bitmap over the user basis: in CGA bit 0 e1, bit 1 e2, bit 2 e3, bit 3 einf,
+// bit 4 e0. Every algebra orders its blades the same way: by grade, then lexicographic in its vector order.
 // Every generated kernel stores multivectors as coefficients on these blades, in this order.
 #pragma once
 
@@ -15,10 +18,11 @@
 
 namespace cgagen::algebra {
 
-inline constexpr int kBladeCount = 32;
-using BladeIndex = int;          // 0..31, the order above
-using BladeBits = std::uint8_t;  // bitmap over {e1, e2, e3, einf, e0}
+inline constexpr int kBladeCount = 32;  // CGA's blade count; algebra::blade_count() for the current algebra
+using BladeIndex = int;           // 0..blade_count()-1, the order above
+using BladeBits = std::uint32_t;  // bitmap over the user basis vectors
 
+int blade_count();  // of the current algebra: 2^n
 BladeBits blade_bits(BladeIndex i);
 BladeIndex blade_index(BladeBits bits);
 int blade_grade(BladeIndex i);

@@ -1,10 +1,10 @@
-// Product tables of the 32 null-basis blades (order: blade.hpp) for the geometric, outer and Gaalop inner
-// product, plus the per-blade signs of reverse and grade involution.
+// Blade products of the current algebra (algebra::current(), algebra.hpp; CGA by default) for the
+// geometric, outer and Gaalop inner product, plus the per-blade signs of reverse and grade involution.
 //
-// The tables are computed once, at first use, from the metric alone: each null blade is written over the
-// orthonormal basis {e1, e2, e3, e+, e-} (einf = e- + e+, e0 = (e- - e+)/2), multiplied there with bitmap
-// products (e+^2 = 1, e-^2 = -1), and the result written back over the null blades. Entries are exact
-// rationals (0, +-1, +-2, +-1/2, ...).
+// Each product is computed on first use from the diagonal metric alone: both blades are written over the
+// diagonal basis (in CGA the orthonormal {e1, e2, e3, e+, e-}, einf = e- + e+, e0 = (e- - e+)/2), multiplied
+// there with bitmap products, and the result written back over the user blades; it is then cached per
+// pair. Entries are exact rationals (0, +-1, +-2, +-1/2, ...).
 #pragma once
 
 #include <cstdint>
@@ -39,7 +39,7 @@ struct ProductTerm {
   Rational coeff;
 };
 
-enum class ProductKind {
+enum class ProductKind : int {
   Geometric,  // a * b
   Outer,      // a ^ b
   Inner,      // a . b (Gaalop): grade-|k-l| part of a*b for grades k, l >= 1; 0 if either is a scalar

@@ -9,10 +9,14 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
 
+#include "algebra/algebra.hpp"
+#include "expand/algebra_builtins.hpp"
+#include "front/parser.hpp"
 #include "symbolic/budget.hpp"
 #include "symbolic/multivector.hpp"
 #include "symbolic/probes.hpp"
@@ -121,6 +125,7 @@ ex root_of_square(const ex& t) {
 }
 
 bool is_basis_name(const std::string& n) {
+  if (!expand_algebra::is_cga()) return expand_algebra::is_basis_name(n);  // the algebra's own names
   static const std::set<std::string> names = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
   return names.count(n) > 0;
 }
@@ -169,6 +174,7 @@ bool looks_like_typo(const std::string& name, const std::string& known) {
 }
 
 Multivector basis(const std::string& n) {
+  if (!expand_algebra::is_cga()) return expand_algebra::basis(n);
   if (n == "e1") return Multivector::e1();
   if (n == "e2") return Multivector::e2();
   if (n == "e3") return Multivector::e3();
@@ -185,6 +191,7 @@ class Expander {
 
   Kernel run(const front::Script& script) {
     symbolic::WorkBudget budget;
+    define_algebra_builtins();
     for (const auto& s : script.statements)
       if (s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::MacroDef) script_names_.insert(s->name);
     for (const auto& s : script.statements) {
@@ -245,6 +252,25 @@ class Expander {
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
   std::map<std::string, OutputPragma> output_pragmas_;
+
+  // The current algebra's built-in macros (algebra_builtins.cpp; none for CGA), defined before the script
+  // so that a script's own definition of the same name replaces them.
+  std::unique_ptr<front::SourceFile> prelude_file_;
+  std::unique_ptr<front::Script> prelude_;
+  void define_algebra_builtins() {
+    const std::string text = expand_algebra::prelude();
+    if (text.empty()) return;
+    prelude_file_ = std::make_unique<front::SourceFile>("<" + algebra::current().name() + " built-ins>", text);
+    prelude_ = std::make_unique<front::Script>(front::parse(*prelude_file_));
+    for (const auto& s : prelude_->statements) define_macro(*s);
+  }
+
+  bool is_algebra_builtin(const Stmt* def) const {
+    if (!prelude_) return false;
+    for (const auto& s : prelude_->statements)
+      if (s.get() == def) return true;
+    return false;
+  }
 
   // ---- statements --------------------------------------------------------------------------------
 
@@ -440,7 +466,9 @@ class Expander {
   std::optional<ex> sample(const ex& c) {
     ex v;
     try {
-      v = GiNaC::evalf(c.subs(samples_));
+      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
+      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
+      v = GiNaC::evalf(c.subs(samples_, GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product));
     } catch (const std::exception&) {
       return ex(GiNaC::numeric(0));
     }
@@ -644,8 +672,16 @@ class Expander {
       // The definition for this many arguments, else the latest one (which may use fewer).
       auto by_arity = macro->second.find(args.size());
       const Stmt* def = by_arity != macro->second.end() ? by_arity->second : latest_macro_.at(fn);
-      return call_macro(*def, std::move(args), e);
+      if (!is_algebra_builtin(def)) return call_macro(*def, std::move(args), e);
+      try {  // a fault inside a built-in macro is reported at the call: its text is not the script's
+        return call_macro(*def, std::move(args), e);
+      } catch (const CompileError& x) {
+        throw CompileError(e.loc, "in the " + algebra::current().name() + " built-in '" + fn + "': " + x.what());
+      }
     }
+    if (expand_algebra::is_cga_only_builtin(fn))
+      throw CompileError(e.loc, "'" + fn + "' is a CGA built-in; the algebra '" + algebra::current().name() +
+                                    "' does not have it");
     const auto& scalar1 = scalar_functions();
     const auto& arity = builtin_arity();
     auto f1 = scalar1.find(fn);

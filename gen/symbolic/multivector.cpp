@@ -3,6 +3,8 @@
 
 #include "symbolic/budget.hpp"
 
+#include "algebra/algebra.hpp"
+
 #include <array>
 #include <cstdint>
 #include <map>
@@ -128,7 +130,7 @@ GiNaC::ex Multivector::coeff(BladeIndex i) const {
 }
 
 void Multivector::set(BladeIndex i, const GiNaC::ex& c) {
-  if (i < 0 || i >= algebra::kBladeCount) throw std::out_of_range("blade index out of range");
+  if (i < 0 || i >= algebra::blade_count()) throw std::out_of_range("blade index out of range");
   GiNaC::ex e = canonical(c);
   if (e.is_zero()) terms_.erase(i);
   else terms_[i] = e;
@@ -157,8 +159,9 @@ Multivector& Multivector::operator-=(const Multivector& b) {
 }
 
 Multivector Multivector::product(algebra::ProductKind kind, const Multivector& a, const Multivector& b) {
-  std::array<GiNaC::exvector, algebra::kBladeCount> acc;
-  std::array<std::size_t, algebra::kBladeCount> estimate{};  // terms of each coefficient once expanded
+  // Sparse in the result blades: an algebra may have 65,536 of them (ccga); a product touches few.
+  std::map<BladeIndex, GiNaC::exvector> acc;
+  std::map<BladeIndex, std::size_t> estimate;  // terms of each coefficient once expanded
   for (const auto& [i, ca] : a.terms_) {
     for (const auto& [j, cb] : b.terms_) {
       const auto& terms = algebra::product(kind, i, j);
@@ -171,11 +174,11 @@ Multivector Multivector::product(algebra::ProductKind kind, const Multivector& a
       }
     }
   }
-  for (int k = 0; k < algebra::kBladeCount; ++k)
-    if (estimate[k]) WorkBudget::charge(estimate[k]);
+  for (const auto& [k, n] : estimate)
+    if (n) WorkBudget::charge(n);
   Multivector r;
-  for (int k = 0; k < algebra::kBladeCount; ++k)
-    if (!acc[k].empty()) r.set(k, GiNaC::add(acc[k]));
+  for (auto& [k, terms] : acc)
+    if (!terms.empty()) r.set(k, GiNaC::add(terms));
   return r;
 }
 
@@ -232,7 +235,19 @@ Multivector Multivector::grade_above(int k) const {
   return r;
 }
 
-Multivector Multivector::dual() const { return *this * blade(31, -1); }
+Multivector Multivector::dual() const {
+  const algebra::Algebra& alg = algebra::current();
+  if (alg.name() == "cga" && alg.spec().cga_idents) return *this * blade(31, -1);  // CGA, exactly as always
+  const BladeIndex top = alg.blade_count() - 1;
+  if (auto inv = alg.inverse_pseudoscalar()) return *this * blade(top, to_ex(*inv));
+  // A degenerate metric (PGA) has no inverse pseudoscalar. The dual is then Gaalop's complement map (its
+  // 3dpga/2dpga macros): the coefficient of blade B moves to the blade of the vectors B lacks, with sign +1
+  // in this algebra's blade names (e0^e1 <-> e2^e3). It is an involution: dual(dual(A)) = A.
+  Multivector r;
+  for (const auto& [b, c] : terms_)
+    r.terms_[alg.index(alg.bits(b) ^ alg.bits(top))] = c;
+  return r;
+}
 
 Multivector Multivector::expanded() const {
   return map([](const GiNaC::ex& c) { return c; });

@@ -1,5 +1,6 @@
-// A symbolic multivector of CGA R(4,1): a sparse map from null-basis blade (Gaalop order, algebra/blade.hpp)
-// to a GiNaC expression. A small value type with the algebra's operators; products look up the exact
+// A symbolic multivector of the current algebra (algebra::current(), CGA R(4,1) by default): a sparse map
+// from user-basis blade (algebra/blade.hpp order) to a GiNaC expression; never 2^n slots, so ccga's 65,536
+// blades cost only the blades a value has. A small value type with the algebra's operators; products look up the exact
 // tables of algebra/products.hpp and expand their coefficients, and coefficients that expand to 0 are
 // dropped, so two equal multivectors have the same blades.
 #pragma once
@@ -22,7 +23,7 @@ class Multivector {
   Multivector() = default;                         // 0
   explicit Multivector(const GiNaC::ex& scalar);   // scalar * 1
   static Multivector blade(BladeIndex i, const GiNaC::ex& coeff = 1);
-  // The basis vectors and the pseudoscalar e1^e2^e3^einf^e0.
+  // CGA's basis vectors and pseudoscalar e1^e2^e3^einf^e0 (the CGA built-ins use them).
   static Multivector e1() { return blade(1); }
   static Multivector e2() { return blade(2); }
   static Multivector e3() { return blade(3); }
@@ -59,7 +60,9 @@ class Multivector {
   Multivector involute() const;  // grade involution
   Multivector grade(int k) const;
   Multivector grade_above(int k) const;  // the blades of grade > k
-  Multivector dual() const;      // A * (-e1^e2^e3^einf^e0), Gaalop's *A
+  // Gaalop's *A: in CGA A * (-e1^e2^e3^einf^e0); in a nondegenerate algebra A * I^-1; in a degenerate one
+  // (PGA) the complement map of Gaalop's 3dpga/2dpga (see multivector.cpp, docs/generator.md).
+  Multivector dual() const;
   // Re-expands every coefficient and, where a coefficient still has a denominator, normalizes it to find
   // identically-zero ones (normal() is only paid for rational coefficients).
   Multivector expanded() const;

@@ -44,7 +44,7 @@ bool is_rational_function(const GiNaC::ex& e) {
 std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const GiNaC::exmap& at) {
   if (!is_rational_function(e)) return std::nullopt;
   try {
-    const GiNaC::ex v = e.subs(at, GiNaC::subs_options::no_pattern);
+    const GiNaC::ex v = e.subs(at, GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product);
     if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_rational()) return std::nullopt;
     const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(v);
     const std::uint64_t den = reduce(n.denom());

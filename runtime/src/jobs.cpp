@@ -4,11 +4,14 @@
 // picks at startup) with the generated kernels flattened in, so GCC vectorizes them across joints where the
 // data is structure of arrays (sampling, paper blending) and schedules them tightly where it is not.
 //
-// The 8-float vector helpers below (and motor.hpp's templates on them) are file-local and inlined: the AVX
+// The 8-float vector helpers (detail/simd.hpp, and motor.hpp's templates on them) are inlined: the AVX
 // argument ABI that -Wpsabi warns about never applies.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include "cga/runtime/jobs.hpp"
+
+#include "cga/runtime/rotor_sign.hpp"
+#include "detail/simd.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,34 +41,12 @@ constexpr std::size_t kB = 8;
 using Block = float[kM][kB];
 
 #if defined(__GNUC__)
-// 8-float vectors (GCC vector extensions: one AVX register in the x86-64-v3 clones, two SSE registers in the
-// default ones). The shuffles below are the 8x8 transpose of unpcklps/unpckhps, shufps and vperm2f128.
-using v8f = float __attribute__((vector_size(32)));
-inline v8f load8(const float* p) {
-  v8f v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store8(float* p, v8f v) { __builtin_memcpy(p, &v, sizeof v); }
-
-// In place: r[i][l] becomes r[l][i].
-inline void transpose8(v8f r[8]) {
-  v8f t[8], u[8];
-  for (int k = 0; k < 4; ++k) {
-    t[2 * k] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 0, 8, 1, 9, 4, 12, 5, 13);
-    t[2 * k + 1] = __builtin_shufflevector(r[2 * k], r[2 * k + 1], 2, 10, 3, 11, 6, 14, 7, 15);
-  }
-  for (int k = 0; k < 2; ++k) {
-    u[4 * k + 0] = __builtin_shufflevector(t[4 * k], t[4 * k + 2], 0, 1, 8, 9, 4, 5, 12, 13);
-    u[4 * k + 1] = __builtin_shufflevector(t[4 * k], t[4 * k + 2], 2, 3, 10, 11, 6, 7, 14, 15);
-    u[4 * k + 2] = __builtin_shufflevector(t[4 * k + 1], t[4 * k + 3], 0, 1, 8, 9, 4, 5, 12, 13);
-    u[4 * k + 3] = __builtin_shufflevector(t[4 * k + 1], t[4 * k + 3], 2, 3, 10, 11, 6, 7, 14, 15);
-  }
-  for (int k = 0; k < 4; ++k) {
-    r[k] = __builtin_shufflevector(u[k], u[k + 4], 0, 1, 2, 3, 8, 9, 10, 11);
-    r[k + 4] = __builtin_shufflevector(u[k], u[k + 4], 4, 5, 6, 7, 12, 13, 14, 15);
-  }
-}
+// The 8-float vectors and the 8x8 transpose of the shared SIMD header (detail/simd.hpp).
+using simd::load8;
+using simd::sqrt8;
+using simd::store8;
+using simd::transpose8;
+using simd::v8f;
 
 // 8 motors (m(0) .. m(7), each a Motor&) into 12 coefficient rows.
 template <class Get>
@@ -103,14 +84,6 @@ inline void scatter_rows(v8f rows[kM], Motor* __restrict m) {
   }
 }
 
-// Square root of every lane: a loop GCC turns into one vsqrtps (two sqrtps in the default clones).
-inline v8f sqrt8(v8f v) {
-  float a[8];
-  __builtin_memcpy(a, &v, sizeof a);
-  for (float& x : a) x = std::sqrt(x);
-  __builtin_memcpy(&v, a, sizeof a);
-  return v;
-}
 // motor_normalize_fast on 8 motors' coefficient rows, in place.
 inline void normalize_rows(v8f m[kM]) {
   detail::motor_normalize_fast_t(m, m, [](v8f v) { return sqrt8(v); });
@@ -200,7 +173,7 @@ CGA_JOBS_CLONES void sample_nlerp(std::size_t n, std::size_t w, float t, const f
 CGA_JOBS_CLONES void blend_nlerp(std::size_t n, std::span<const BlendLayer> layers, std::size_t first, float inv,
                                  Motor* __restrict out) {
 #if defined(__GNUC__)
-  using v8i = int __attribute__((vector_size(32)));
+  using simd::v8i;
   const auto rows_of = [n](const Motor* m, std::size_t j0, v8f r[kM]) {
     if (j0 + kB <= n) return gather_rows([m, j0](int l) -> const Motor& { return m[j0 + l]; }, r);
     Block b;
@@ -212,15 +185,18 @@ CGA_JOBS_CLONES void blend_nlerp(std::size_t n, std::span<const BlendLayer> laye
     rows_of(layers[first].motors.data(), j0, ref);
     const float w0 = layers[first].weight * inv;
     for (std::size_t c = 0; c < kM; ++c) acc[c] = w0 * ref[c];
-    // The reference's rotor part a + b.
-    const v8f g0 = ref[0] + ref[7], g1 = ref[1] + ref[9], g2 = ref[2] + ref[10], g3 = ref[4] + ref[11];
+    // The sign fix of rotor_sign.hpp on 8 joints: the reference's rotor part G = a + b.
+    using rotor_sign::e_blade, rotor_sign::rotor_blade;
+    v8f g[4];
+    for (int i = 0; i < 4; ++i) g[i] = ref[rotor_blade(i)] + ref[e_blade(i)];
     for (std::size_t k = first + 1; k < layers.size(); ++k) {
       if (layers[k].weight <= 0.0f) continue;
       rows_of(layers[k].motors.data(), j0, x);
       const float w = layers[k].weight * inv;
-      const v8f dot = g0 * (x[0] + x[7]) + g1 * (x[1] + x[9]) + g2 * (x[2] + x[10]) + g3 * (x[4] + x[11]);
-      // -w where dot < 0, else w.
-      const v8i flip = (dot < 0.0f) & static_cast<int>(0x80000000u);
+      v8f dot = g[0] * (x[rotor_blade(0)] + x[e_blade(0)]);
+      for (int i = 1; i < 4; ++i) dot += g[i] * (x[rotor_blade(i)] + x[e_blade(i)]);
+      // rotor_sign::signed_weight: w with the dot's sign bit.
+      const v8i flip = reinterpret_cast<v8i>(dot) & static_cast<int>(0x80000000u);
       const v8f s = reinterpret_cast<v8f>(reinterpret_cast<v8i>(v8f{} + w) ^ flip);
       for (std::size_t c = 0; c < kM; ++c) acc[c] += s * x[c];
     }
@@ -236,7 +212,7 @@ CGA_JOBS_CLONES void blend_nlerp(std::size_t n, std::span<const BlendLayer> laye
       if (layers[k].weight <= 0.0f) continue;
       const Motor& x = layers[k].motors[j];
       const float w = layers[k].weight * inv;
-      const float s = motor_rotor_dot(ref, x) < 0.0f ? -w : w;
+      const float s = rotor_sign::signed_weight(w, motor_rotor_dot(ref, x));
       for (std::size_t c = 0; c < kM; ++c) acc.c[c] += s * x.c[c];
     }
     motor_normalize_fast(acc.c.data(), out[j].c.data());
@@ -291,17 +267,13 @@ CGA_JOBS_CLONES void local_to_model_rigid(std::size_t n, const int* __restrict p
 // of the hierarchy; the split form's G = GA GB, H = HA HB, U = HA UB + UA GB are plain products (and fewer:
 // 64 mul + 52 add instead of 96 + 92). Forming G and H from a stored motor is exact for 1/3 <= s <= 3
 // (Sterbenz) and otherwise rounds once.
-inline void to_split(const Motor& m, float* __restrict s) {
-  const auto& c = m.c;
-  s[0] = c[0] + c[7], s[1] = c[1] + c[9], s[2] = c[2] + c[10], s[3] = c[4] + c[11];
-  s[4] = c[0] - c[7], s[5] = c[1] - c[9], s[6] = c[2] - c[10], s[7] = c[4] - c[11];
-  s[8] = c[3], s[9] = c[5], s[10] = c[6], s[11] = c[8];
-}
+inline void to_split(const Motor& m, float* __restrict s) { rotor_sign::split(m.c.data(), s, s + 4, s + 8); }
 inline void from_split(const float* __restrict s, Motor& m) {
-  auto& c = m.c;
-  c[0] = 0.5f * (s[0] + s[4]), c[1] = 0.5f * (s[1] + s[5]), c[2] = 0.5f * (s[2] + s[6]), c[4] = 0.5f * (s[3] + s[7]);
-  c[7] = 0.5f * (s[0] - s[4]), c[9] = 0.5f * (s[1] - s[5]), c[10] = 0.5f * (s[2] - s[6]), c[11] = 0.5f * (s[3] - s[7]);
-  c[3] = s[8], c[5] = s[9], c[6] = s[10], c[8] = s[11];
+  for (int i = 0; i < 4; ++i) {
+    m.c[rotor_sign::rotor_blade(i)] = 0.5f * (s[i] + s[4 + i]);
+    m.c[rotor_sign::e_blade(i)] = 0.5f * (s[i] - s[4 + i]);
+    m.c[rotor_sign::einf_blade(i)] = s[8 + i];
+  }
 }
 // The product, scaled so that |G| + |H| = 2 (the normalization of motor_from_trs, where a = R): a product of
 // dilators 1 + k1 E and 1 + k2 E is (1 + k1 k2)(1 + k E), so without it every level of a scaled hierarchy
@@ -385,60 +357,30 @@ CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const M
 
 // ------------------------------------------------------------------------------------------------ checks
 
+static_assert(sizeof(Motor) == 12 * sizeof(float), "the jobs treat Motor arrays as flat float arrays");
+
 template <class Span>
 bool fits(const Span& s, std::size_t n) {
   return s.size() >= n;
 }
 
-bool mode_outputs_fit(Interpolation mode, std::size_t n, std::span<Motor> m, std::span<Transform> t,
-                      std::span<glm::dualquat> d, std::span<float> s) {
-  switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw: return fits(m, n);
-    case Interpolation::glm_matrix: return fits(t, n);
-    case Interpolation::glm_dualquat: return fits(d, n) && fits(s, n);
-  }
-  return false;
-}
-
-static_assert(sizeof(Motor) == 12 * sizeof(float), "the jobs treat Motor arrays as flat float arrays");
-
-inline glm::dualquat normalized(const glm::dualquat& q) {
-  const float n = glm::length(q.real);
-  return glm::dualquat(q.real / n, q.dual / n);
-}
+constexpr float kRigidScaleTolerance = 8.0f * 1.1920929e-7f;  // 8 float ulps at 1
 
 }  // namespace
-
-glm::vec3 dual_quat_translation(const glm::dualquat& q) {
-  const glm::quat t = (q.dual * glm::conjugate(q.real)) * 2.0f;
-  return {t.x, t.y, t.z};
-}
-
-glm::mat3x4 to_palette_matrix(const glm::mat4& m) {
-  glm::mat3x4 out;
-  for (int r = 0; r < 3; ++r) out[r] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
-  return out;
-}
 
 // ---------------------------------------------------------------------------------------------- sampling
 
 bool SamplingJob::Validate() const {
-  if (!clip) return false;
+  if (!clip || !uses_motors(mode)) return false;
   const std::size_t n = clip->keys.size();
-  if (!mode_outputs_fit(mode, n, out_motors, out_transforms, out_dual_quats, out_scales)) return false;
+  if (!fits(output, n)) return false;
   if (!std::isfinite(time)) return false;
   if (n == 0) return true;
   // The sampler reads clip->intervals, built by build_joint_keys; a clip whose keys were never built (or
   // a joint without keys) has none that match.
   const ClipIntervals& iv = clip->intervals;
   if (iv.joints != n || iv.times.empty()) return false;
-  if (uses_motors(mode)) return iv.has_motors();
-  // The baselines read the per-joint keys at the intervals' key indices.
-  for (const JointKeys& k : clip->keys)
-    if (k.size() == 0 || k.transforms.size() != k.size() || k.dual_quats.size() != k.size()) return false;
-  return true;
+  return iv.has_motors();
 }
 
 bool SamplingJob::Run() const {
@@ -456,48 +398,18 @@ bool SamplingJob::Run() const {
   switch (mode) {
     case Interpolation::paper:
       sample_paper(n, w, t, t0, inv, iv.rigid0.data() + u * kR * w, iv.rigid1.data() + u * kR * w,
-                   iv.scale0.data() + u * w, iv.scale1.data() + u * w, out_motors.data());
+                   iv.scale0.data() + u * w, iv.scale1.data() + u * w, output.data());
       break;
     case Interpolation::nlerp:
       sample_nlerp(n, w, t, t0, inv, iv.motor0.data() + u * kM * w, iv.motor_delta.data() + u * kM * w,
-                   out_motors.data());
+                   output.data());
       break;
-    case Interpolation::screw:
+    default:  // screw (Validate admits the motor modes only)
       for (std::size_t j = 0; j < n; ++j) {
         const JointKeys& k = clip->keys[j];
         const std::size_t i = key[j];
         const float a = (t - t0[j]) * inv[j];
-        out_motors[j] = a == 0.0f ? k.motors[i] : motor_screw(k.motors[i], k.motors[i + 1], a);
-      }
-      break;
-    case Interpolation::glm_matrix:
-      for (std::size_t j = 0; j < n; ++j) {
-        const JointKeys& k = clip->keys[j];
-        const std::size_t i = key[j];
-        const float a = (t - t0[j]) * inv[j];
-        if (a == 0.0f) {
-          out_transforms[j] = k.transforms[i];
-          continue;
-        }
-        const Transform& x = k.transforms[i];
-        const Transform& y = k.transforms[i + 1];
-        out_transforms[j].translation = glm::mix(x.translation, y.translation, a);
-        out_transforms[j].rotation = glm::normalize(glm::slerp(x.rotation, y.rotation, a));
-        out_transforms[j].scale = x.scale + (y.scale - x.scale) * a;
-      }
-      break;
-    case Interpolation::glm_dualquat:
-      for (std::size_t j = 0; j < n; ++j) {
-        const JointKeys& k = clip->keys[j];
-        const std::size_t i = key[j];
-        const float a = (t - t0[j]) * inv[j];
-        if (a == 0.0f) {
-          out_dual_quats[j] = k.dual_quats[i];
-          out_scales[j] = k.transforms[i].scale;
-          continue;
-        }
-        out_dual_quats[j] = normalized(glm::lerp(k.dual_quats[i], k.dual_quats[i + 1], a));
-        out_scales[j] = k.transforms[i].scale + (k.transforms[i + 1].scale - k.transforms[i].scale) * a;
+        output[j] = a == 0.0f ? k.motors[i] : motor_screw(k.motors[i], k.motors[i + 1], a);
       }
       break;
   }
@@ -506,36 +418,90 @@ bool SamplingJob::Run() const {
 
 // ---------------------------------------------------------------------------------------------- blending
 
-bool BlendingJob::Validate() const {
-  if (layers.empty()) return false;
-  std::size_t n = 0;
-  switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw: n = out_motors.size(); break;
-    case Interpolation::glm_matrix: n = out_transforms.size(); break;
-    case Interpolation::glm_dualquat: n = out_dual_quats.size(); break;
+namespace {
+
+bool has_joint_weights(std::span<const BlendLayer> layers) {
+  for (const BlendLayer& l : layers)
+    if (l.weight > 0.0f && !l.joint_weights.empty()) return true;
+  return false;
+}
+
+// The weight layer l gives joint j (0 for a layer left out).
+inline float joint_weight(const BlendLayer& l, std::size_t j) {
+  if (!(l.weight > 0.0f)) return 0.0f;
+  return l.joint_weights.empty() ? l.weight : l.weight * l.joint_weights[j];
+}
+
+// Partial blending: every joint normalized by its own weight sum (the per-joint form of the loops above; not
+// vectorized across joints, since the weights differ per joint).
+void blend_per_joint(Interpolation mode, std::span<const BlendLayer> layers, std::span<const Motor> rest,
+                     std::span<Motor> output) {
+  for (std::size_t j = 0; j < output.size(); ++j) {
+    float total = 0.0f;
+    std::size_t first = layers.size();
+    for (std::size_t k = 0; k < layers.size(); ++k) {
+      const float w = joint_weight(layers[k], j);
+      if (w > 0.0f && first == layers.size()) first = k;
+      total += w;
+    }
+    if (!(total > 0.0f)) {
+      output[j] = rest[j];
+      continue;
+    }
+    const Motor& ref = layers[first].motors[j];
+    Motor acc;
+    if (mode == Interpolation::screw) {
+      acc = ref;
+      float sum = joint_weight(layers[first], j);
+      for (std::size_t k = first + 1; k < layers.size(); ++k) {
+        const float w = joint_weight(layers[k], j);
+        if (!(w > 0.0f)) continue;
+        sum += w;
+        acc = motor_screw(acc, layers[k].motors[j], w / sum);
+      }
+      output[j] = motor_normalize_fast(acc);
+      continue;
+    }
+    const float inv = 1.0f / total;
+    for (std::size_t c = 0; c < kM; ++c) acc.c[c] = 0.0f;
+    for (std::size_t k = first; k < layers.size(); ++k) {
+      float w = joint_weight(layers[k], j) * inv;
+      if (!(w > 0.0f)) continue;
+      const Motor& x = layers[k].motors[j];
+      if (mode == Interpolation::nlerp) w = rotor_sign::signed_weight(w, motor_rotor_dot(ref, x));
+      for (std::size_t c = 0; c < kM; ++c) acc.c[c] += w * x.c[c];
+    }
+    output[j] = mode == Interpolation::nlerp ? motor_normalize_fast(acc) : acc;
   }
+}
+
+}  // namespace
+
+bool BlendingJob::Validate() const {
+  if (layers.empty() || !uses_motors(mode)) return false;
+  const std::size_t n = output.size();
+  if (!rest_pose.empty() && rest_pose.size() < n) return false;
   float total = 0.0f;
   for (const BlendLayer& l : layers) {
     if (!std::isfinite(l.weight)) return false;
     if (l.weight <= 0.0f) continue;
     total += l.weight;
-    switch (mode) {
-      case Interpolation::paper:
-      case Interpolation::nlerp:
-      case Interpolation::screw:
-        if (l.motors.size() < n) return false;
-        break;
-      case Interpolation::glm_matrix:
-        if (l.transforms.size() < n) return false;
-        break;
-      case Interpolation::glm_dualquat:
-        if (l.dual_quats.size() < n || l.scales.size() < n || out_scales.size() < n) return false;
-        break;
+    if (l.motors.size() < n) return false;
+    if (!l.joint_weights.empty()) {
+      if (l.joint_weights.size() < n) return false;
+      for (std::size_t j = 0; j < n; ++j)
+        if (!(l.joint_weights[j] >= 0.0f) || !std::isfinite(l.joint_weights[j])) return false;
     }
   }
-  return total > 0.0f;
+  if (!(total > 0.0f)) return false;
+  // With per-joint weights a joint may get none: then it needs the rest pose.
+  if (rest_pose.empty() && has_joint_weights(layers))
+    for (std::size_t j = 0; j < n; ++j) {
+      float sum = 0.0f;
+      for (const BlendLayer& l : layers) sum += joint_weight(l, j);
+      if (!(sum > 0.0f)) return false;
+    }
+  return true;
 }
 
 bool BlendingJob::Run() const {
@@ -546,21 +512,23 @@ bool BlendingJob::Run() const {
   // The first contributing layer is the reference for sign fixes and the start of the screw fold.
   std::size_t first = 0;
   while (layers[first].weight <= 0.0f) ++first;
+  const std::size_t n = output.size();
+  if (has_joint_weights(layers)) {
+    blend_per_joint(mode, layers, rest_pose, output);
+    return true;
+  }
 
   switch (mode) {
     case Interpolation::paper: {
-      const std::size_t n = out_motors.size();
-      float* out = out_motors.data()->c.data();
+      float* out = output.data()->c.data();
       scale_into(n * kM, layers[first].weight * inv, layers[first].motors.data()->c.data(), out);
       for (std::size_t l = first + 1; l < layers.size(); ++l)
         if (layers[l].weight > 0.0f) add_scaled(n * kM, layers[l].weight * inv, layers[l].motors.data()->c.data(), out);
       break;
     }
-    case Interpolation::nlerp:
-      blend_nlerp(out_motors.size(), layers, first, inv, out_motors.data());
-      break;
-    case Interpolation::screw:
-      for (std::size_t j = 0; j < out_motors.size(); ++j) {
+    case Interpolation::nlerp: blend_nlerp(n, layers, first, inv, output.data()); break;
+    default:  // screw
+      for (std::size_t j = 0; j < n; ++j) {
         Motor acc = layers[first].motors[j];
         float sum = layers[first].weight;
         for (std::size_t k = first + 1; k < layers.size(); ++k) {
@@ -568,40 +536,7 @@ bool BlendingJob::Run() const {
           sum += layers[k].weight;
           acc = motor_screw(acc, layers[k].motors[j], layers[k].weight / sum);
         }
-        out_motors[j] = motor_normalize_fast(acc);
-      }
-      break;
-    case Interpolation::glm_matrix:
-      for (std::size_t j = 0; j < out_transforms.size(); ++j) {
-        glm::vec3 t(0.0f);
-        glm::quat q(0.0f, 0.0f, 0.0f, 0.0f);
-        float s = 0.0f;
-        const glm::quat& ref = layers[first].transforms[j].rotation;
-        for (const BlendLayer& l : layers) {
-          if (l.weight <= 0.0f) continue;
-          const Transform& x = l.transforms[j];
-          const float w = l.weight * inv;
-          t += w * x.translation;
-          q = q + x.rotation * (glm::dot(ref, x.rotation) < 0.0f ? -w : w);
-          s += w * x.scale;
-        }
-        out_transforms[j] = Transform{t, glm::normalize(q), s};
-      }
-      break;
-    case Interpolation::glm_dualquat:
-      for (std::size_t j = 0; j < out_dual_quats.size(); ++j) {
-        glm::dualquat q(glm::quat(0.0f, 0.0f, 0.0f, 0.0f), glm::quat(0.0f, 0.0f, 0.0f, 0.0f));
-        float s = 0.0f;
-        const glm::quat& ref = layers[first].dual_quats[j].real;
-        for (const BlendLayer& l : layers) {
-          if (l.weight <= 0.0f) continue;
-          const float w = l.weight * inv;
-          const glm::dualquat& x = l.dual_quats[j];
-          q = q + x * (glm::dot(ref, x.real) < 0.0f ? -w : w);
-          s += w * l.scales[j];
-        }
-        out_dual_quats[j] = normalized(q);
-        out_scales[j] = s;
+        output[j] = motor_normalize_fast(acc);
       }
       break;
   }
@@ -615,135 +550,47 @@ bool LocalToModelJob::Validate() const {
   const std::size_t n = static_cast<std::size_t>(skeleton->joint_count());
   for (std::size_t j = 0; j < n; ++j)
     if (skeleton->parents[j] >= static_cast<int>(j)) return false;
-  switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw: return fits(local_motors, n) && fits(model_motors, n);
-    case Interpolation::glm_matrix: return fits(local_transforms, n) && fits(model_matrices, n);
-    case Interpolation::glm_dualquat:
-      return fits(local_dual_quats, n) && fits(local_scales, n) && fits(model_dual_quats, n) &&
-             fits(model_scales, n);
-  }
-  return false;
+  return fits(input, n) && fits(output, n);
 }
 
 bool LocalToModelJob::Run() const {
   if (!Validate()) return false;
   const std::size_t n = static_cast<std::size_t>(skeleton->joint_count());
   const int* parents = skeleton->parents.data();
-  switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw:
-      // Roots copy their local motor, so rigid locals make every model motor rigid.
-      if (all_rigid(local_motors, n))
-        local_to_model_rigid(n, parents, local_motors.data(), model_motors.data());
-      else
-        local_to_model_general(n, parents, local_motors.data(), model_motors.data());
-      break;
-    case Interpolation::glm_matrix:
-      for (std::size_t j = 0; j < n; ++j) {
-        const Transform& x = local_transforms[j];
-        glm::mat4 local = glm::mat4_cast(x.rotation) * x.scale;
-        local[3] = glm::vec4(x.translation, 1.0f);
-        model_matrices[j] = parents[j] < 0 ? local : model_matrices[parents[j]] * local;
-      }
-      break;
-    case Interpolation::glm_dualquat:
-      for (std::size_t j = 0; j < n; ++j) {
-        if (parents[j] < 0) {
-          model_dual_quats[j] = local_dual_quats[j];
-          model_scales[j] = local_scales[j];
-          continue;
-        }
-        const float ps = model_scales[parents[j]];
-        glm::dualquat local = local_dual_quats[j];
-        // s_p R_p (s_l R_l x + t_l) + t_p = rigid(R_p R_l, s_p R_p t_l + t_p) applied to (s_p s_l) x.
-        if (ps != 1.0f) local = glm::dualquat(local.real, dual_quat_translation(local) * ps);
-        model_dual_quats[j] = normalized(model_dual_quats[parents[j]] * local);
-        model_scales[j] = ps * local_scales[j];
-      }
-      break;
-  }
+  // Roots copy their local motor, so rigid locals make every model motor rigid.
+  if (all_rigid(input, n))
+    local_to_model_rigid(n, parents, input.data(), output.data());
+  else
+    local_to_model_general(n, parents, input.data(), output.data());
   return true;
 }
 
 // --------------------------------------------------------------------------------------- skinning palette
 
-namespace {
-constexpr float kRigidScaleTolerance = 8.0f * 1.1920929e-7f;  // 8 float ulps at 1
-}  // namespace
-
-InverseBind make_inverse_bind(const SkinnedMesh& mesh) {
-  InverseBind ib;
+std::vector<Motor> make_inverse_bind_motors(const SkinnedMesh& mesh) {
   const std::size_t n = mesh.joint_remap.size();
-  ib.matrices = mesh.inverse_bind_matrix;
-  ib.dual_quats.resize(n);
-  ib.scales.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    ib.dual_quats[k] = glm::dualquat(mesh.inverse_bind[k].rotation, mesh.inverse_bind[k].translation);
-    ib.scales[k] = mesh.inverse_bind[k].scale;
-  }
-  ib.motors.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
+  std::vector<Motor> motors(n);
+  for (std::size_t k = 0; k < n && k < mesh.inverse_bind.size(); ++k) {
     // A scale within float rounding of 1 (what decomposing a rigid offset matrix leaves) is taken as 1,
     // so that rigid characters get exactly rigid inverse binds and the palette its 8-blade product.
     Transform x = mesh.inverse_bind[k];
     if (std::abs(x.scale - 1.0f) <= kRigidScaleTolerance) x.scale = 1.0f;
-    ib.motors[k] = motor_from_transform(x);
+    motors[k] = motor_from_transform(x);
   }
-  return ib;
+  return motors;
 }
 
 bool SkinningPaletteJob::Validate() const {
-  if (!inverse_bind) return false;
   const std::size_t n = joint_remap.size();
-  std::size_t joints = 0;
-  switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw:
-      if (!fits(out_motors, n) || inverse_bind->motors.size() < n) return false;
-      joints = model_motors.size();
-      break;
-    case Interpolation::glm_matrix:
-      if (!fits(out_matrices, n) || inverse_bind->matrices.size() < n) return false;
-      joints = model_matrices.size();
-      break;
-    case Interpolation::glm_dualquat:
-      if (!fits(out_dual_quats, n) || inverse_bind->dual_quats.size() < n || inverse_bind->scales.size() < n)
-        return false;
-      joints = std::min(model_dual_quats.size(), model_scales.size());
-      break;
-  }
+  if (!fits(output, n) || !fits(inverse_bind, n)) return false;
   for (int j : joint_remap)
-    if (j < 0 || static_cast<std::size_t>(j) >= joints) return false;
+    if (j < 0 || static_cast<std::size_t>(j) >= model.size()) return false;
   return true;
 }
 
 bool SkinningPaletteJob::Run() const {
   if (!Validate()) return false;
-  const std::size_t n = joint_remap.size();
-  switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw:
-      palette(n, joint_remap.data(), model_motors.data(), model_motors.size(), inverse_bind->motors.data(),
-              out_motors.data());
-      break;
-    case Interpolation::glm_matrix:
-      for (std::size_t k = 0; k < n; ++k)
-        out_matrices[k] = to_palette_matrix(model_matrices[joint_remap[k]] * inverse_bind->matrices[k]);
-      break;
-    case Interpolation::glm_dualquat:
-      for (std::size_t k = 0; k < n; ++k) {
-        const float ps = model_scales[joint_remap[k]];
-        glm::dualquat ib = inverse_bind->dual_quats[k];
-        if (ps != 1.0f) ib = glm::dualquat(ib.real, dual_quat_translation(ib) * ps);
-        out_dual_quats[k] = normalized(model_dual_quats[joint_remap[k]] * ib);
-      }
-      break;
-  }
+  palette(joint_remap.size(), joint_remap.data(), model.data(), model.size(), inverse_bind.data(), output.data());
   return true;
 }
 

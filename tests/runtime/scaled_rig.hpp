@@ -20,6 +20,7 @@
 #include <motor_from_trs.hpp>
 #include <motor_to_matrix.hpp>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/motor.hpp"
@@ -143,12 +144,8 @@ inline std::vector<DoubleSimilarity> double_palette(const Character& ch, const S
                                                     float time) {
   const Skeleton& sk = ch.skeleton;
   const std::size_t n = static_cast<std::size_t>(sk.joint_count());
-  PoseBuffer local(n);
-  SamplingJob s;
-  s.clip = &clip, s.time = time, s.mode = Interpolation::glm_matrix;
-  s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
-  s.out_scales = local.scales;
-  if (!s.Run()) return {};
+  baseline::PoseBuffer local(n);
+  if (!baseline::TransformSamplingJob{&clip, time, local.transforms}.Run()) return {};
   std::vector<glm::dmat4> model(n);
   for (std::size_t j = 0; j < n; ++j)
     model[j] = sk.parents[j] < 0 ? dmat_of(local.transforms[j]) : model[sk.parents[j]] * dmat_of(local.transforms[j]);
@@ -229,28 +226,15 @@ inline Palettes job_palettes(const Character& ch, std::size_t mesh_index, const 
                              Interpolation mode) {
   const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
   const SkinnedMesh& mesh = ch.meshes[mesh_index];
-  PoseBuffer local(n), model(n);
-  SamplingJob s;
-  s.clip = &clip, s.time = time, s.mode = mode;
-  s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
-  s.out_scales = local.scales;
-  LocalToModelJob l2m;
-  l2m.skeleton = &ch.skeleton, l2m.mode = mode;
-  l2m.local_motors = local.motors, l2m.local_transforms = local.transforms, l2m.local_dual_quats = local.dual_quats,
-  l2m.local_scales = local.scales;
-  l2m.model_motors = model.motors, l2m.model_matrices = model.matrices, l2m.model_dual_quats = model.dual_quats,
-  l2m.model_scales = model.scales;
-  const InverseBind ib = make_inverse_bind(mesh);
+  baseline::PoseBuffer local(n), model(n);
+  baseline::PaletteBuffer pal(mesh.joint_remap.size());
+  if (!baseline::sample(mode, clip, time, local) || !baseline::local_to_model(mode, ch.skeleton, local, model) ||
+      !baseline::palette(mode, mesh.joint_remap, baseline::make_inverse_bind(mesh), model, pal))
+    return {};
   Palettes out;
-  out.matrices.resize(mesh.joint_remap.size());
-  out.dual_quats.resize(mesh.joint_remap.size());
-  out.motors.resize(mesh.joint_remap.size());
-  SkinningPaletteJob p;
-  p.mode = mode, p.joint_remap = mesh.joint_remap, p.inverse_bind = &ib;
-  p.model_motors = model.motors, p.model_matrices = model.matrices, p.model_dual_quats = model.dual_quats,
-  p.model_scales = model.scales;
-  p.out_motors = out.motors, p.out_matrices = out.matrices, p.out_dual_quats = out.dual_quats;
-  if (!s.Run() || !l2m.Run() || !p.Run()) return {};
+  out.matrices = std::move(pal.matrices);
+  out.dual_quats = std::move(pal.dual_quats);
+  out.motors = std::move(pal.motors);
   return out;
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/skinning.hpp"
@@ -152,20 +153,32 @@ Clip one_joint_clip(const std::vector<float>& times, const std::vector<Transform
   return c;
 }
 
-SamplingJob sampler(const Clip& clip, float t, Interpolation mode, PoseBuffer& pose) {
-  SamplingJob s;
-  s.clip = &clip, s.time = t, s.mode = mode;
-  s.out_motors = pose.motors, s.out_transforms = pose.transforms, s.out_dual_quats = pose.dual_quats,
-  s.out_scales = pose.scales;
-  return s;
+// The sampling job of the mode's representation: the runtime's motor job or a GLM baseline.
+struct Sampler {
+  const Clip* clip;
+  float time;
+  Interpolation mode;
+  baseline::PoseBuffer* pose;
+  bool Validate() const {
+    switch (mode) {
+      case Interpolation::glm_matrix: return baseline::TransformSamplingJob{clip, time, pose->transforms}.Validate();
+      case Interpolation::glm_dualquat:
+        return baseline::DualQuatSamplingJob{clip, time, pose->dual_quats, pose->scales}.Validate();
+      default: return SamplingJob{clip, time, mode, pose->motors}.Validate();
+    }
+  }
+  bool Run() const { return baseline::sample(mode, *clip, time, *pose); }
+};
+Sampler sampler(const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& pose) {
+  return {&clip, t, mode, &pose};
 }
 
 // Where joint 0's sampled transform puts point p, in the pose's own representation.
-glm::vec3 apply(Interpolation mode, const PoseBuffer& pose, glm::vec3 p) {
+glm::vec3 apply(Interpolation mode, const baseline::PoseBuffer& pose, glm::vec3 p) {
   switch (mode) {
     case Interpolation::glm_matrix: return glm::vec3(to_mat4(pose.transforms[0]) * glm::vec4(p, 1.0f));
     case Interpolation::glm_dualquat:
-      return pose.dual_quats[0].real * (pose.scales[0] * p) + dual_quat_translation(pose.dual_quats[0]);
+      return pose.dual_quats[0].real * (pose.scales[0] * p) + baseline::dual_quat_translation(pose.dual_quats[0]);
     default: return motor_transform_point(pose.motors[0], p);
   }
 }
@@ -379,19 +392,22 @@ TEST_CASE("joint indices outside the palette: Validate names the vertex, Run ref
   CHECK_FALSE(d.Validate());
   CHECK_FALSE(d.Run());
   // A skinning palette job whose joint map points outside the skeleton refuses too.
-  InverseBind ib;
-  ib.matrices.assign(2, glm::mat4(1.0f));
-  const std::vector<int> remap = {0, 5};
-  std::vector<glm::mat4> model_matrices(3, glm::mat4(1.0f));
-  std::vector<glm::mat3x4> out(2);
-  SkinningPaletteJob p;
-  p.mode = Interpolation::glm_matrix, p.joint_remap = remap, p.inverse_bind = &ib;
-  p.model_matrices = model_matrices, p.out_matrices = out;
+  const std::vector<int> remap = {0, 5}, negative = {0, -1};
+  const std::vector<Motor> ib(2), model(3);
+  std::vector<Motor> out(2);
+  SkinningPaletteJob p{remap, ib, model, out};
   CHECK_FALSE(p.Validate());
   CHECK_FALSE(p.Run());
-  const std::vector<int> negative = {0, -1};
   p.joint_remap = negative;
   CHECK_FALSE(p.Run());
+  // ... and so does the GLM baseline's.
+  const std::vector<glm::mat4> ib_matrices(2, glm::mat4(1.0f)), model_matrices(3, glm::mat4(1.0f));
+  std::vector<glm::mat3x4> out_matrices(2);
+  baseline::MatrixPaletteJob m{remap, ib_matrices, model_matrices, out_matrices};
+  CHECK_FALSE(m.Validate());
+  CHECK_FALSE(m.Run());
+  m.joint_remap = negative;
+  CHECK_FALSE(m.Run());
 }
 
 // ---------------------------------------------------------------------------------------------- clips
@@ -416,10 +432,10 @@ TEST_CASE("a clip with zero keys is refused") {
     c.name = "unbuilt";
     c.duration = 1.0f;
     c.keys.resize(1);  // a joint with no keys at all
-    PoseBuffer pose(1);
+    baseline::PoseBuffer pose(1);
     for (Interpolation mode : kAllInterpolations) {
       INFO(to_string(mode));
-      const SamplingJob s = sampler(c, 0.5f, mode, pose);
+      const Sampler s = sampler(c, 0.5f, mode, pose);
       CHECK_FALSE(s.Validate());
       if (!s.Validate()) CHECK_FALSE(s.Run());  // Run on a job that validates would read keys that do not exist
     }
@@ -429,7 +445,7 @@ TEST_CASE("a clip with zero keys is refused") {
 TEST_CASE("a clip with one key holds it at every time, in every mode") {
   const Transform k = key({0.3f, -1.0f, 2.0f}, 0.7f, 1.5f);
   const Clip clip = one_joint_clip({0.25f}, {k}, 2.0f);
-  PoseBuffer pose(1);
+  baseline::PoseBuffer pose(1);
   const glm::vec3 p(0.5f, 0.25f, -1.0f);
   const glm::vec3 want = glm::vec3(to_mat4(k) * glm::vec4(p, 1.0f));
   for (Interpolation mode : kAllInterpolations) {
@@ -446,7 +462,7 @@ TEST_CASE("times outside the clip are clamped to its first and last key; non-fin
   // Keys that start after 0 and end before the duration: before the first key, the first key holds.
   const Transform a = key({1, 0, 0}, 0.2f, 1.0f), b = key({0, 2, 0}, 1.1f, 1.0f);
   const Clip clip = one_joint_clip({0.5f, 1.5f}, {a, b}, 2.0f);
-  PoseBuffer pose(1);
+  baseline::PoseBuffer pose(1);
   const glm::vec3 p(0.1f, 0.2f, 0.3f);
   const glm::vec3 at_a = glm::vec3(to_mat4(a) * glm::vec4(p, 1.0f));
   const glm::vec3 at_b = glm::vec3(to_mat4(b) * glm::vec4(p, 1.0f));
@@ -463,7 +479,7 @@ TEST_CASE("times outside the clip are clamped to its first and last key; non-fin
     }
     for (float t : {kNaN, std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()}) {
       INFO(to_string(mode) << " t=" << t);
-      const SamplingJob s = sampler(clip, t, mode, pose);
+      const Sampler s = sampler(clip, t, mode, pose);
       CHECK_FALSE(s.Validate());
       CHECK_FALSE(s.Run());
     }
@@ -471,18 +487,21 @@ TEST_CASE("times outside the clip are clamped to its first and last key; non-fin
 }
 
 TEST_CASE("a cross-fade whose weights are all zero, negative or NaN is refused") {
-  PoseBuffer x(2), y(2), out(2);
+  baseline::PoseBuffer x(2), y(2), out(2);
   for (const std::vector<float>& w : std::vector<std::vector<float>>{{0.0f, 0.0f}, {-1.0f, 0.0f}, {kNaN, 1.0f}}) {
     for (Interpolation mode : kAllInterpolations) {
       INFO(to_string(mode) << " weights " << w[0] << ", " << w[1]);
-      const BlendLayer layers[2] = {{w[0], x.motors, x.transforms, x.dual_quats, x.scales},
-                                    {w[1], y.motors, y.transforms, y.dual_quats, y.scales}};
-      BlendingJob b;
-      b.mode = mode, b.layers = layers;
-      b.out_motors = out.motors, b.out_transforms = out.transforms, b.out_dual_quats = out.dual_quats,
-      b.out_scales = out.scales;
-      CHECK_FALSE(b.Validate());
-      CHECK_FALSE(b.Run());
+      const BlendLayer motor_layers[2] = {{w[0], x.motors}, {w[1], y.motors}};
+      const baseline::TransformLayer trs_layers[2] = {{w[0], x.transforms}, {w[1], y.transforms}};
+      const baseline::DualQuatLayer dq_layers[2] = {{w[0], x.dual_quats, x.scales}, {w[1], y.dual_quats, y.scales}};
+      const bool valid = mode == Interpolation::glm_matrix
+                             ? baseline::TransformBlendingJob{trs_layers, out.transforms}.Validate()
+                         : mode == Interpolation::glm_dualquat
+                             ? baseline::DualQuatBlendingJob{dq_layers, out.dual_quats, out.scales}.Validate()
+                             : BlendingJob{mode, motor_layers, out.motors}.Validate();
+      CHECK_FALSE(valid);
+      const baseline::PoseLayer layers[2] = {{w[0], &x}, {w[1], &y}};
+      CHECK_FALSE(baseline::blend(mode, layers, out));
     }
   }
 }

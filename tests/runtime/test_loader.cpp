@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/skinning.hpp"
@@ -195,7 +196,7 @@ TEST_CASE("a skinned bone without a node loads as a static joint, with a warning
   const SkinnedMesh& mesh = ch.meshes[0];
   CHECK(mesh_bones(ch) == std::set<std::string>{"joint1", "joint2", "joint3"});
   const Clip& clip = ch.clips[0];
-  const InverseBind ib = make_inverse_bind(mesh);
+  const baseline::InverseBind ib = baseline::make_inverse_bind(mesh);
   // Every method through its own pipeline at the end of the clip (joint2 turned by 90 degrees).
   for (SkinningMethod method : kAllSkinningMethods) {
     INFO("method " << to_string(method));
@@ -203,28 +204,14 @@ TEST_CASE("a skinned bone without a node loads as a static joint, with a warning
                                : method == SkinningMethod::dqs ? Interpolation::glm_dualquat
                                                                : Interpolation::paper;
     const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
-    PoseBuffer local(n), model(n);
-    SamplingJob s;
-    s.clip = &clip, s.time = clip.duration, s.mode = mode;
-    s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
-    s.out_scales = local.scales;
-    REQUIRE(s.Run());
-    LocalToModelJob l2m;
-    l2m.skeleton = &ch.skeleton, l2m.mode = mode;
-    l2m.local_motors = local.motors, l2m.local_transforms = local.transforms, l2m.local_dual_quats = local.dual_quats,
-    l2m.local_scales = local.scales;
-    l2m.model_motors = model.motors, l2m.model_matrices = model.matrices, l2m.model_dual_quats = model.dual_quats,
-    l2m.model_scales = model.scales;
-    REQUIRE(l2m.Run());
-    MatrixPalette matrices(mesh.joint_remap.size());
-    DualQuatPalette dual_quats(mesh.joint_remap.size());
-    MotorPalette motors(mesh.joint_remap.size());
-    SkinningPaletteJob p;
-    p.mode = mode, p.joint_remap = mesh.joint_remap, p.inverse_bind = &ib;
-    p.model_motors = model.motors, p.model_matrices = model.matrices, p.model_dual_quats = model.dual_quats,
-    p.model_scales = model.scales;
-    p.out_motors = motors, p.out_matrices = matrices, p.out_dual_quats = dual_quats;
-    REQUIRE(p.Run());
+    baseline::PoseBuffer local(n), model(n);
+    REQUIRE(baseline::sample(mode, clip, clip.duration, local));
+    REQUIRE(baseline::local_to_model(mode, ch.skeleton, local, model));
+    baseline::PaletteBuffer pal(mesh.joint_remap.size());
+    REQUIRE(baseline::palette(mode, mesh.joint_remap, ib, model, pal));
+    const MatrixPalette& matrices = pal.matrices;
+    const DualQuatPalette& dual_quats = pal.dual_quats;
+    const MotorPalette& motors = pal.motors;
     SkinnedOutput out;
     out.resize_for(mesh);
     SkinningJob job = make_skinning_job(method, mesh, out);

@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/testing/nan_max.hpp"
@@ -28,28 +29,15 @@ struct Palettes {
 
 // Samples `clip` at t in `mode`, runs the hierarchy and the palette of `mesh`.
 void pose_palette(const Character& ch, const Clip& clip, float t, Interpolation mode, const SkinnedMesh& mesh,
-                  const InverseBind& ib, PoseBuffer& local, PoseBuffer& model_pose, Palettes& out) {
-  SamplingJob s;
-  s.clip = &clip, s.time = t, s.mode = mode;
-  s.out_motors = local.motors, s.out_transforms = local.transforms, s.out_dual_quats = local.dual_quats,
-  s.out_scales = local.scales;
-  REQUIRE(s.Run());
-  LocalToModelJob l2m;
-  l2m.skeleton = &ch.skeleton, l2m.mode = mode;
-  l2m.local_motors = local.motors, l2m.local_transforms = local.transforms, l2m.local_dual_quats = local.dual_quats,
-  l2m.local_scales = local.scales;
-  l2m.model_motors = model_pose.motors, l2m.model_matrices = model_pose.matrices,
-  l2m.model_dual_quats = model_pose.dual_quats, l2m.model_scales = model_pose.scales;
-  REQUIRE(l2m.Run());
-  SkinningPaletteJob pal;
-  pal.mode = mode, pal.joint_remap = mesh.joint_remap, pal.inverse_bind = &ib;
-  pal.model_motors = model_pose.motors, pal.model_matrices = model_pose.matrices,
-  pal.model_dual_quats = model_pose.dual_quats, pal.model_scales = model_pose.scales;
-  out.motors.resize(mesh.joint_remap.size());
-  out.matrices.resize(mesh.joint_remap.size());
-  out.dual_quats.resize(mesh.joint_remap.size());
-  pal.out_motors = out.motors, pal.out_matrices = out.matrices, pal.out_dual_quats = out.dual_quats;
-  REQUIRE(pal.Run());
+                  const baseline::InverseBind& ib, baseline::PoseBuffer& local, baseline::PoseBuffer& model_pose,
+                  Palettes& out) {
+  REQUIRE(baseline::sample(mode, clip, t, local));
+  REQUIRE(baseline::local_to_model(mode, ch.skeleton, local, model_pose));
+  baseline::PaletteBuffer pal(mesh.joint_remap.size());
+  REQUIRE(baseline::palette(mode, mesh.joint_remap, ib, model_pose, pal));
+  out.motors = std::move(pal.motors);
+  out.matrices = std::move(pal.matrices);
+  out.dual_quats = std::move(pal.dual_quats);
 }
 
 }  // namespace
@@ -60,10 +48,10 @@ TEST_CASE("motor palette equals matrix palette on every key frame") {
     const float size = character_size(ch);
     const float tol = 1e-5f * size;
     const std::size_t n = ch.skeleton.joint_count();
-    PoseBuffer local(n), model_pose(n);
+    baseline::PoseBuffer local(n), model_pose(n);
     Palettes cga_pal, glm_pal, dq_pal;
     for (const SkinnedMesh& mesh : ch.meshes) {
-      const InverseBind ib = make_inverse_bind(mesh);
+      const baseline::InverseBind ib = baseline::make_inverse_bind(mesh);
       for (const Clip& clip : ch.clips) {
         // Every key time of any joint of the clip.
         std::vector<float> times;
@@ -87,7 +75,7 @@ TEST_CASE("motor palette equals matrix palette on every key frame") {
               worst = testing::nan_max(worst, glm::length(apply(from_motors[k], p) - ref));
               worst = testing::nan_max(worst, glm::length(motor_transform_point(cga_pal.motors[k], p) - ref));
               const glm::dualquat& q = dq_pal.dual_quats[k];
-              worst_dq = testing::nan_max(worst_dq, glm::length(q.real * p + dual_quat_translation(q) - ref));
+              worst_dq = testing::nan_max(worst_dq, glm::length(q.real * p + baseline::dual_quat_translation(q) - ref));
             }
           }
         }
@@ -119,26 +107,25 @@ TEST_CASE("hierarchy and palette: rigid fast paths and mixed scaled joints equal
       local[j] = motor_from_transform(x);
     }
     LocalToModelJob l2m;
-    l2m.skeleton = &sk, l2m.mode = Interpolation::paper, l2m.local_motors = local, l2m.model_motors = model;
+    l2m.skeleton = &sk, l2m.input = local, l2m.output = model;
     REQUIRE(l2m.Run());
     for (int j = 0; j < 4; ++j) {
       want_model[j] = sk.parents[j] < 0 ? local[j] : motor_mul(want_model[sk.parents[j]], local[j]);
       for (int c = 0; c < 12; ++c) REQUIRE(model[j].c[c] == Approx(want_model[j].c[c]).margin(1e-5));
     }
-    InverseBind ib;
+    std::vector<Motor> ib;
     const std::vector<int> remap = {3, 2, 1};
     for (int k = 0; k < 3; ++k) {
       Transform x;
       x.translation = glm::vec3(u(rng), u(rng), u(rng));
       x.scale = k == 0 ? 0.5f : 1.0f;  // one scaled inverse bind
-      ib.motors.push_back(motor_from_transform(x));
+      ib.push_back(motor_from_transform(x));
     }
     SkinningPaletteJob pal;
-    pal.mode = Interpolation::paper, pal.joint_remap = remap, pal.inverse_bind = &ib, pal.model_motors = model,
-    pal.out_motors = palette;
+    pal.joint_remap = remap, pal.inverse_bind = ib, pal.model = model, pal.output = palette;
     REQUIRE(pal.Run());
     for (int k = 0; k < 3; ++k) {
-      const Motor want = motor_mul(model[remap[k]], ib.motors[k]);
+      const Motor want = motor_mul(model[remap[k]], ib[k]);
       for (int c = 0; c < 12; ++c) REQUIRE(palette[k].c[c] == Approx(want.c[c]).margin(1e-5));
     }
   }
@@ -178,19 +165,18 @@ TEST_CASE("palette: blocks of 8 rigid entries (structure of arrays) and their re
       INFO("variant " << variant << ", " << n << " entries");
       std::vector<int> remap(n);
       for (int& r : remap) r = pick(rng);
-      InverseBind ib;
-      for (std::size_t k = 0; k < n; ++k) ib.motors.push_back(random_motor(variant == 2 && k == n / 2 ? 0.6f : 1.0f));
+      std::vector<Motor> ib;
+      for (std::size_t k = 0; k < n; ++k) ib.push_back(random_motor(variant == 2 && k == n / 2 ? 0.6f : 1.0f));
       std::vector<Motor> m = model;
       if (variant == 1) m[remap[n - 1]] = random_motor(1.4f);
       std::vector<Motor> palette(n);
       SkinningPaletteJob pal;
-      pal.mode = Interpolation::paper, pal.joint_remap = remap, pal.inverse_bind = &ib, pal.model_motors = m,
-      pal.out_motors = palette;
+      pal.joint_remap = remap, pal.inverse_bind = ib, pal.model = m, pal.output = palette;
       REQUIRE(pal.Run());
       for (std::size_t k = 0; k < n; ++k) {
-        const Motor want = motor_mul(m[remap[k]], ib.motors[k]);
+        const Motor want = motor_mul(m[remap[k]], ib[k]);
         for (int c = 0; c < 12; ++c) REQUIRE(palette[k].c[c] == Approx(want.c[c]).margin(1e-5));
-        if (motor_is_rigid(m[remap[k]]) && motor_is_rigid(ib.motors[k])) REQUIRE(motor_is_rigid(palette[k]));
+        if (motor_is_rigid(m[remap[k]]) && motor_is_rigid(ib[k])) REQUIRE(motor_is_rigid(palette[k]));
       }
     }
   }

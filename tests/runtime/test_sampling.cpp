@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <random>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/testing/nan_max.hpp"
@@ -22,7 +23,7 @@ glm::vec3 glm_apply(const Transform& x, const glm::vec3& p) {
 }
 
 // Where the local pose of a joint in `pose` moves p, whatever the mode's representation.
-glm::vec3 pose_apply(Interpolation mode, const PoseBuffer& pose, std::size_t j, const glm::vec3& p) {
+glm::vec3 pose_apply(Interpolation mode, const baseline::PoseBuffer& pose, std::size_t j, const glm::vec3& p) {
   switch (mode) {
     case Interpolation::paper:
     case Interpolation::nlerp:
@@ -30,22 +31,22 @@ glm::vec3 pose_apply(Interpolation mode, const PoseBuffer& pose, std::size_t j, 
     case Interpolation::glm_matrix: return glm_apply(pose.transforms[j], p);
     case Interpolation::glm_dualquat: {
       const glm::dualquat& q = pose.dual_quats[j];
-      return q.real * (pose.scales[j] * p) + dual_quat_translation(q);
+      return q.real * (pose.scales[j] * p) + baseline::dual_quat_translation(q);
     }
   }
   return {};
 }
 
-SamplingJob sampler(const Clip& clip, float t, Interpolation mode, PoseBuffer& pose) {
-  SamplingJob job;
-  job.clip = &clip;
-  job.time = t;
-  job.mode = mode;
-  job.out_motors = pose.motors;
-  job.out_transforms = pose.transforms;
-  job.out_dual_quats = pose.dual_quats;
-  job.out_scales = pose.scales;
-  return job;
+// The sampling job of the mode's representation (the runtime's motor job or a GLM baseline), as one object.
+struct Sampler {
+  const Clip* clip;
+  float time;
+  Interpolation mode;
+  baseline::PoseBuffer* pose;
+  bool Run() const { return baseline::sample(mode, *clip, time, *pose); }
+};
+Sampler sampler(const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& pose) {
+  return {&clip, t, mode, &pose};
 }
 
 const glm::vec3 kProbe[3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.3f, -0.7f, 0.5f}};
@@ -90,7 +91,7 @@ TEST_CASE("every mode reproduces the keys at key times, and its interpolant at a
     const Character ch = load_character(model(file));
     const float size = character_size(ch);
     for (const Clip& clip : ch.clips) {
-      PoseBuffer pose(ch.skeleton.joint_count());
+      baseline::PoseBuffer pose(ch.skeleton.joint_count());
       // Key times of the joint with the most keys, at most 40 of them spread over the clip.
       std::size_t busiest = 0;
       for (std::size_t j = 0; j < clip.keys.size(); ++j)
@@ -150,7 +151,7 @@ TEST_CASE("screw moves a point along the helix of the screw motion at constant s
   x2.translation = x1.translation + x1.rotation * rel.translation;
   const Clip clip = one_joint_clip({0.0f, 2.0f}, {x1, x2});
 
-  PoseBuffer pose(1);
+  baseline::PoseBuffer pose(1);
   const glm::vec3 p(0.9f, 0.1f, -0.4f);
   std::vector<glm::vec3> path;
   const int steps = 50;
@@ -185,7 +186,7 @@ TEST_CASE("screw interpolates the scale geometrically, paper linearly in the dil
   a.scale = 1.0f;
   b.scale = 4.0f;
   const Clip clip = one_joint_clip({0.0f, 1.0f}, {a, b});
-  PoseBuffer pose(1);
+  baseline::PoseBuffer pose(1);
   REQUIRE(sampler(clip, 0.5f, Interpolation::screw, pose).Run());
   CHECK(motor_to_transform(pose.motors[0]).scale == Approx(2.0f).epsilon(1e-5));
   REQUIRE(sampler(clip, 0.5f, Interpolation::nlerp, pose).Run());
@@ -204,17 +205,19 @@ TEST_CASE("time is clamped to the clip") {
   Transform a, b;
   b.translation = glm::vec3(1.0f, 0.0f, 0.0f);
   const Clip clip = one_joint_clip({0.0f, 1.0f}, {a, b});
-  PoseBuffer pose(1);
+  baseline::PoseBuffer pose(1);
   for (Interpolation mode : kAllInterpolations) {
     REQUIRE(sampler(clip, 5.0f, mode, pose).Run());
     CHECK(glm::length(pose_apply(mode, pose, 0, glm::vec3(0.0f)) - b.translation) < 1e-6f);
     REQUIRE(sampler(clip, -5.0f, mode, pose).Run());
     CHECK(glm::length(pose_apply(mode, pose, 0, glm::vec3(0.0f)) - a.translation) < 1e-6f);
   }
-  SamplingJob bad = sampler(clip, 0.0f, Interpolation::paper, pose);
-  bad.out_motors = {};
+  SamplingJob bad{&clip, 0.0f, Interpolation::paper, {}};
   CHECK_FALSE(bad.Validate());
   CHECK_FALSE(bad.Run());
+  // A motor job runs the motor modes only.
+  for (Interpolation mode : {Interpolation::glm_matrix, Interpolation::glm_dualquat})
+    CHECK_FALSE(SamplingJob{&clip, 0.0f, mode, pose.motors}.Validate());
 }
 
 TEST_CASE("blending: edge weights give a layer back, equal poses give the pose") {
@@ -225,22 +228,13 @@ TEST_CASE("blending: edge weights give a layer back, equal poses give the pose")
   const float size = character_size(ch);
   for (Interpolation mode : kAllInterpolations) {
     INFO("mode " << to_string(mode));
-    PoseBuffer a(n), b(n), out(n);
+    baseline::PoseBuffer a(n), b(n), out(n);
     REQUIRE(sampler(run, 0.3f, mode, a).Run());
     REQUIRE(sampler(walk, 1.1f, mode, b).Run());
-    auto layer = [](const PoseBuffer& p, float w) {
-      return BlendLayer{w, p.motors, p.transforms, p.dual_quats, p.scales};
-    };
+    auto layer = [](const baseline::PoseBuffer& p, float w) { return baseline::PoseLayer{w, &p}; };
     for (float alpha : {0.0f, 1.0f, 0.5f}) {
-      const BlendLayer layers[2] = {layer(a, 1.0f - alpha), layer(b, alpha)};
-      BlendingJob job;
-      job.mode = mode;
-      job.layers = layers;
-      job.out_motors = out.motors;
-      job.out_transforms = out.transforms;
-      job.out_dual_quats = out.dual_quats;
-      job.out_scales = out.scales;
-      REQUIRE(job.Run());
+      const baseline::PoseLayer layers[2] = {layer(a, 1.0f - alpha), layer(b, alpha)};
+      REQUIRE(baseline::blend(mode, layers, out));
       for (std::size_t j = 0; j < n; ++j)
         for (const glm::vec3& p : kProbe) {
           const glm::vec3 q = p * size;
@@ -255,21 +249,13 @@ TEST_CASE("blending: edge weights give a layer back, equal poses give the pose")
         }
     }
     // Three equal layers blend to the same pose.
-    const BlendLayer same[3] = {layer(a, 0.2f), layer(a, 0.5f), layer(a, 0.3f)};
-    BlendingJob job;
-    job.mode = mode;
-    job.layers = same;
-    job.out_motors = out.motors;
-    job.out_transforms = out.transforms;
-    job.out_dual_quats = out.dual_quats;
-    job.out_scales = out.scales;
-    REQUIRE(job.Run());
+    const baseline::PoseLayer same[3] = {layer(a, 0.2f), layer(a, 0.5f), layer(a, 0.3f)};
+    REQUIRE(baseline::blend(mode, same, out));
     for (std::size_t j = 0; j < n; ++j)
       REQUIRE(glm::length(pose_apply(mode, out, j, kProbe[2] * size) - pose_apply(mode, a, j, kProbe[2] * size)) <
               1e-5f * size * 4.0f);
-    const BlendLayer none[1] = {layer(a, 0.0f)};
-    job.layers = none;
-    CHECK_FALSE(job.Run());
+    const baseline::PoseLayer none[1] = {layer(a, 0.0f)};
+    CHECK_FALSE(baseline::blend(mode, none, out));
   }
 }
 
@@ -366,7 +352,7 @@ TEST_CASE("per-interval sampling equals a binary search in each joint's own keys
     for (const Clip& clip : ch.clips) {
       REQUIRE(clip.intervals.joints == clip.keys.size());
       std::uniform_real_distribution<float> u(-0.1f * clip.duration - 0.1f, 1.1f * clip.duration + 0.1f);
-      PoseBuffer pose(ch.skeleton.joint_count());
+      baseline::PoseBuffer pose(ch.skeleton.joint_count());
       std::vector<float> times = {0.0f, clip.duration, clip.intervals.times.front(), clip.intervals.times.back()};
       for (int s = 0; s < 60; ++s) times.push_back(u(rng));
       for (std::size_t s = 0; s < clip.intervals.times.size(); s += 7) times.push_back(clip.intervals.times[s]);
@@ -407,7 +393,7 @@ TEST_CASE("joints whose keys start late or end early hold them while other joint
   }
   build_joint_keys(clip);
   REQUIRE(clip.intervals.times == std::vector<float>{0.0f, 1.0f, 1.5f, 2.0f, 3.0f});
-  PoseBuffer pose(2);
+  baseline::PoseBuffer pose(2);
   for (Interpolation mode : kAllInterpolations)
     for (float t : {0.0f, 0.5f, 1.0f, 1.25f, 1.5f, 1.75f, 2.0f, 2.5f, 3.0f}) {
       INFO(to_string(mode) << " t " << t);
@@ -457,13 +443,13 @@ TEST_CASE("nlerp and paper blending of many joints (blocks of 8 and remainders) 
         }
       }
       std::vector<BlendLayer> layers;
-      for (std::size_t l = 0; l < layers_n; ++l) layers.push_back(BlendLayer{weights[l], poses[l], {}, {}, {}});
+      for (std::size_t l = 0; l < layers_n; ++l) layers.push_back(BlendLayer{weights[l], poses[l]});
       float total = 0.0f;
       for (float w : weights) total += w;
       for (Interpolation mode : {Interpolation::nlerp, Interpolation::paper}) {
         std::vector<Motor> out(n);
         BlendingJob job;
-        job.mode = mode, job.layers = layers, job.out_motors = out;
+        job.mode = mode, job.layers = layers, job.output = out;
         REQUIRE(job.Run());
         for (std::size_t j = 0; j < n; ++j) {
           Motor want;

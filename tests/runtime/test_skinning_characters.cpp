@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/skinning.hpp"
@@ -30,31 +31,19 @@ struct MeshPalettes {
   DualQuatPalette dual_quats;
 };
 
-MeshPalettes palettes_at(const Character& ch, const SkinnedMesh& mesh, const InverseBind& ib, float time) {
+MeshPalettes palettes_at(const Character& ch, const SkinnedMesh& mesh, const baseline::InverseBind& ib, float time) {
   const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
   const std::size_t p = mesh.joint_remap.size();
   MeshPalettes out{MotorPalette(p), MatrixPalette(p), DualQuatPalette(p)};
   for (Interpolation mode : {Interpolation::paper, Interpolation::glm_matrix, Interpolation::glm_dualquat}) {
-    PoseBuffer local(n), model_pose(n);
-    SamplingJob sampling{&ch.clips.front(), time, mode, local.motors, local.transforms, local.dual_quats,
-                         local.scales};
-    REQUIRE(sampling.Run());
-    LocalToModelJob l2m{&ch.skeleton,      mode,         local.motors,      local.transforms,
-                        local.dual_quats,  local.scales, model_pose.motors, model_pose.matrices,
-                        model_pose.dual_quats, model_pose.scales};
-    REQUIRE(l2m.Run());
-    SkinningPaletteJob palette;
-    palette.mode = mode;
-    palette.joint_remap = mesh.joint_remap;
-    palette.inverse_bind = &ib;
-    palette.model_motors = model_pose.motors;
-    palette.model_matrices = model_pose.matrices;
-    palette.model_dual_quats = model_pose.dual_quats;
-    palette.model_scales = model_pose.scales;
-    palette.out_motors = out.motors;
-    palette.out_matrices = out.matrices;
-    palette.out_dual_quats = out.dual_quats;
-    REQUIRE(palette.Run());
+    baseline::PoseBuffer local(n), model_pose(n);
+    REQUIRE(baseline::sample(mode, ch.clips.front(), time, local));
+    REQUIRE(baseline::local_to_model(mode, ch.skeleton, local, model_pose));
+    baseline::PaletteBuffer pal(p);
+    REQUIRE(baseline::palette(mode, mesh.joint_remap, ib, model_pose, pal));
+    if (mode == Interpolation::paper) out.motors = pal.motors;
+    if (mode == Interpolation::glm_matrix) out.matrices = pal.matrices;
+    if (mode == Interpolation::glm_dualquat) out.dual_quats = pal.dual_quats;
   }
   return out;
 }
@@ -97,8 +86,8 @@ TEST_CASE("real characters at every key frame: cga-points == lbs, cga-motors == 
     REQUIRE(size > 0.0f);
     const std::vector<float> times = key_times(ch.clips.front());
     REQUIRE(times.size() >= 2);
-    std::vector<InverseBind> binds;
-    for (const SkinnedMesh& mesh : ch.meshes) binds.push_back(make_inverse_bind(mesh));
+    std::vector<baseline::InverseBind> binds;
+    for (const SkinnedMesh& mesh : ch.meshes) binds.push_back(baseline::make_inverse_bind(mesh));
     std::size_t skinned = 0, normal_checks = 0;
     float worst_points = 0.0f, worst_motors = 0.0f;  // max distances cga-points vs lbs, cga-motors vs dqs
     float linear_vs_motor = 0.0f;  // how far lbs and dqs get apart somewhere: the comparisons must be able to fail

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 
+#include "cga/runtime/rotor_sign.hpp"
 #include "kernels.hpp"
 #include "motor_split_to_matrix.cuh"
 
@@ -58,11 +59,8 @@ __device__ __forceinline__ void load_weights(const void* p, std::size_t i, float
 
 // A motor's 12 blades (types.hpp order) in split form: G = a + b in s[0..3], H = a - b in s[4..7], the einf
 // blades U in s[8..11].
-__device__ __forceinline__ void motor_split(const float c[12], float s[12]) {
-  s[0] = c[0] + c[7], s[1] = c[1] + c[9], s[2] = c[2] + c[10], s[3] = c[4] + c[11];
-  s[4] = c[0] - c[7], s[5] = c[1] - c[9], s[6] = c[2] - c[10], s[7] = c[4] - c[11];
-  s[8] = c[3], s[9] = c[5], s[10] = c[6], s[11] = c[8];
-}
+// (rotor_sign.hpp, the one definition the CPU loops and the GLSL share.)
+__device__ __forceinline__ void motor_split(const float c[12], float s[12]) { rotor_sign::split(c, s, s + 4, s + 8); }
 
 // Row-major 3x4 from the generated motor_split_to_matrix's columns, for a motor in split form.
 __device__ __forceinline__ void split_rows(const float s[12], float m[12]) {
@@ -143,8 +141,7 @@ __global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
       for (int k = 1; k < 4; ++k) {
         const float* q = palette + 12 * j[k];
         // Rotor parts times 1 + k: G (split indices 0-3).
-        const float dot = q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[3] * q[3];
-        const float wk = copysignf(w[k], dot);
+        const float wk = rotor_sign::signed_weight(w[k], rotor_sign::dot(q0, q));
         for (int e = 0; e < 12; ++e) b[e] += wk * q[e];
       }
       split_rows(b, m);

@@ -3,7 +3,8 @@
 # main. Writes each program to OUT_DIR/NAME.STAGE (glslangValidator checks those files) and all of them as
 # C++ string literals into CPP_OUT (what the library compiles with).
 #   -DSHADER_DIR=<runtime/gpu/shaders> -DGENERATED_DIR=<build/generated> -DOUT_DIR=<dir> -DCPP_OUT=<file.cpp>
-foreach(_v SHADER_DIR GENERATED_DIR OUT_DIR CPP_OUT)
+#   -DROTOR_SIGN=<rotor_sign.glsl, configured from cga/runtime/rotor_sign.hpp>
+foreach(_v SHADER_DIR GENERATED_DIR OUT_DIR CPP_OUT ROTOR_SIGN)
   if(NOT DEFINED ${_v})
     message(FATAL_ERROR "assemble_shaders.cmake: -D${_v}=... is required")
   endif()
@@ -41,11 +42,12 @@ endfunction()
 file(MAKE_DIRECTORY ${OUT_DIR})
 _read_part(_palette ${SHADER_DIR}/palette.glsl)
 _read_part(_motor_split_to_matrix ${GENERATED_DIR}/motor_split_to_matrix.glsl)
+_read_part(_rotor_sign ${ROTOR_SIGN})
 foreach(_method lbs dqs cga_points cga_motors)
   _read_part(_skin ${SHADER_DIR}/skin_${_method}.glsl)
   set(_kernels "")
   if(_method MATCHES "^cga_")
-    set(_kernels "${_motor_split_to_matrix}")
+    set(_kernels "${_motor_split_to_matrix}${_rotor_sign}")
   endif()
   foreach(_stage vert comp)
     _read_part(_main ${SHADER_DIR}/skin_main.${_stage})

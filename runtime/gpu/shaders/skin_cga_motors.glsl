@@ -10,14 +10,6 @@ mat3x4 palette_motor(int e) {
   return mat3x4(palette[PALETTE_STRIDE * e], palette[PALETTE_STRIDE * e + 1], palette[PALETTE_STRIDE * e + 2]);
 }
 
-// Split form of a motor in the mat3x4 layout (see skin_cga_points.glsl).
-void motor_split(mat3x4 M, out vec4 G, out vec4 H, out vec4 U) {
-  vec4 a = vec4(M[0].xyz, M[1][0]);
-  vec4 b = vec4(M[1][3], M[2].yzw);
-  G = a + b;
-  H = a - b;
-  U = vec4(M[0][3], M[1].yz, M[2][0]);
-}
 
 // The blend is taken in split form (linear, so the same blend): a sum of the blade forms of scaled motors
 // would round a and b at their size, which is up to s times that of G = a + b. The sign fix reads G (the
@@ -29,7 +21,7 @@ void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, 
   for (int k = 1; k < 4; ++k) {
     vec4 Gk, Hk, Uk;
     motor_split(palette_motor(base + j[k]), Gk, Hk, Uk);
-    float wk = dot(G0, Gk) < 0.0 ? -w[k] : w[k];
+    float wk = cga_signed_weight(w[k], dot(G0, Gk));
     G += wk * Gk;
     H += wk * Hk;
     U += wk * Uk;

@@ -10,16 +10,6 @@ mat3x4 palette_motor(int e) {
   return mat3x4(palette[PALETTE_STRIDE * e], palette[PALETTE_STRIDE * e + 1], palette[PALETTE_STRIDE * e + 2]);
 }
 
-// Split form of a motor in the mat3x4 layout: a = (M[0][0], M[0][1], M[0][2], M[1][0]) (1 e12 e13 e23),
-// b = (M[1][3], M[2][1], M[2][2], M[2][3]) (einf^e0 and e12, e13, e23 times it), U = (M[0][3], M[1][1],
-// M[1][2], M[2][0]) (e1inf e2inf e3inf e123inf).
-void motor_split(mat3x4 M, out vec4 G, out vec4 H, out vec4 U) {
-  vec4 a = vec4(M[0].xyz, M[1][0]);
-  vec4 b = vec4(M[1][3], M[2].yzw);
-  G = a + b;
-  H = a - b;
-  U = vec4(M[0][3], M[1].yz, M[2][0]);
-}
 
 void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on) {
   op = vec3(0.0);

@@ -21,46 +21,29 @@ CharacterPoser::CharacterPoser(const Character& character)
     : character_(&character),
       local_(static_cast<std::size_t>(character.skeleton.joint_count())),
       model_(static_cast<std::size_t>(character.skeleton.joint_count())) {
-  for (const SkinnedMesh& mesh : character.meshes) inverse_binds_.push_back(make_inverse_bind(mesh));
+  for (const SkinnedMesh& mesh : character.meshes) inverse_binds_.push_back(baseline::make_inverse_bind(mesh));
 }
 
 std::vector<MeshPalette> CharacterPoser::pose(const Clip& clip, float time, SkinningMethod method) {
   const Interpolation mode = pose_mode(method);
-  SamplingJob sampling;
-  sampling.clip = &clip, sampling.time = time, sampling.mode = mode;
-  sampling.out_motors = local_.motors, sampling.out_transforms = local_.transforms,
-  sampling.out_dual_quats = local_.dual_quats, sampling.out_scales = local_.scales;
-  if (!sampling.Run())
+  if (!baseline::sample(mode, clip, time, local_))
     throw std::runtime_error("cga::gpu::CharacterPoser: sampling clip '" + clip.name + "' at " +
                              std::to_string(time) + " s failed");
-  LocalToModelJob l2m;
-  l2m.skeleton = &character_->skeleton, l2m.mode = mode;
-  l2m.local_motors = local_.motors, l2m.local_transforms = local_.transforms,
-  l2m.local_dual_quats = local_.dual_quats, l2m.local_scales = local_.scales;
-  l2m.model_motors = model_.motors, l2m.model_matrices = model_.matrices, l2m.model_dual_quats = model_.dual_quats,
-  l2m.model_scales = model_.scales;
-  if (!l2m.Run()) throw std::runtime_error("cga::gpu::CharacterPoser: local-to-model job failed");
+  if (!baseline::local_to_model(mode, character_->skeleton, local_, model_))
+    throw std::runtime_error("cga::gpu::CharacterPoser: local-to-model job failed");
   std::vector<MeshPalette> out(character_->meshes.size());
   for (std::size_t m = 0; m < out.size(); ++m) {
     const SkinnedMesh& mesh = character_->meshes[m];
-    const std::size_t n = mesh.joint_remap.size();
-    MeshPalette& pal = out[m];
-    SkinningPaletteJob job;
-    job.mode = mode, job.joint_remap = mesh.joint_remap, job.inverse_bind = &inverse_binds_[m];
-    job.model_motors = model_.motors, job.model_matrices = model_.matrices,
-    job.model_dual_quats = model_.dual_quats, job.model_scales = model_.scales;
-    if (uses_motors(mode)) {
-      pal.motors.resize(n);
-      job.out_motors = pal.motors;
-    } else if (mode == Interpolation::glm_matrix) {
-      pal.matrices.resize(n);
-      job.out_matrices = pal.matrices;
-    } else {
-      pal.dual_quats.resize(n);
-      job.out_dual_quats = pal.dual_quats;
-    }
-    if (!job.Run())
+    baseline::PaletteBuffer pal(mesh.joint_remap.size());
+    if (!baseline::palette(mode, mesh.joint_remap, inverse_binds_[m], model_, pal))
       throw std::runtime_error("cga::gpu::CharacterPoser: palette job failed for mesh '" + mesh.name + "'");
+    // Only the array of the method's representation is kept.
+    if (uses_motors(mode))
+      out[m].motors = std::move(pal.motors);
+    else if (mode == Interpolation::glm_matrix)
+      out[m].matrices = std::move(pal.matrices);
+    else
+      out[m].dual_quats = std::move(pal.dual_quats);
   }
   return out;
 }

@@ -1,14 +1,15 @@
-// ozz-style animation jobs: each is a struct of non-owning spans plus the mode, with Validate() (sizes and
-// pointers) and Run() (returns false when invalid; never allocates). One pose is a set of per-joint arrays in
-// the representation of its interpolation mode:
-//   paper / nlerp / screw   Motor per joint
-//   glm_matrix              Transform (TRS) per joint locally, glm::mat4 in model space
-//   glm_dualquat            glm::dualquat (rigid part) + float scale per joint
+// The pose jobs, ozz-animation style: each job has one concern and one data representation (motors), is a
+// struct of non-owning spans, and has Validate() (sizes, pointers, modes; the size rule of every span is
+// given next to it) and Run() (returns false when invalid; never allocates).
 //
-//   SamplingJob         clip, time -> local pose       (binary search per joint, time clamped to [0, duration])
-//   BlendingJob         N weighted local poses -> one  (cross-fade = two layers with weights 1-a, a)
-//   LocalToModelJob     local pose -> model pose       (parents first: model[j] = model[parent] * local[j])
-//   SkinningPaletteJob  model pose -> a mesh's palette (model[remap[k]] * inverse_bind[k])
+//   SamplingJob         clip, time -> local motors      (binary search per joint, time clamped to [0, duration])
+//   BlendingJob         N weighted local poses -> one   (cross-fade = two layers with weights 1-a, a)
+//   LocalToModelJob     local motors -> model motors    (parents first: model[j] = model[parent] * local[j])
+//   SkinningPaletteJob  model motors -> a mesh's palette (model[remap[k]] * inverse_bind[k])
+//
+// A pose is an array of Motor, one per joint (types.hpp). The GLM matrix and dual-quaternion pipelines that
+// the benchmarks and tests compare against are not part of cga::runtime: they live in cga::test_support
+// (cga/baselines/pose_jobs.hpp). See docs/runtime.md for where a new job goes.
 #pragma once
 
 #include <span>
@@ -19,112 +20,69 @@
 
 namespace cga {
 
-// Owning storage of one pose in every representation (only the mode's arrays are used); for convenience.
-struct PoseBuffer {
-  std::vector<Motor> motors;
-  std::vector<Transform> transforms;
-  std::vector<glm::mat4> matrices;
-  std::vector<glm::dualquat> dual_quats;
-  std::vector<float> scales;
-  PoseBuffer() = default;
-  explicit PoseBuffer(std::size_t joints)
-      : motors(joints), transforms(joints), matrices(joints), dual_quats(joints), scales(joints, 1.0f) {}
-};
-
+// Interpolation modes a motor job runs: paper, nlerp, screw (uses_motors()); the glm_* modes are rejected.
 struct SamplingJob {
-  const Clip* clip = nullptr;
+  const Clip* clip = nullptr;  // its keys built (build_joint_keys)
   // Seconds; clamped to [0, clip->duration] (before the first key: the first key; after the last: the last).
+  // Must be finite.
   float time = 0.0f;
   Interpolation mode = Interpolation::paper;
-  // Output of the mode, one per joint: motors (paper, nlerp, screw), transforms (glm_matrix),
-  // dual_quats + scales (glm_dualquat).
-  std::span<Motor> out_motors;
-  std::span<Transform> out_transforms;
-  std::span<glm::dualquat> out_dual_quats;
-  std::span<float> out_scales;
+  std::span<Motor> output;  // size >= the clip's joint count
 
   bool Validate() const;
   bool Run() const;
 };
 
-// One input pose of a blend and its weight (a weight <= 0 leaves the layer out).
+// One input pose of a blend and its weight (a weight <= 0 leaves the layer out; weights must be finite).
 struct BlendLayer {
   float weight = 0.0f;
-  std::span<const Motor> motors;
-  std::span<const Transform> transforms;
-  std::span<const glm::dualquat> dual_quats;
-  std::span<const float> scales;
+  std::span<const Motor> motors;  // size >= output.size() when weight > 0
+  // Optional per-joint weights (partial blending, ozz's joint_weights): empty, or size >= output.size(),
+  // each finite and >= 0; joint j then enters with weight * joint_weights[j].
+  std::span<const float> joint_weights{};
 };
 
 // Weighted blend of N poses, weights normalized by their sum (which must be > 0):
-//   paper         the weighted sum of the motors (eq. 25 with N terms), not normalized, no sign fix.
-//   nlerp         weighted sum with each motor's sign matched to the first layer's, then normalized.
-//   screw         screw interpolation folded over the layers: acc = screw(acc, layer k, w_k / (w_0+..+w_k));
-//                 exact for two layers, order-dependent (and approximate) for more.
-//   glm_matrix    quaternions summed with the sign fix and normalized (as ozz does), translations and
-//                 scales averaged.
-//   glm_dualquat  dual quaternions summed with the sign fix and normalized, scales averaged.
+//   paper   the weighted sum of the motors (eq. 25 with N terms), not normalized, no sign fix.
+//   nlerp   weighted sum with each motor's sign matched to the first layer's (rotor_sign.hpp), normalized.
+//   screw   screw interpolation folded over the layers: acc = screw(acc, layer k, w_k / (w_0+..+w_k));
+//           exact for two layers, order-dependent (and approximate) for more.
+// With per-joint weights every joint is normalized by its own weight sum; a joint whose sum is 0 takes
+// rest_pose[j] (ozz's fallback), and without a rest pose such a joint makes the job invalid.
 struct BlendingJob {
   Interpolation mode = Interpolation::paper;
-  std::span<const BlendLayer> layers;
-  std::span<Motor> out_motors;
-  std::span<Transform> out_transforms;
-  std::span<glm::dualquat> out_dual_quats;
-  std::span<float> out_scales;
+  std::span<const BlendLayer> layers;  // at least one with weight > 0
+  std::span<Motor> output;             // the joint count: every contributing layer holds at least this many
+  std::span<const Motor> rest_pose{};  // optional: empty, or size >= output.size()
 
   bool Validate() const;
   bool Run() const;
 };
 
-// Model space from local space down the skeleton. Motors compose by the generated motor product; matrices
-// by GLM; dual quaternions by GLM with the parent's scale folded into the child's translation (a dual
-// quaternion holds no scale, model_scales carries the accumulated uniform scale).
+// Model space from local space down the skeleton, by the generated motor product (the 8-blade rigid product
+// when no local motor has a dilation; otherwise the split form, see jobs.cpp).
 struct LocalToModelJob {
-  const Skeleton* skeleton = nullptr;
-  Interpolation mode = Interpolation::paper;
-  std::span<const Motor> local_motors;
-  std::span<const Transform> local_transforms;
-  std::span<const glm::dualquat> local_dual_quats;
-  std::span<const float> local_scales;
-  std::span<Motor> model_motors;
-  std::span<glm::mat4> model_matrices;
-  std::span<glm::dualquat> model_dual_quats;
-  std::span<float> model_scales;
+  const Skeleton* skeleton = nullptr;  // parents[j] < j
+  std::span<const Motor> input;        // size >= joint count
+  std::span<Motor> output;             // size >= joint count
 
   bool Validate() const;
   bool Run() const;
 };
 
-// Inverse bind data of a mesh in each representation, computed once (the motors by the generated kernel).
-struct InverseBind {
-  std::vector<Motor> motors;
-  std::vector<glm::mat4> matrices;
-  std::vector<glm::dualquat> dual_quats;  // rigid part
-  std::vector<float> scales;
-};
-InverseBind make_inverse_bind(const SkinnedMesh& mesh);
+// The inverse bind motors of a mesh (one per palette entry), by the generated motor_from_trs kernel; a scale
+// within float rounding of 1 is taken as 1, so rigid characters get exactly rigid inverse binds.
+std::vector<Motor> make_inverse_bind_motors(const SkinnedMesh& mesh);
 
-// palette[k] = model[joint_remap[k]] * inverse_bind[k], in the mode's skinning palette type. The dual
-// quaternion palette is the rigid part only: dual quaternion skinning cannot apply a scale.
+// palette[k] = model[joint_remap[k]] * inverse_bind[k] (the MotorPalette of the cga skinning methods).
 struct SkinningPaletteJob {
-  Interpolation mode = Interpolation::paper;
-  std::span<const int> joint_remap;
-  const InverseBind* inverse_bind = nullptr;
-  std::span<const Motor> model_motors;
-  std::span<const glm::mat4> model_matrices;
-  std::span<const glm::dualquat> model_dual_quats;
-  std::span<const float> model_scales;
-  std::span<Motor> out_motors;          // MotorPalette (paper, nlerp, screw)
-  std::span<glm::mat3x4> out_matrices;  // MatrixPalette (glm_matrix)
-  std::span<glm::dualquat> out_dual_quats;  // DualQuatPalette (glm_dualquat)
+  std::span<const int> joint_remap;     // each in [0, model.size())
+  std::span<const Motor> inverse_bind;  // size >= joint_remap.size()
+  std::span<const Motor> model;         // the model pose
+  std::span<Motor> output;              // size >= joint_remap.size()
 
   bool Validate() const;
   bool Run() const;
 };
-
-// Helpers for tests and tools: the TRS of a transform as a row-major 3x4 palette matrix, and the rigid
-// translation of a unit dual quaternion.
-glm::mat3x4 to_palette_matrix(const glm::mat4& m);
-glm::vec3 dual_quat_translation(const glm::dualquat& q);
 
 }  // namespace cga

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "cga/runtime/rotor_sign.hpp"
 #include "cga/runtime/types.hpp"
 
 #include <motor_from_trs.hpp>
@@ -100,12 +101,11 @@ inline Motor motor_from_rigid(const RigidMotor& r) {
   return m;
 }
 
-// Inner product of the rotor parts a + b of two motors: its sign decides the antipodal fix.
+// Inner product of the rotor parts G = a + b of two motors: its sign decides the antipodal fix (rotor_sign.hpp).
 inline float motor_rotor_dot(const Motor& x, const Motor& y) {
-  const auto& a = x.c;
-  const auto& b = y.c;
-  return (a[0] + a[7]) * (b[0] + b[7]) + (a[1] + a[9]) * (b[1] + b[9]) + (a[2] + a[10]) * (b[2] + b[10]) +
-         (a[4] + a[11]) * (b[4] + b[11]);
+  float gx[4], gy[4];
+  for (int i = 0; i < 4; ++i) gx[i] = rotor_sign::rotor_g(x.c.data(), i), gy[i] = rotor_sign::rotor_g(y.c.data(), i);
+  return rotor_sign::dot(gx, gy);
 }
 
 // The same product as motor_mul_rigid in 4-wide SIMD (GCC/Clang vector extensions: SSE on x86-64, NEON on

@@ -26,6 +26,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cga/runtime/types.hpp"
 
@@ -50,10 +51,17 @@ inline constexpr float kWeightSumTolerance = 1e-3f;
 
 // Skins vertices [0, vertex count) from rest (mesh space) to posed. Every span is non-owning. The palette of
 // the chosen method must hold an entry for every joint index used; the others may be empty.
+//
+// Size rules (n = vertex_count()):
+//   packed streams (every stride 1, the default): each position/normal span holds exactly n floats;
+//   strided streams: vertex i of a stream is at [i * stride], so each span covers at least (n - 1) * stride + 1
+//     floats (an interleaved buffer: in_px = {buf, size}, in_py = {buf + 1, size - 1}, ..., stride = floats
+//     per vertex); n is then joints.size();
+//   joints, weights: n entries each; palette of `method`: at most kMaxConvertedPalette entries.
 struct SkinningJob {
   SkinningMethod method = SkinningMethod::lbs;
 
-  // Rest positions; their common size is the vertex count.
+  // Rest positions; packed, their common size is the vertex count.
   std::span<const float> in_px, in_py, in_pz;
   // Optional rest normals: all three empty (no normals) or all of the vertex count, and then the output
   // normals must be given too.
@@ -71,6 +79,11 @@ struct SkinningJob {
   std::span<float> out_px, out_py, out_pz;
   std::span<float> out_nx, out_ny, out_nz;
 
+  // Floats from one vertex to the next in each stream group (ozz's in_positions_stride, in floats rather than
+  // bytes); 1 = packed structure of arrays. Strided runs stage 256 vertices at a time on the stack.
+  std::size_t in_positions_stride = 1, in_normals_stride = 1;
+  std::size_t out_positions_stride = 1, out_normals_stride = 1;
+
   // Run lbs / cga_points / cga_motors on the hand-written AVX2 + FMA loops when the CPU has them (the default).
   // false: always the portable loops, which agree to float rounding; tests use it to check both paths.
   bool use_simd = true;
@@ -87,7 +100,10 @@ struct SkinningJob {
   // on the first invalid block (vertices before it are already written). Never allocates.
   bool Run() const;
 
-  std::size_t vertex_count() const { return in_px.size(); }
+  bool is_packed() const {
+    return in_positions_stride == 1 && in_normals_stride == 1 && out_positions_stride == 1 && out_normals_stride == 1;
+  }
+  std::size_t vertex_count() const { return is_packed() ? in_px.size() : joints.size(); }
   bool has_normals() const { return !in_nx.empty(); }
 };
 

@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "cga/runtime/rotor_sign.hpp"
 #include "cga/runtime/types.hpp"
 
 // A hard dependency: the CGA methods run on this generated kernel (cga::kernels, generated/CMakeLists.txt), so
@@ -51,11 +52,7 @@ namespace detail {
 // A motor in split form (runtime/scripts/motor_split_to_matrix.clu): G = a + b and H = a - b (blades 1 e12
 // e13 e23 of a and of the E-times group b), U the einf blades (e1inf e2inf e3inf e123inf). Linear in the
 // coefficients, so blending split motors is the split form of the blend.
-inline void motor_split(const float m[12], float g[4], float h[4], float u[4]) {
-  g[0] = m[0] + m[7], g[1] = m[1] + m[9], g[2] = m[2] + m[10], g[3] = m[4] + m[11];
-  h[0] = m[0] - m[7], h[1] = m[1] - m[9], h[2] = m[2] - m[10], h[3] = m[4] - m[11];
-  u[0] = m[3], u[1] = m[5], u[2] = m[6], u[3] = m[8];
-}
+inline void motor_split(const float m[12], float g[4], float h[4], float u[4]) { rotor_sign::split(m, g, h, u); }
 
 // The weight-normalized point transform of a (possibly blended, unnormalized) motor in split form as a
 // row-major 3x4 matrix, computed by the generated motor_split_to_matrix kernel.

@@ -1,7 +1,7 @@
 // A character's skinning palettes at one time of a clip, in the representation each skinning method reads
 // (lbs: GLM matrices, dqs: GLM dual quaternions, cga_points / cga_motors: motors from the paper's
-// interpolation), through the runtime's jobs (sampling, local-to-model, palette). For the GPU tests,
-// pictures and the demo.
+// interpolation), through the runtime's motor jobs or the GLM baseline jobs (cga/baselines/pose_jobs.hpp)
+// (sampling, local-to-model, palette). For the GPU tests, pictures and the demo.
 #pragma once
 
 #include <vector>
@@ -9,6 +9,7 @@
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/loader.hpp"
 #include "cga/runtime/skinning.hpp"
+#include "cga/baselines/pose_jobs.hpp"
 
 namespace cga::gpu {
 
@@ -32,8 +33,8 @@ class CharacterPoser {
 
  private:
   const Character* character_;
-  std::vector<InverseBind> inverse_binds_;
-  PoseBuffer local_, model_;
+  std::vector<baseline::InverseBind> inverse_binds_;
+  baseline::PoseBuffer local_, model_;
 };
 
 // Every distinct key time of any joint of the clip, sorted.

@@ -1,0 +1,129 @@
+// Two-bone and aim IK per solve, in ns: TwoBoneIKJob / AimIKJob (generated CGA kernels: spheres, circle,
+// pole plane and point pair; shortest-arc rotor) against the plain vector/quaternion solver of
+// cga/testing/ik_reference.hpp (law of cosines, glm::rotation) on the same 1024 random chains, cycled.
+// Both produce the local rotation corrections of the start and mid joints from model-space input.
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "bench_common.hpp"
+#include "cga/runtime/ik.hpp"
+#include "cga/runtime/motor.hpp"
+#include "cga/testing/ik_reference.hpp"
+#include "summary.hpp"
+
+namespace cga::bench {
+
+namespace {
+
+struct IkCase {
+  Motor start, mid, end;  // model space
+  glm::vec3 s, m, e;
+  glm::quat qs, qm;
+  glm::vec3 target, pole;
+};
+
+const std::vector<IkCase>& ik_cases() {
+  static const std::vector<IkCase> cases = [] {
+    std::mt19937 gen(31337u);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const auto dir = [&] { return glm::normalize(glm::vec3(u(gen), u(gen), u(gen)) + glm::vec3(1e-3f)); };
+    const auto rot = [&] { return glm::normalize(glm::quat(u(gen), u(gen), u(gen), u(gen)) + glm::quat(1e-3f, 0, 0, 0)); };
+    std::vector<IkCase> out(1024);
+    for (IkCase& c : out) {
+      Transform root, mid, end;
+      root.translation = 2.0f * glm::vec3(u(gen), u(gen), u(gen)), root.rotation = rot();
+      mid.translation = (1.2f + 0.5f * u(gen)) * dir(), mid.rotation = rot();
+      end.translation = (1.0f + 0.5f * u(gen)) * dir(), end.rotation = rot();
+      c.start = motor_from_transform(root);
+      c.mid = motor_mul(c.start, motor_from_transform(mid));
+      c.end = motor_mul(c.mid, motor_from_transform(end));
+      c.s = motor_transform_point(c.start, glm::vec3(0.0f));
+      c.m = motor_transform_point(c.mid, glm::vec3(0.0f));
+      c.e = motor_transform_point(c.end, glm::vec3(0.0f));
+      c.qs = root.rotation, c.qm = root.rotation * mid.rotation;
+      c.target = c.s + 2.0f * (0.5f + 0.5f * u(gen)) * dir();
+      c.pole = dir();
+    }
+    return out;
+  }();
+  return cases;
+}
+
+void bm_two_bone_cga(benchmark::State& state) {
+  const std::vector<IkCase>& cases = ik_cases();
+  Motor c1, c2;
+  bool reached = false;
+  TwoBoneIKJob job;
+  job.start_joint_correction = &c1, job.mid_joint_correction = &c2, job.reached = &reached;
+  std::size_t i = 0, ok = 0;
+  for (auto _ : state) {
+    const IkCase& c = cases[i++ & 1023];
+    job.start_joint = &c.start, job.mid_joint = &c.mid, job.end_joint = &c.end;
+    job.target = c.target, job.pole_vector = c.pole;
+    ok += job.Run();
+    benchmark::DoNotOptimize(c1);
+    benchmark::DoNotOptimize(c2);
+  }
+  if (ok != i) state.SkipWithError("TwoBoneIKJob::Run returned false");
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+void bm_two_bone_reference(benchmark::State& state) {
+  const std::vector<IkCase>& cases = ik_cases();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const IkCase& c = cases[i++ & 1023];
+    testing::TwoBoneReference r = testing::two_bone_reference(c.s, c.m, c.e, c.qs, c.qm, c.target, c.pole);
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+void bm_aim_cga(benchmark::State& state) {
+  const std::vector<IkCase>& cases = ik_cases();
+  Motor c1;
+  AimIKJob job;
+  job.joint_correction = &c1;
+  std::size_t i = 0, ok = 0;
+  for (auto _ : state) {
+    const IkCase& c = cases[i++ & 1023];
+    job.joint = &c.start, job.target = c.target, job.pole_vector = c.pole;
+    ok += job.Run();
+    benchmark::DoNotOptimize(c1);
+  }
+  if (ok != i) state.SkipWithError("AimIKJob::Run returned false");
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+void bm_aim_reference(benchmark::State& state) {
+  const std::vector<IkCase>& cases = ik_cases();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const IkCase& c = cases[i++ & 1023];
+    glm::quat q = testing::aim_reference(c.s, c.qs, c.target, glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), c.pole);
+    benchmark::DoNotOptimize(q);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+}  // namespace
+
+void register_ik_benchmarks() {
+  const std::string section = "IK, one solve (1024 random chains, cycled)";
+  benchmark::RegisterBenchmark("ik/two_bone/cga", bm_two_bone_cga);
+  benchmark::RegisterBenchmark("ik/two_bone/quaternion_reference", bm_two_bone_reference);
+  benchmark::RegisterBenchmark("ik/aim/cga", bm_aim_cga);
+  benchmark::RegisterBenchmark("ik/aim/quaternion_reference", bm_aim_reference);
+  add_figure({"ik/two_bone/quaternion_reference", section, "two-bone, vector/quaternion reference",
+              Metric::ns_per_item, "", "", std::nullopt, {}});
+  add_figure({"ik/two_bone/cga", section, "two-bone, TwoBoneIKJob (ik_two_bone.clu)", Metric::ns_per_item,
+              "ik/two_bone/quaternion_reference", "reference", Target{50.0, "<= 50 ns"}, {}});
+  add_figure({"ik/aim/quaternion_reference", section, "aim, vector/quaternion reference", Metric::ns_per_item, "",
+              "", std::nullopt, {}});
+  add_figure({"ik/aim/cga", section, "aim, AimIKJob (ik_aim.clu)", Metric::ns_per_item, "ik/aim/quaternion_reference",
+              "reference", std::nullopt, {}});
+}
+
+}  // namespace cga::bench

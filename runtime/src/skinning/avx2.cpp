@@ -1,0 +1,225 @@
+// Hand-written AVX2 + FMA skinning loops (x86-64 only; SkinningJob takes them when the CPU has both).
+//
+// The portable loops keep one vertex per iteration and write three scalars per output stream; these blend
+// within the vertex as before but gather 8 vertices' results in registers, transpose them and store whole
+// 8-float rows, so the stores, the point transform and the normal renormalization run across vertices.
+// Results agree with the portable loops to float rounding (other summation order, FMA).
+#include "loops.hpp"
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
+#include "x86.hpp"
+
+namespace cga::skinning_detail {
+namespace {
+
+// Blended 3x4 matrix of vertex i as (c0 | c1), (c2 | t), from the matrix palette layout.
+CGA_AVX2 CGA_ALWAYS_INLINE void blend_matrix_avx2(const float* __restrict pal, const Streams& s, std::size_t i,
+                                                  __m256& lo, __m256& hi) {
+  const std::array<std::uint16_t, 4> j = s.joints[i];
+  const float* w = s.weights[i].data();
+  const float* a = pal + kEntry * j[0];
+  const float* b = pal + kEntry * j[1];
+  const float* c = pal + kEntry * j[2];
+  const float* d = pal + kEntry * j[3];
+  const __m256 w0 = _mm256_broadcast_ss(w), w1 = _mm256_broadcast_ss(w + 1);
+  const __m256 w2 = _mm256_broadcast_ss(w + 2), w3 = _mm256_broadcast_ss(w + 3);
+  // Two partial sums per half: shorter FMA dependency chains.
+  lo = _mm256_add_ps(_mm256_fmadd_ps(w1, _mm256_loadu_ps(b), _mm256_mul_ps(w0, _mm256_loadu_ps(a))),
+                     _mm256_fmadd_ps(w3, _mm256_loadu_ps(d), _mm256_mul_ps(w2, _mm256_loadu_ps(c))));
+  hi = _mm256_add_ps(_mm256_fmadd_ps(w1, _mm256_loadu_ps(b + 8), _mm256_mul_ps(w0, _mm256_loadu_ps(a + 8))),
+                     _mm256_fmadd_ps(w3, _mm256_loadu_ps(d + 8), _mm256_mul_ps(w2, _mm256_loadu_ps(c + 8))));
+}
+
+// lo * (x x x x y y y y) + hi * (z z z z h h h h): its two halves sum to (c0 x + c1 y + c2 z + h t, 0).
+CGA_AVX2 CGA_ALWAYS_INLINE __m256 apply_halves(__m256 lo, __m256 hi, const float* x, const float* y,
+                                               const float* z, __m256 h) {
+  const __m256 xy = _mm256_blend_ps(_mm256_broadcast_ss(x), _mm256_broadcast_ss(y), 0xF0);
+  const __m256 zh = _mm256_blend_ps(_mm256_broadcast_ss(z), h, 0xF0);
+  return _mm256_fmadd_ps(lo, xy, _mm256_mul_ps(hi, zh));
+}
+
+// (x y z 0 of a | of b) from two vertices' apply_halves results.
+CGA_AVX2 CGA_ALWAYS_INLINE __m256 pair_halves(__m256 a, __m256 b) {
+  return _mm256_add_ps(_mm256_permute2f128_ps(a, b, 0x20), _mm256_permute2f128_ps(a, b, 0x31));
+}
+
+// u[k] = (x y z 0 of vertex k | of vertex k + 4), k < 4: the 8 vertices' x, y and z rows.
+CGA_AVX2 CGA_ALWAYS_INLINE void transpose_pairs(const __m256 u[4], __m256& rx, __m256& ry, __m256& rz) {
+  const __m256 xy01 = _mm256_unpacklo_ps(u[0], u[1]);  // x0 x1 y0 y1 | x4 x5 y4 y5
+  const __m256 z01 = _mm256_unpackhi_ps(u[0], u[1]);   // z0 z1 0 0  | z4 z5 0 0
+  const __m256 xy23 = _mm256_unpacklo_ps(u[2], u[3]);
+  const __m256 z23 = _mm256_unpackhi_ps(u[2], u[3]);
+  rx = _mm256_shuffle_ps(xy01, xy23, 0x44);
+  ry = _mm256_shuffle_ps(xy01, xy23, 0xEE);
+  rz = _mm256_shuffle_ps(z01, z23, 0x44);
+}
+
+
+// Stores 8 floats at p; kStream: as non-temporal stores (two 16-byte ones: p is only 16-byte aligned).
+template <bool kStream>
+CGA_AVX2 CGA_ALWAYS_INLINE void store8(float* __restrict p, __m256 v) {
+  if constexpr (kStream) {
+    _mm_stream_ps(p, _mm256_castps256_ps128(v));
+    _mm_stream_ps(p + 4, _mm256_extractf128_ps(v, 1));
+  } else {
+    _mm256_storeu_ps(p, v);
+  }
+}
+
+// The portable renormalization on 8 lanes: n / |n|, or 0 when |n| = 0.
+template <bool kStream>
+CGA_AVX2 CGA_ALWAYS_INLINE void store_unit8(__m256 x, __m256 y, __m256 z, float* __restrict ox,
+                                            float* __restrict oy, float* __restrict oz) {
+  const __m256 len2 = _mm256_fmadd_ps(z, z, _mm256_fmadd_ps(y, y, _mm256_mul_ps(x, x)));
+  const __m256 one_if_nonzero = _mm256_and_ps(_mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));
+  const __m256 inv = _mm256_div_ps(one_if_nonzero, _mm256_sqrt_ps(_mm256_max_ps(len2, _mm256_set1_ps(1e-30f))));
+  store8<kStream>(ox, _mm256_mul_ps(x, inv));
+  store8<kStream>(oy, _mm256_mul_ps(y, inv));
+  store8<kStream>(oz, _mm256_mul_ps(z, inv));
+}
+
+template <bool kNormals, bool kStream>
+CGA_AVX2 CGA_ALWAYS_INLINE void matrix_block_avx2(const float* __restrict pal, const Streams& streams,
+                                                  std::size_t begin, std::size_t end) {
+  const Streams s = streams;  // a local copy: GCC reloads the pointers after every store otherwise
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) {
+    if constexpr (kStream) prefetch_ahead<kNormals>(s, i);
+    // Vertices k and k + 4 together, so only the 4 (or 8) pair registers live across the group; unrolled,
+    // so they stay in registers.
+    __m256 p[4], n[4];
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      __m256 lo, hi, lo4, hi4;
+      const std::size_t a = i + k, b = i + k + 4;
+      blend_matrix_avx2(pal, s, a, lo, hi);
+      blend_matrix_avx2(pal, s, b, lo4, hi4);
+      p[k] = pair_halves(apply_halves(lo, hi, s.px + a, s.py + a, s.pz + a, one),
+                         apply_halves(lo4, hi4, s.px + b, s.py + b, s.pz + b, one));
+      if constexpr (kNormals)
+        n[k] = pair_halves(apply_halves(lo, hi, s.nx + a, s.ny + a, s.nz + a, zero),
+                           apply_halves(lo4, hi4, s.nx + b, s.ny + b, s.nz + b, zero));
+    }
+    __m256 x, y, z;
+    transpose_pairs(p, x, y, z);
+    store8<kStream>(s.ox + i, x);
+    store8<kStream>(s.oy + i, y);
+    store8<kStream>(s.oz + i, z);
+    if constexpr (kNormals) {
+      transpose_pairs(n, x, y, z);
+      store_unit8<kStream>(x, y, z, s.onx + i, s.ony + i, s.onz + i);
+    }
+  }
+  if (i < end) matrix_block<kNormals>(pal, s, i, end);
+}
+
+template <bool kNormals, bool kStream>
+CGA_AVX2 bool matrix_block_avx2_fn(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
+                                   std::size_t palette) {
+  if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
+  matrix_block_avx2<kNormals, kStream>(pal, s, begin, end);
+  return true;
+}
+
+// cga_motors pass 1 for 8 vertices: blend within each vertex (sign fix from the rotor lanes 0-3 of the
+// entries), then transpose the 8 blended motors into rows[.][b .. b + 8).
+CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, const Streams& s, std::size_t i,
+                                                  MotorRows& rows, std::size_t b) {
+  const __m128 sign_mask = _mm_set1_ps(-0.0f);
+  __m256 lo[8], hi[8];
+#pragma GCC unroll 8
+  for (int v = 0; v < 8; ++v) {
+    const std::array<std::uint16_t, 4> j = s.joints[i + v];
+    const float* q0 = pal + kEntry * j[0];
+    const float* q1 = pal + kEntry * j[1];
+    const float* q2 = pal + kEntry * j[2];
+    const float* q3 = pal + kEntry * j[3];
+    const __m256 l0 = _mm256_loadu_ps(q0), l1 = _mm256_loadu_ps(q1), l2 = _mm256_loadu_ps(q2), l3 = _mm256_loadu_ps(q3);
+    // rotor_sign::signed_weight on 4 lanes: the G-lane dot products <q0, qk> as (0, d1, d2, d3), then the
+    // weights with those signs (copysign).
+    const __m128 r0 = _mm256_castps256_ps128(l0);
+    const __m128 p1 = _mm_mul_ps(r0, _mm256_castps256_ps128(l1));
+    const __m128 p2 = _mm_mul_ps(r0, _mm256_castps256_ps128(l2));
+    const __m128 p3 = _mm_mul_ps(r0, _mm256_castps256_ps128(l3));
+    const __m128 dots = _mm_hadd_ps(_mm_hadd_ps(_mm_setzero_ps(), p1), _mm_hadd_ps(p2, p3));
+    const __m128 w = _mm_loadu_ps(s.weights[i + v].data());
+    const __m128 sw = _mm_or_ps(_mm_andnot_ps(sign_mask, w), _mm_and_ps(sign_mask, dots));
+    const __m256 sw2 = _mm256_castps128_ps256(sw);
+    const __m256 w0 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(0));
+    const __m256 w1 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(1));
+    const __m256 w2 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(2));
+    const __m256 w3 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(3));
+    lo[v] = _mm256_add_ps(_mm256_fmadd_ps(w1, l1, _mm256_mul_ps(w0, l0)), _mm256_fmadd_ps(w3, l3, _mm256_mul_ps(w2, l2)));
+    // The last 4 lanes of an entry are padding: 128-bit halves suffice.
+    const __m128 h = _mm_add_ps(_mm_fmadd_ps(_mm256_castps256_ps128(w1), _mm_loadu_ps(q1 + 8),
+                                             _mm_mul_ps(_mm256_castps256_ps128(w0), _mm_loadu_ps(q0 + 8))),
+                                _mm_fmadd_ps(_mm256_castps256_ps128(w3), _mm_loadu_ps(q3 + 8),
+                                             _mm_mul_ps(_mm256_castps256_ps128(w2), _mm_loadu_ps(q2 + 8))));
+    hi[v] = _mm256_castps128_ps256(h);
+  }
+  // 8x8 transpose of the first 8 coefficients.
+  __m256 t[8], u[8];
+  for (int k = 0; k < 4; ++k) {
+    t[2 * k] = _mm256_unpacklo_ps(lo[2 * k], lo[2 * k + 1]);
+    t[2 * k + 1] = _mm256_unpackhi_ps(lo[2 * k], lo[2 * k + 1]);
+  }
+  for (int k = 0; k < 2; ++k) {
+    u[4 * k + 0] = _mm256_shuffle_ps(t[4 * k], t[4 * k + 2], 0x44);
+    u[4 * k + 1] = _mm256_shuffle_ps(t[4 * k], t[4 * k + 2], 0xEE);
+    u[4 * k + 2] = _mm256_shuffle_ps(t[4 * k + 1], t[4 * k + 3], 0x44);
+    u[4 * k + 3] = _mm256_shuffle_ps(t[4 * k + 1], t[4 * k + 3], 0xEE);
+  }
+  for (int r = 0; r < 4; ++r) {
+    _mm256_store_ps(&rows[r][b], _mm256_permute2f128_ps(u[r], u[r + 4], 0x20));
+    _mm256_store_ps(&rows[r + 4][b], _mm256_permute2f128_ps(u[r], u[r + 4], 0x31));
+  }
+  // 8x4 transpose of the last 4: pair vertices v and v + 4 in one register, then 4x4 within the halves.
+  __m256 g[4];
+  for (int k = 0; k < 4; ++k) g[k] = _mm256_insertf128_ps(hi[k], _mm256_castps256_ps128(hi[k + 4]), 1);
+  const __m256 a01 = _mm256_unpacklo_ps(g[0], g[1]), b01 = _mm256_unpackhi_ps(g[0], g[1]);
+  const __m256 a23 = _mm256_unpacklo_ps(g[2], g[3]), b23 = _mm256_unpackhi_ps(g[2], g[3]);
+  _mm256_store_ps(&rows[8][b], _mm256_shuffle_ps(a01, a23, 0x44));
+  _mm256_store_ps(&rows[9][b], _mm256_shuffle_ps(a01, a23, 0xEE));
+  _mm256_store_ps(&rows[10][b], _mm256_shuffle_ps(b01, b23, 0x44));
+  _mm256_store_ps(&rows[11][b], _mm256_shuffle_ps(b01, b23, 0xEE));
+}
+
+
+template <bool kNormals>
+CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                                 std::size_t end) {
+  alignas(64) MotorRows rows;
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) motor_blend8_avx2(pal, s, i, rows, i - begin);
+  for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
+  motor_rows_apply<kNormals>(rows, s, begin, end);
+}
+
+template <bool kNormals>
+CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, const Streams& s, std::size_t begin,
+                                                           std::size_t end, std::size_t palette) {
+  if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
+  motor_block_avx2<kNormals>(pal, s, begin, end);
+  return true;
+}
+
+}  // namespace
+
+const SkinKernels* avx2_kernels() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  static const SkinKernels k{
+      "avx2",
+      {{matrix_block_avx2_fn<false, false>, matrix_block_avx2_fn<false, true>},
+       {matrix_block_avx2_fn<true, false>, matrix_block_avx2_fn<true, true>}},
+      {portable_kernels().dq[0], portable_kernels().dq[1]},
+      {{motor_block_avx2_fn<false>, motor_block_avx2_fn<false>}, {motor_block_avx2_fn<true>, motor_block_avx2_fn<true>}}};
+  return has ? &k : nullptr;
+}
+
+}  // namespace cga::skinning_detail
+#else
+namespace cga::skinning_detail {
+const SkinKernels* avx2_kernels() { return nullptr; }
+}  // namespace cga::skinning_detail
+#endif

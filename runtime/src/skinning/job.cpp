@@ -1,0 +1,289 @@
+// SkinningJob: names, validation, the per-run palette conversion, strided streams and the dispatch to one
+// instruction set's block functions (the table of loops.hpp, chosen once per process: avx512.cpp, avx2.cpp,
+// portable.cpp). The loops themselves are in loops.hpp (portable bodies) and the ISA files.
+#include "cga/runtime/skinning.hpp"
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+
+#include <fmt/format.h>
+
+
+#include "loops.hpp"
+
+namespace cga {
+
+static_assert(sizeof(glm::mat3x4) == 12 * sizeof(float), "matrix palette entries are read as 12 floats");
+static_assert(sizeof(Motor) == 12 * sizeof(float), "motor palette entries are read as 12 floats");
+
+std::string_view to_string(SkinningMethod method) {
+  switch (method) {
+    case SkinningMethod::lbs: return "lbs";
+    case SkinningMethod::dqs: return "dqs";
+    case SkinningMethod::cga_points: return "cga-points";
+    case SkinningMethod::cga_motors: return "cga-motors";
+  }
+  throw std::invalid_argument(fmt::format("to_string: unknown SkinningMethod {}", static_cast<int>(method)));
+}
+
+SkinningMethod parse_skinning_method(std::string_view text) {
+  std::string canonical(text);
+  for (char& c : canonical)
+    if (c == '_') c = '-';
+  for (SkinningMethod m : kAllSkinningMethods)
+    if (to_string(m) == canonical) return m;
+  throw std::invalid_argument(
+      fmt::format("unknown skinning method '{}' (choose lbs, dqs, cga-points or cga-motors)", text));
+}
+
+void SkinnedOutput::resize_for(const SkinnedMesh& mesh) {
+  const std::size_t n = mesh.vertex_count();
+  px.assign(n, 0.0f);
+  py.assign(n, 0.0f);
+  pz.assign(n, 0.0f);
+  const std::size_t nn = mesh.has_normals() ? n : 0;
+  nx.assign(nn, 0.0f);
+  ny.assign(nn, 0.0f);
+  nz.assign(nn, 0.0f);
+}
+
+SkinningJob make_skinning_job(SkinningMethod method, const SkinnedMesh& mesh, SkinnedOutput& out) {
+  out.resize_for(mesh);
+  SkinningJob job;
+  job.method = method;
+  job.in_px = mesh.px;
+  job.in_py = mesh.py;
+  job.in_pz = mesh.pz;
+  job.in_nx = mesh.nx;
+  job.in_ny = mesh.ny;
+  job.in_nz = mesh.nz;
+  job.joints = mesh.joints;
+  job.weights = mesh.weights;
+  job.out_px = out.px;
+  job.out_py = out.py;
+  job.out_pz = out.pz;
+  job.out_nx = out.nx;
+  job.out_ny = out.ny;
+  job.out_nz = out.nz;
+  return job;
+}
+
+namespace {
+
+using namespace skinning_detail;
+
+std::size_t palette_size(const SkinningJob& job) {
+  switch (job.method) {
+    case SkinningMethod::lbs: return job.matrices.size();
+    case SkinningMethod::dqs: return job.dual_quats.size();
+    case SkinningMethod::cga_points:
+    case SkinningMethod::cga_motors: return job.motors.size();
+  }
+  return 0;
+}
+
+// A stream of n vertices with the given stride (floats between consecutive vertices) needs this many floats.
+std::size_t stream_extent(std::size_t n, std::size_t stride) { return n == 0 ? 0 : (n - 1) * stride + 1; }
+
+// The O(1) checks of a strided stream triple: every span covers n vertices at its stride.
+bool strided_fits(std::size_t n, std::size_t stride, std::span<const float> x, std::span<const float> y,
+                  std::span<const float> z) {
+  const std::size_t need = stream_extent(n, stride);
+  return x.size() >= need && y.size() >= need && z.size() >= need;
+}
+
+// The O(1) checks: sizes, strides, normals, palette limits.
+std::string shape_error(const SkinningJob& job) {
+  if (job.in_positions_stride == 0 || job.in_normals_stride == 0 || job.out_positions_stride == 0 ||
+      job.out_normals_stride == 0)
+    return "a stream stride is 0 (1 is packed; an interleaved buffer's stride is its vertex size in floats)";
+  const std::size_t n = job.vertex_count();
+  if (job.is_packed()) {
+    if (job.in_py.size() != n || job.in_pz.size() != n)
+      return fmt::format("input positions differ in size (x {}, y {}, z {})", n, job.in_py.size(), job.in_pz.size());
+    if (job.out_px.size() != n || job.out_py.size() != n || job.out_pz.size() != n)
+      return fmt::format("output positions must hold {} vertices (x {}, y {}, z {})", n, job.out_px.size(),
+                         job.out_py.size(), job.out_pz.size());
+  } else {
+    if (!strided_fits(n, job.in_positions_stride, job.in_px, job.in_py, job.in_pz))
+      return fmt::format("input positions must cover {} vertices at stride {} ({} floats; x {}, y {}, z {})", n,
+                         job.in_positions_stride, stream_extent(n, job.in_positions_stride), job.in_px.size(),
+                         job.in_py.size(), job.in_pz.size());
+    if (!strided_fits(n, job.out_positions_stride, job.out_px, job.out_py, job.out_pz))
+      return fmt::format("output positions must cover {} vertices at stride {} ({} floats; x {}, y {}, z {})", n,
+                         job.out_positions_stride, stream_extent(n, job.out_positions_stride), job.out_px.size(),
+                         job.out_py.size(), job.out_pz.size());
+  }
+  if (job.joints.size() != n) return fmt::format("{} joint quadruples for {} vertices", job.joints.size(), n);
+  if (job.weights.size() != n) return fmt::format("{} weight quadruples for {} vertices", job.weights.size(), n);
+  const bool any_in_normals = !job.in_nx.empty() || !job.in_ny.empty() || !job.in_nz.empty();
+  const bool any_out_normals = !job.out_nx.empty() || !job.out_ny.empty() || !job.out_nz.empty();
+  if (any_in_normals) {
+    if (job.is_packed()) {
+      if (job.in_nx.size() != n || job.in_ny.size() != n || job.in_nz.size() != n)
+        return fmt::format("input normals must be empty or hold {} vertices (x {}, y {}, z {})", n,
+                           job.in_nx.size(), job.in_ny.size(), job.in_nz.size());
+      if (job.out_nx.size() != n || job.out_ny.size() != n || job.out_nz.size() != n)
+        return fmt::format("output normals must hold {} vertices (x {}, y {}, z {})", n, job.out_nx.size(),
+                           job.out_ny.size(), job.out_nz.size());
+    } else {
+      if (!strided_fits(n, job.in_normals_stride, job.in_nx, job.in_ny, job.in_nz))
+        return fmt::format("input normals must be empty or cover {} vertices at stride {} (x {}, y {}, z {})", n,
+                           job.in_normals_stride, job.in_nx.size(), job.in_ny.size(), job.in_nz.size());
+      if (!strided_fits(n, job.out_normals_stride, job.out_nx, job.out_ny, job.out_nz))
+        return fmt::format("output normals must cover {} vertices at stride {} (x {}, y {}, z {})", n,
+                           job.out_normals_stride, job.out_nx.size(), job.out_ny.size(), job.out_nz.size());
+    }
+  } else if (any_out_normals) {
+    return "output normals given without input normals";
+  }
+  const std::size_t palette = palette_size(job);
+  if (palette > kMaxConvertedPalette)
+    return fmt::format("{} converts at most {} palette entries per run, the palette has {}",
+                       to_string(job.method), kMaxConvertedPalette, palette);
+  return {};
+}
+
+std::string data_error(const SkinningJob& job) {
+  const std::size_t palette = palette_size(job);
+  for (std::size_t i = 0; i < job.vertex_count(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      if (job.joints[i][k] >= palette)
+        return fmt::format("vertex {} influence {}: joint {} is outside the {} palette of {} entries", i, k,
+                           job.joints[i][k], to_string(job.method), palette);
+      if (!std::isfinite(job.weights[i][k]))
+        return fmt::format("vertex {} influence {}: weight {} is not finite", i, k, job.weights[i][k]);
+      if (job.weights[i][k] < 0.0f)
+        return fmt::format("vertex {} influence {}: weight {} is negative", i, k, job.weights[i][k]);
+    }
+  // lbs and cga-points scale a vertex by its weight sum: an unnormalized vertex would be silently misplaced.
+  for (std::size_t i = 0; i < job.vertex_count(); ++i) {
+    const auto& w = job.weights[i];
+    const float sum = w[0] + w[1] + w[2] + w[3];
+    if (!(std::abs(sum - 1.0f) <= kWeightSumTolerance))
+      return fmt::format("vertex {}: weights sum to {}, not 1 (renormalize them)", i, sum);
+  }
+  return {};
+}
+
+// A matrix entry is column-major with padded columns: (m00 m10 m20 0)(m01 m11 m21 0)(m02 m12 m22 0)(t 0).
+void matrix_entry_from_rows(const float rows[12], float out[kEntry]) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 3; ++r) out[4 * c + r] = rows[4 * r + c];
+    out[4 * c + 3] = 0.0f;
+  }
+}
+
+// The best table this CPU runs, and the AVX2 one (for use_avx512 = false), chosen once per process.
+const SkinKernels& kernels_for(bool use_simd, bool use_avx512) {
+  static const SkinKernels* const avx512 = avx512_kernels();
+  static const SkinKernels* const avx2 = avx2_kernels();
+  if (use_simd && use_avx512 && avx512) return *avx512;
+  if (use_simd && avx2) return *avx2;
+  return portable_kernels();
+}
+
+// Strided streams run through one block of packed vertices on the stack: gather the block's inputs, skin them
+// with the packed loops, scatter the outputs. The mesh is never copied; the per-block staging costs two passes
+// over 256 vertices that are in L1 anyway.
+bool run_strided(const SkinningJob& job, BlockFn block, const float* pal, std::size_t palette) {
+  const std::size_t n = job.vertex_count();
+  const bool normals = job.has_normals();
+  const std::size_t ip = job.in_positions_stride, in = job.in_normals_stride;
+  const std::size_t op = job.out_positions_stride, on = job.out_normals_stride;
+  alignas(64) float buf[12][kBlock];
+  for (std::size_t begin = 0; begin < n; begin += kBlock) {
+    const std::size_t count = std::min(kBlock, n - begin);
+    for (std::size_t v = 0; v < count; ++v) {
+      const std::size_t i = begin + v;
+      buf[0][v] = job.in_px[i * ip], buf[1][v] = job.in_py[i * ip], buf[2][v] = job.in_pz[i * ip];
+      if (normals) buf[3][v] = job.in_nx[i * in], buf[4][v] = job.in_ny[i * in], buf[5][v] = job.in_nz[i * in];
+    }
+    const Streams s{buf[0], buf[1], buf[2], buf[3], buf[4], buf[5], job.joints.data() + begin,
+                    job.weights.data() + begin, buf[6], buf[7], buf[8], buf[9], buf[10], buf[11]};
+    if (!block(pal, s, 0, count, palette)) return false;
+    for (std::size_t v = 0; v < count; ++v) {
+      const std::size_t i = begin + v;
+      job.out_px[i * op] = buf[6][v], job.out_py[i * op] = buf[7][v], job.out_pz[i * op] = buf[8][v];
+      if (normals) job.out_nx[i * on] = buf[9][v], job.out_ny[i * on] = buf[10][v], job.out_nz[i * on] = buf[11][v];
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string SkinningJob::ValidationError() const {
+  std::string error = shape_error(*this);
+  if (error.empty()) error = data_error(*this);
+  return error;
+}
+
+bool SkinningJob::Run() const {
+  if (!shape_error(*this).empty()) return false;
+  const std::size_t n = vertex_count();
+  const bool normals = has_normals();
+  // A large mesh (kLargeVertices or more) streams from memory: the SIMD loops prefetch their inputs ahead
+  // (prefetch_ahead), and the matrix loops write the outputs with non-temporal stores, which skip reading each
+  // output line before writing it (its outputs are out of cache by the time anyone reads them anyway). Those
+  // stores need 16-byte aligned output streams (std::vector's are). Small meshes keep plain stores: their
+  // outputs stay in cache for the next stage.
+  const auto aligned16 = [](std::span<float> v) {
+    return v.empty() || reinterpret_cast<std::uintptr_t>(v.data()) % 16 == 0;
+  };
+  const bool packed = is_packed();
+  const bool large = packed && n >= kLargeVertices;
+  const bool stream = large && aligned16(out_px) && aligned16(out_py) && aligned16(out_pz) &&
+                      aligned16(out_nx) && aligned16(out_ny) && aligned16(out_nz);
+
+  // Per-run palette preparation into the loops' layout (loops.hpp), on the stack (Run() never allocates): lbs
+  // transposes its matrices, cga_points converts every motor once with the generated kernel, cga_motors
+  // stores its motors in split form padded to 16 floats, dqs repacks GLM's dual quaternions as 8 plain floats.
+  alignas(64) float converted[kMaxConvertedPalette * kEntry];
+  const SkinKernels& k = kernels_for(use_simd, use_avx512);
+  BlockFn block = nullptr;
+  const std::size_t palette = palette_size(*this);
+  switch (method) {
+    case SkinningMethod::lbs:
+      for (std::size_t e = 0; e < palette; ++e)
+        matrix_entry_from_rows(reinterpret_cast<const float*>(&matrices[e]), converted + kEntry * e);
+      block = k.matrix[normals][stream];
+      break;
+    case SkinningMethod::cga_points:
+      for (std::size_t e = 0; e < palette; ++e) {
+        float rows[12];
+        detail::motor_matrix(motors[e].c.data(), rows);
+        matrix_entry_from_rows(rows, converted + kEntry * e);
+      }
+      block = k.matrix[normals][stream];
+      break;
+    case SkinningMethod::dqs:
+      pack_dual_quats(dual_quats, std::span<float>(converted, 8 * palette));
+      block = k.dq[normals];
+      break;
+    case SkinningMethod::cga_motors:
+      for (std::size_t e = 0; e < palette; ++e) {
+        float* entry = converted + kEntry * e;
+        rotor_sign::split(motors[e].c.data(), entry, entry + 8, entry + 4);
+        for (std::size_t r = 12; r < kEntry; ++r) entry[r] = 0.0f;
+      }
+      block = k.motor[normals][large];
+      break;
+  }
+  if (!packed) return run_strided(*this, block, converted, palette);
+  const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
+                  in_nz.data(),  joints.data(), weights.data(), out_px.data(), out_py.data(),
+                  out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data()};
+  bool ok = true;
+  for (std::size_t begin = 0; begin < n && ok; begin += kBlock)
+    ok = block(converted, s, begin, std::min(n, begin + kBlock), palette);
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (stream) __builtin_ia32_sfence();  // non-temporal stores are weakly ordered: publish them before returning
+#endif
+  return ok;
+}
+
+}  // namespace cga

@@ -1,0 +1,265 @@
+// The skinning loops every instruction set shares (inlined into each ISA file's block functions): the run's
+// streams, the block check, and the portable per-vertex bodies of lbs / cga_points (matrix), dqs and cga_motors.
+// Also the dispatch table each ISA file fills (SkinKernels) and the layouts of the converted palettes:
+//   matrix entry  16 floats, column-major with padded columns (m00 m10 m20 0)(m01 m11 m21 0)(m02 ..)(t 0)
+//   dq entry       8 floats (real x y z w, dual x y z w)
+//   motor entry   16 floats, split form: lanes 0-3 G = a + b, 4-7 U (einf blades), 8-11 H = a - b, 12-15 zero
+// Private to runtime/src/skinning/ (see docs/runtime.md, "Adding a skinning method or an instruction set").
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "cga/runtime/rotor_sign.hpp"
+#include "cga/runtime/skinning_palettes.hpp"
+#include "../detail/simd.hpp"
+
+// runtime/CMakeLists.txt compiles the skinning files with -O3 -fno-math-errno -fno-trapping-math: at the
+// project's -O2, GCC 12's "very cheap" vectorizer cost model refuses gathers, and sqrt's errno and trapping
+// compares keep the normal loops scalar (neither flag changes a result; nothing here reads errno or FP
+// exceptions).
+#define CGA_ALWAYS_INLINE inline __attribute__((always_inline))
+
+namespace cga::skinning_detail {
+
+using simd::load8;
+using v4 = simd::v4f;
+using v8 = simd::v8f;
+using simd::low;
+using simd::high;
+
+// Vertices per block: a block's joints and weights are checked first (they are then in L1 for the skinning
+// pass), and cga_motors' blended rows of a block fit in L1 (12 x 256 floats).
+constexpr std::size_t kBlock = 256;
+// From this many vertices on, a mesh is "large": prefetching and non-temporal stores (see SkinningJob::Run).
+constexpr std::size_t kLargeVertices = std::size_t{1} << 17;
+// Floats per converted palette entry (matrix and motor entries; dq entries take 8).
+constexpr std::size_t kEntry = 16;
+
+// Pointers of one run, restrict-qualified so the compiler knows outputs do not alias inputs.
+struct Streams {
+  const float* __restrict px;
+  const float* __restrict py;
+  const float* __restrict pz;
+  const float* __restrict nx;
+  const float* __restrict ny;
+  const float* __restrict nz;
+  const std::array<std::uint16_t, 4>* __restrict joints;
+  const std::array<float, 4>* __restrict weights;
+  float* __restrict ox;
+  float* __restrict oy;
+  float* __restrict oz;
+  float* __restrict onx;
+  float* __restrict ony;
+  float* __restrict onz;
+};
+
+// Joint indices below the palette size and finite weights, for vertices [begin, end): two integer max
+// reductions over the flat arrays (the largest joint index, the largest exponent field of the weights; an
+// all-ones exponent is Inf or NaN). Inlined into every block function, so it is built for the same ISA as the
+// skinning loop (AVX2 vpmaxuw / vpmaxud in the x86-64-v3 clones and the hand-written paths); built for baseline
+// x86-64 inside Run() it used to cost about 40 % of lbs. The caller looks for the culprit only when it fails.
+CGA_ALWAYS_INLINE bool block_ok(const std::array<std::uint16_t, 4>* joints, const std::array<float, 4>* weights,
+                                std::size_t begin, std::size_t end, std::size_t palette) {
+  if (end == begin) return true;
+  const std::uint16_t* __restrict j = joints[begin].data();
+  const float* __restrict w = weights[begin].data();
+  std::uint16_t max_joint = 0;
+  std::uint32_t max_exponent = 0;
+  for (std::size_t e = 0; e < 4 * (end - begin); ++e) {
+    max_joint = std::max(max_joint, j[e]);
+    max_exponent = std::max(max_exponent, std::bit_cast<std::uint32_t>(w[e]) & 0x7f800000u);
+  }
+  return max_exponent < 0x7f800000u && max_joint < palette;
+}
+
+// Applies a row-major 3x4 matrix to the point i (and the linear part to its normal, renormalized).
+template <bool kNormals>
+CGA_ALWAYS_INLINE void apply_matrix(const float m[12], const Streams& s, std::size_t i) {
+  const float x = s.px[i], y = s.py[i], z = s.pz[i];
+  s.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
+  s.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
+  s.oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
+  if constexpr (kNormals) {
+    const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
+    const float u = m[0] * a + m[1] * b + m[2] * c;
+    const float v = m[4] * a + m[5] * b + m[6] * c;
+    const float w = m[8] * a + m[9] * b + m[10] * c;
+    const float len2 = u * u + v * v + w * w;
+    // A degenerate blend (zero linear part) gives a zero normal rather than NaN.
+    // Written without a conditional division so the loop if-converts and vectorizes.
+    const float inv = (len2 > 0.0f ? 1.0f : 0.0f) / std::sqrt(std::max(len2, 1e-30f));
+    s.onx[i] = u * inv;
+    s.ony[i] = v * inv;
+    s.onz[i] = w * inv;
+  }
+}
+
+// Renormalizes the normals [begin, end) in place (a contiguous pass that vectorizes across vertices);
+// a degenerate normal becomes 0 rather than NaN.
+CGA_ALWAYS_INLINE void renormalize(const Streams& s, std::size_t begin, std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    const float u = s.onx[i], v = s.ony[i], w = s.onz[i];
+    const float len2 = u * u + v * v + w * w;
+    // No conditional division, so the loop if-converts and vectorizes.
+    const float inv = (len2 > 0.0f ? 1.0f : 0.0f) / std::sqrt(std::max(len2, 1e-30f));
+    s.onx[i] = u * inv;
+    s.ony[i] = v * inv;
+    s.onz[i] = w * inv;
+  }
+}
+
+// lbs and cga_points: blend the vertex's 4 matrices (vectorized within the vertex: columns 0-1 and 2-3 are
+// one 8-float vector each), then apply: p' = c0 x + c1 y + c2 z + t.
+template <bool kNormals>
+CGA_ALWAYS_INLINE void matrix_block(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                    std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::array<std::uint16_t, 4> j = s.joints[i];
+    const std::array<float, 4> w = s.weights[i];
+    // Two partial sums per half: shorter FMA dependency chains.
+    const float* a = pal + kEntry * j[0];
+    const float* b = pal + kEntry * j[1];
+    const float* c = pal + kEntry * j[2];
+    const float* d = pal + kEntry * j[3];
+    const v8 lo = (w[0] * load8(a) + w[1] * load8(b)) + (w[2] * load8(c) + w[3] * load8(d));
+    const v8 hi = (w[0] * load8(a + 8) + w[1] * load8(b + 8)) + (w[2] * load8(c + 8) + w[3] * load8(d + 8));
+    const float x = s.px[i], y = s.py[i], z = s.pz[i];
+    const v8 t = lo * v8{x, x, x, x, y, y, y, y} + hi * v8{z, z, z, z, 1, 1, 1, 1};
+    const v4 p = low(t) + high(t);
+    s.ox[i] = p[0];
+    s.oy[i] = p[1];
+    s.oz[i] = p[2];
+    if constexpr (kNormals) {
+      const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
+      const v8 u = lo * v8{a, a, a, a, b, b, b, b} + hi * v8{c, c, c, c, 0, 0, 0, 0};
+      const v4 n = low(u) + high(u);
+      s.onx[i] = n[0];
+      s.ony[i] = n[1];
+      s.onz[i] = n[2];
+    }
+  }
+  if constexpr (kNormals) renormalize(s, begin, end);
+}
+
+// dqs: blend 8 dual-quaternion coefficients with the antipodality fix, then transform by the normalized
+// blend. Written on the unnormalized blend b = (r, d) with n = |r|^2:
+//   p' = ((r_w^2 - r_v.r_v) p + 2 (r_v.p) r_v + 2 r_w (r_v x p)) / n + 2 (r_w d_v - d_w r_v + r_v x d_v) / n
+template <bool kNormals>
+CGA_ALWAYS_INLINE void dq_block(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t j[4] = {s.joints[i][0], s.joints[i][1], s.joints[i][2], s.joints[i][3]};
+    // Weights read one by one: GCC does not vectorize the copy of the whole std::array here.
+    const float w[4] = {s.weights[i][0], s.weights[i][1], s.weights[i][2], s.weights[i][3]};
+    const float* q[4] = {pal + 8 * j[0], pal + 8 * j[1], pal + 8 * j[2], pal + 8 * j[3]};
+    float b[8];
+    for (int e = 0; e < 8; ++e) b[e] = w[0] * q[0][e];
+    for (int k = 1; k < 4; ++k) {
+      const float dot = q[0][0] * q[k][0] + q[0][1] * q[k][1] + q[0][2] * q[k][2] + q[0][3] * q[k][3];
+      const float wk = std::copysign(w[k], dot);
+      for (int e = 0; e < 8; ++e) b[e] += wk * q[k][e];
+    }
+    // Packed as (r_x, r_y, r_z, r_w, d_x, d_y, d_z, d_w), see pack_dual_quats.
+    const float rx = b[0], ry = b[1], rz = b[2], rw = b[3];
+    const float dx = b[4], dy = b[5], dz = b[6], dw = b[7];
+    const float inv = 1.0f / (rx * rx + ry * ry + rz * rz + rw * rw);
+    const float diag = rw * rw - (rx * rx + ry * ry + rz * rz);
+    const float tx = 2.0f * (rw * dx - dw * rx + (ry * dz - rz * dy));
+    const float ty = 2.0f * (rw * dy - dw * ry + (rz * dx - rx * dz));
+    const float tz = 2.0f * (rw * dz - dw * rz + (rx * dy - ry * dx));
+    // Rotation as a matrix (columns are the rotated axes), scaled by n; shared by point and normal.
+    const float m[12] = {
+        (diag + 2 * rx * rx) * inv, 2 * (rx * ry - rw * rz) * inv, 2 * (rx * rz + rw * ry) * inv, tx * inv,
+        2 * (ry * rx + rw * rz) * inv, (diag + 2 * ry * ry) * inv, 2 * (ry * rz - rw * rx) * inv, ty * inv,
+        2 * (rz * rx - rw * ry) * inv, 2 * (rz * ry + rw * rx) * inv, (diag + 2 * rz * rz) * inv, tz * inv};
+    apply_matrix<kNormals>(m, s, i);
+  }
+}
+
+// cga_motors, in two passes over a block. 1: blend the vertex's 4 motors (sign fix on the rotor parts: blades
+// 1, e12, e13, e23), vectorized within the vertex, and store the 12 blended coefficients transposed (one row
+// per coefficient, kBlock vertices wide). 2: turn each blended motor into its weight-normalized point-transform
+// matrix with the generated kernel and apply it; this pass reads the rows contiguously and vectorizes across
+// vertices. A motor entry is the motor in split form (skinning_palettes.hpp, motor_split): lanes 0-3 G = a + b
+// (the rotor part scaled by 1 + k > 0, so the sign fix reads lanes 0-3), 4-7 U (the einf blades), 8-11
+// H = a - b, padded to 16. The split form is linear in the blades, so the blend is the same; pass 2's kernel
+// on G, H, U has no cancellation for scaled motors (and fewer operations than on the blades).
+
+using MotorRows = float[12][kBlock];
+
+// Pass 2 over the vertices [begin, end) whose blended motors are in rows[.][i - begin].
+template <bool kNormals>
+CGA_ALWAYS_INLINE void motor_rows_apply(const MotorRows& rows, const Streams& s, std::size_t begin,
+                                        std::size_t end) {
+#pragma GCC ivdep
+  for (std::size_t i = begin; i < end; ++i) {
+    float g[4], u[4], h[4];
+    for (int r = 0; r < 4; ++r) g[r] = rows[r][i - begin], u[r] = rows[4 + r][i - begin], h[r] = rows[8 + r][i - begin];
+    float m[12];
+    detail::motor_split_matrix(g, h, u, m);
+    const float x = s.px[i], y = s.py[i], z = s.pz[i];
+    s.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
+    s.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
+    s.oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
+    if constexpr (kNormals) {
+      const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
+      s.onx[i] = m[0] * a + m[1] * b + m[2] * c;
+      s.ony[i] = m[4] * a + m[5] * b + m[6] * c;
+      s.onz[i] = m[8] * a + m[9] * b + m[10] * c;
+    }
+  }
+  if constexpr (kNormals) renormalize(s, begin, end);
+}
+
+// Pass 1 for one vertex, portable: the blended motor's coefficients into rows[.][b].
+CGA_ALWAYS_INLINE void motor_blend_one(const float* __restrict pal, const Streams& s, std::size_t i,
+                                       MotorRows& rows, std::size_t b) {
+  const std::array<std::uint16_t, 4> j = s.joints[i];
+  const std::array<float, 4> w = s.weights[i];
+  const float* q0 = pal + kEntry * j[0];
+  v8 lo = w[0] * load8(q0);
+  v8 hi = w[0] * load8(q0 + 8);
+  for (int k = 1; k < 4; ++k) {
+    const float* q = pal + kEntry * j[k];
+    const float wk = rotor_sign::signed_weight(w[k], rotor_sign::dot(q0, q));  // G lanes 0-3
+    lo += wk * load8(q);
+    hi += wk * load8(q + 8);
+  }
+  for (int r = 0; r < 8; ++r) rows[r][b] = lo[r];
+  for (int r = 0; r < 4; ++r) rows[8 + r][b] = hi[r];
+}
+
+template <bool kNormals>
+CGA_ALWAYS_INLINE void motor_block(const float* __restrict pal, const Streams& s, std::size_t begin,
+                                   std::size_t end) {
+  alignas(64) MotorRows rows;
+  for (std::size_t i = begin; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
+  motor_rows_apply<kNormals>(rows, s, begin, end);
+}
+
+// Checks the block [begin, end) (block_ok), then skins it; false when the block is invalid (nothing of it
+// written). pal is the converted palette, palette its entry count.
+using BlockFn = bool (*)(const float* pal, const Streams& s, std::size_t begin, std::size_t end, std::size_t palette);
+
+// One instruction set's block functions. A table entry may be another set's function (the AVX-512 table
+// uses the AVX2 matrix loops, the AVX2 one the portable dqs loop).
+struct SkinKernels {
+  const char* name;
+  BlockFn matrix[2][2];  // lbs and cga_points, [normals][stream: large mesh, 16-byte aligned outputs]
+  BlockFn dq[2];         // dqs, [normals]
+  BlockFn motor[2][2];   // cga_motors, [normals][large mesh]
+};
+
+// The tables, each defined in its ISA's file; the SIMD ones are null where the build or the CPU lacks them.
+const SkinKernels& portable_kernels();
+const SkinKernels* avx2_kernels();
+const SkinKernels* avx512_kernels();
+
+}  // namespace cga::skinning_detail
