@@ -29,6 +29,7 @@
 #include "cga/testing/twist_strip.hpp"
 #include "options.hpp"
 #include "raster.hpp"
+#include "web.hpp"
 
 using namespace cga;
 using Clock = std::chrono::steady_clock;
@@ -467,6 +468,30 @@ int run(const demo::Options& opt) {
       fmt::print("\n");
     }
   }
+  // ---- the web page (--web DIR): the runtime's palettes for every motor mode on a grid of clip times and
+  // fade weights, skinned in the browser (web.cpp, docs/web.md)
+  if (!opt.web_dir.empty() && ch.meshes.empty()) {
+    fmt::print("web page  skipped: the file has no skinned mesh to show\n\n");
+  } else if (!opt.web_dir.empty()) {
+    progress.stage("writing the web page into " + opt.web_dir);
+    demo::WebInput web;
+    web.character = &ch, web.model = std::filesystem::path(opt.model).filename().string(), web.size = size;
+    web.fade_description = fade.description;
+    web.modes = {Interpolation::paper, Interpolation::nlerp, Interpolation::screw};
+    std::map<Interpolation, PosePipeline> pipelines;
+    for (Interpolation m : web.modes) pipelines.emplace(m, PosePipeline(m, sk, ch.meshes, inverse_binds));
+    web.pose = [&](Interpolation m, float u, float w) {
+      // The clip times of step u held fixed, so that the fade's step w only sets the weight.
+      Fade at = fade;
+      at.a0 = at.a1 = fade.time_a(u), at.b0 = at.b1 = fade.time_b(u);
+      PosePipeline& p = pipelines.at(m);
+      p.run(at, w);
+      return p.motor_palettes;
+    };
+    fmt::print("web page  {}\n  open it in a browser (file:// is fine; WebGPU, else WebGL 2); add #selftest to check it\n\n",
+               demo::write_web_page(web, opt.web_dir));
+  }
+
   // ---- the GPU path: the mid-fade pose skinned again by the GLSL shaders built from the generated kernels
   // (vertex shader + transform feedback, and compute), checked against the CPU jobs; then the pictures,
   // drawn by OpenGL (headless EGL: llvmpipe without a GPU).

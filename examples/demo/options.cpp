@@ -28,6 +28,9 @@ options:
   --frames N       poses along the cross-fade, 2..100000 (default 60)
   --out DIR        folder for the PNG pictures, created if missing (default: out)
   --no-pictures    write no pictures
+  --web DIR        also write DIR/index.html: the four methods skinned on the GPU in the browser (WebGPU or
+                   WebGL 2, shaders from cgagen's kernels), time and cross-fade sliders, modes paper/nlerp/
+                   screw, the twist strip, a heat map; one self-contained file, opens from file://
   --help           this text
 
 exit status: 0 success, 1 the model cannot be used (the message names the file), 2 bad usage.
@@ -110,6 +113,9 @@ Options parse_options(int argc, const char* const* argv, const std::string& defa
       if (ec != std::errc() || end != v.data() + v.size() || n < 2 || n > 100000)
         throw UsageError("--frames needs an integer in 2..100000, got '" + v + "'");
       o.frames = n;
+    } else if (name == "--web") {
+      o.web_dir = value();
+      if (o.web_dir.empty()) throw UsageError("--web needs a folder");
     } else if (name == "--out") {
       o.out_dir = value();
       if (o.out_dir.empty()) throw UsageError("--out needs a folder name");

@@ -23,6 +23,7 @@ struct Options {
   std::vector<cga::Interpolation> modes = {cga::kAllInterpolations.begin(), cga::kAllInterpolations.end()};
   std::string out_dir = "out";            // --out DIR
   bool pictures = true;                   // --no-pictures
+  std::string web_dir;                    // --web DIR: also write the interactive page (empty: none)
   int frames = 60;                        // --frames N: poses along the cross-fade
   bool help = false;
 };

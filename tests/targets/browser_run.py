@@ -1,4 +1,5 @@
-"""Opens a page in headless Chromium and writes what it computed: browser_run.py CHROMIUM API PAGE OUT TIMEOUT_S.
+"""Opens a page in headless Chromium and writes what it computed: browser_run.py CHROMIUM API PAGE OUT TIMEOUT_S
+[SCREENSHOT.png] (the page as drawn once its result is in; tests/web uses it).
 
 API is webgpu or webgl2 (the flags that put it on SwiftShader, Chromium's CPU implementation of Vulkan and
 GL ES). The page (tests/targets/browser_harness.js inlined by targets_check) sets window.cgagenResult to a
@@ -106,6 +107,11 @@ def main():
             raise RuntimeError("the page threw: %s" % json.dumps(result["exceptionDetails"])[:2000])
         with open(out_path, "w") as f:
             f.write(result["result"].get("value", ""))
+        if len(sys.argv) > 6:
+            import base64
+            shot = call("Page.captureScreenshot", {"format": "png"}, session)
+            with open(sys.argv[6], "wb") as f:
+                f.write(base64.b64decode(shot["data"]))
         status = 0
         try:
             call("Browser.close")
