@@ -27,6 +27,7 @@
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 #include "cga/testing/twist_strip.hpp"
+#include "ik_demo.hpp"
 #include "options.hpp"
 #include "raster.hpp"
 
@@ -467,6 +468,8 @@ int run(const demo::Options& opt) {
       fmt::print("\n");
     }
   }
+  // ---- IK: the right hand reaches a target (ik_demo.cpp)
+  demo::ik_hand_reach(ch, opt.pictures ? opt.out_dir : std::string());
   // ---- the GPU path: the mid-fade pose skinned again by the GLSL shaders built from the generated kernels
   // (vertex shader + transform feedback, and compute), checked against the CPU jobs; then the pictures,
   // drawn by OpenGL (headless EGL: llvmpipe without a GPU).
