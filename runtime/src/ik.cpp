@@ -110,12 +110,15 @@ bool TwoBoneIKJob::Validate() const {
   for (const Motor* m : {start_joint, mid_joint, end_joint})
     for (float c : m->c)
       if (!std::isfinite(c)) return false;
+  if (positions && (!finite(positions[0]) || !finite(positions[1]) || !finite(positions[2]))) return false;
   return true;
 }
 
 bool TwoBoneIKJob::Run() const {
   if (!Validate()) return false;
-  const glm::vec3 s = joint_position(*start_joint), m = joint_position(*mid_joint), e = joint_position(*end_joint);
+  const glm::vec3 s = positions ? positions[0] : joint_position(*start_joint);
+  const glm::vec3 m = positions ? positions[1] : joint_position(*mid_joint);
+  const glm::vec3 e = positions ? positions[2] : joint_position(*end_joint);
   const glm::vec3 v1 = m - s, v2 = e - m, t = target - s;
   const float l1 = glm::length(v1), l2 = glm::length(v2), chain = l1 + l2, d = glm::length(t);
   const float tiny = kTiny * std::max(chain, d);
