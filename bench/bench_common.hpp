@@ -12,6 +12,7 @@ void register_motor_apply_benchmarks();
 void register_pose_benchmarks();
 void register_generator_benchmarks();
 void register_ik_benchmarks();
+void register_motion_benchmarks();
 
 // Paths, overridable by environment variables so an installed or moved build still finds its inputs:
 //   CGA_MODELS_DIR  (default: the CGA_MODELS_DIR cache variable, /usr/share/assimp/models)

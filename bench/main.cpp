@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
   register_motor_apply_benchmarks();
   register_pose_benchmarks();
   register_ik_benchmarks();
+  register_motion_benchmarks();
   register_generator_benchmarks();
 
   benchmark::Initialize(&n, args.data());

@@ -27,6 +27,7 @@
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 #include "cga/testing/twist_strip.hpp"
+#include "ik_demo.hpp"
 #include "options.hpp"
 #include "raster.hpp"
 #include "web.hpp"
@@ -468,6 +469,8 @@ int run(const demo::Options& opt) {
       fmt::print("\n");
     }
   }
+  // ---- IK: the right hand reaches a target (ik_demo.cpp)
+  demo::ik_hand_reach(ch, opt.pictures ? opt.out_dir : std::string());
   // ---- the web page (--web DIR): the runtime's palettes for every motor mode on a grid of clip times and
   // fade weights, skinned in the browser (web.cpp, docs/web.md)
   if (!opt.web_dir.empty() && ch.meshes.empty()) {

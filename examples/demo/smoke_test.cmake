@@ -24,7 +24,14 @@ foreach(method lbs dqs cga-points cga-motors)
     endif()
   endforeach()
 endforeach()
-foreach(png character-lbs character-dqs character-cga-points character-cga-motors twist-strip
+# IK (ik_demo.cpp): the right hand within 1e-4 of the arm length of its target (the demo also fails itself).
+if(NOT out MATCHES "IK: right hand reaches the target [^\n]*: distance ([0-9.e+-]+) of the arm length")
+  message(FATAL_ERROR "cga-demo printed no IK line\n${out}")
+endif()
+if(NOT CMAKE_MATCH_1 MATCHES "^(0|[0-9.]+e-(0[5-9]|[1-9][0-9]))$")
+  message(FATAL_ERROR "the IK hand is ${CMAKE_MATCH_1} of the arm length from its target\n${out}")
+endif()
+foreach(png ik-hand-reach character-lbs character-dqs character-cga-points character-cga-motors twist-strip
             gpu-character-lbs gpu-character-dqs gpu-character-cga-points gpu-character-cga-motors gpu-twist-strip)
   if(NOT EXISTS "${OUT}/${png}.png")
     message(FATAL_ERROR "cga-demo wrote no ${OUT}/${png}.png\n${out}")

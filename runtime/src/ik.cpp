@@ -29,7 +29,22 @@ glm::quat joint_rotation(const Motor& m) {
   return n > 0.0f ? q / n : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
 }
 
-glm::vec3 joint_position(const Motor& m) { return motor_transform_point(m, glm::vec3(0.0f)); }
+// Where the motor puts the origin: the generated transform_point at x = y = z = 0, with the terms that carry
+// x, y or z dropped (they are exact zeros there) and the remaining sums in the kernel's order, so the result
+// is bit-identical to motor_transform_point(m, 0) (a caller's own positions match the job's; a target a few
+// thousandths from the start turns the last bit of the start into a visible direction). Written out because
+// a call with zero arguments does not fold (0 * x is not 0 for IEEE floats): 20 products instead of ~60
+// operations (profile: the three point transforms were 27 % of a solve).
+glm::vec3 joint_position(const Motor& m) {
+  const float* M = m.c.data();
+  const float g0 = M[7] + M[0], g1 = M[1] + M[9], g2 = M[2] + M[10], g3 = M[4] + M[11];
+  const float t36 = M[1] * M[9] + M[2] * M[10] + M[4] * M[11] + M[7] * M[0];
+  const float w = 2.0f * t36 + M[9] * M[9] + M[1] * M[1] + M[10] * M[10] + M[2] * M[2] + M[11] * M[11] +
+                  M[4] * M[4] + M[7] * M[7] + M[0] * M[0];
+  return glm::vec3(-2.0f * (M[8] * g3 + M[3] * g0 + M[5] * g1 + M[6] * g2),
+                   2.0f * (M[8] * g2 + M[3] * g1 - M[5] * g0 - M[6] * g3),
+                   -2.0f * (M[8] * g1 + M[6] * g0 - M[3] * g2 - M[5] * g3)) / w;
+}
 
 // A unit vector perpendicular to v (v non-zero): the cross product with the axis v is least aligned with.
 glm::vec3 any_perpendicular(const glm::vec3& v) {
@@ -41,14 +56,16 @@ glm::vec3 any_perpendicular(const glm::vec3& v) {
 
 // The unit quaternion turning f onto d by the shortest arc (generated ik_aim), f and d non-zero. Opposite
 // directions have no shortest arc: a half turn about `half_turn_axis` when it is perpendicular to f, else
-// about any perpendicular.
-glm::quat shortest_arc(const glm::vec3& f, const glm::vec3& d, const glm::vec3& half_turn_axis = glm::vec3(0.0f)) {
+// about any perpendicular. `fd` is |f| |d| when the caller knows it (the bone lengths; it only scales the
+// degenerate test), else negative (two square roots here).
+glm::quat shortest_arc(const glm::vec3& f, const glm::vec3& d, const glm::vec3& half_turn_axis = glm::vec3(0.0f),
+                       float fd = -1.0f) {
   float r[4];
   kernels::ik_aim(f.x, f.y, f.z, d.x, d.y, d.z, r);
   const glm::quat q = quat_from_rotor(r[0], r[1], r[2], r[3]);
   // |R|^2 = 2 |f||d| (|f||d| + f.d): zero (to rounding) for opposite directions.
   const float n2 = glm::dot(q, q);
-  const float fd = glm::length(f) * glm::length(d);
+  if (fd < 0.0f) fd = glm::length(f) * glm::length(d);
   if (n2 > 1e-10f * fd * fd) return q / std::sqrt(n2);
   const float a = glm::length(half_turn_axis);
   const glm::vec3 axis = a > 0.0f && std::abs(glm::dot(half_turn_axis, f)) <= kTiny * a * glm::length(f)
@@ -93,12 +110,15 @@ bool TwoBoneIKJob::Validate() const {
   for (const Motor* m : {start_joint, mid_joint, end_joint})
     for (float c : m->c)
       if (!std::isfinite(c)) return false;
+  if (positions && (!finite(positions[0]) || !finite(positions[1]) || !finite(positions[2]))) return false;
   return true;
 }
 
 bool TwoBoneIKJob::Run() const {
   if (!Validate()) return false;
-  const glm::vec3 s = joint_position(*start_joint), m = joint_position(*mid_joint), e = joint_position(*end_joint);
+  const glm::vec3 s = positions ? positions[0] : joint_position(*start_joint);
+  const glm::vec3 m = positions ? positions[1] : joint_position(*mid_joint);
+  const glm::vec3 e = positions ? positions[2] : joint_position(*end_joint);
   const glm::vec3 v1 = m - s, v2 = e - m, t = target - s;
   const float l1 = glm::length(v1), l2 = glm::length(v2), chain = l1 + l2, d = glm::length(t);
   const float tiny = kTiny * std::max(chain, d);
@@ -135,11 +155,11 @@ bool TwoBoneIKJob::Run() const {
     kernels::ik_two_bone(soft ? da : dc, soft ? ds : 1.0f, soft ? dc - da : 0.0f, u.x, u.y, u.z, l1, l2, p.x, p.y,
                          p.z, tt, x);
     const glm::vec3 reach(tt[0], tt[1], tt[2]), elbow = glm::vec3(x[0], x[1], x[2]) / x[3];
-    a = shortest_arc(v1, elbow, p);
+    a = shortest_arc(v1, elbow, p, l1 * l1);
     // Bone 2 aims from where bone 1 actually put the mid joint (a v1, of length l1 exactly), not from the
     // kernel's elbow: near full extension or folded flat the elbow's rounding (sqrt of a cancelling B.B) would
     // otherwise tilt bone 2 to first order.
-    b = shortest_arc(a * v2, reach - a * v1, p) * a;
+    b = shortest_arc(a * v2, reach - a * v1, p, l2 * l2) * a;
     hit = glm::length(reach - t) <= 1e-5f * chain;
   }
   if (twist_angle != 0.0f) {

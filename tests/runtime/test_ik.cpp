@@ -82,7 +82,21 @@ Solved solve(Chain& chain, const glm::vec3& target, const glm::vec3& pole, float
   job.start_joint = &chain.model[0], job.mid_joint = &chain.model[1], job.end_joint = &chain.model[2];
   job.target = target, job.pole_vector = pole, job.weight = weight, job.soften = soften, job.twist_angle = twist;
   job.start_joint_correction = &r.start, job.mid_joint_correction = &r.mid, job.reached = &r.reached;
+  // The same solve with the positions handed in (motor_transform_point's): the job reads the same numbers off
+  // the motors, so both give the same corrections bit for bit.
+  const glm::vec3 given[3] = {chain.position(0), chain.position(1), chain.position(2)};
+  Solved g;
+  TwoBoneIKJob with_positions = job;
+  with_positions.positions = given;
+  with_positions.start_joint_correction = &g.start, with_positions.mid_joint_correction = &g.mid;
+  with_positions.reached = &g.reached;
+  REQUIRE(with_positions.Run() == job.Validate());
   r.ok = job.Run();
+  if (r.ok) {
+    REQUIRE(g.start.c == r.start.c);
+    REQUIRE(g.mid.c == r.mid.c);
+    REQUIRE(g.reached == r.reached);
+  }
   if (r.ok) {
     apply_ik_correction(chain.local[0], r.start);
     apply_ik_correction(chain.local[1], r.mid);
@@ -327,6 +341,13 @@ TEST_CASE("two-bone IK degenerate cases give defined results, not NaN", "[ik][ba
     CHECK_FALSE(job.Validate());
     job.soften = 1.0f, job.mid_joint = nullptr;
     CHECK_FALSE(job.Validate());
+    job.mid_joint = &c.model[1];
+    glm::vec3 given[3] = {c.position(0), c.position(1), c.position(2)};
+    job.positions = given;
+    CHECK(job.Validate());
+    given[1].y = std::numeric_limits<float>::infinity();
+    CHECK_FALSE(job.Validate());
+    CHECK_FALSE(job.Run());
   }
 }
 

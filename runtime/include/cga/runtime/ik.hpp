@@ -23,6 +23,11 @@ struct TwoBoneIKJob {
   const Motor* start_joint = nullptr;
   const Motor* mid_joint = nullptr;
   const Motor* end_joint = nullptr;
+  // Optional: the model-space positions of start, mid and end (3 entries, finite) when the caller has them
+  // (its own hierarchy, a previous job); the job then does not read them out of the motors. They must be
+  // where the motors put the joints (motor_transform_point(*start_joint, 0) ...): the rotations still come
+  // from the motors. nullptr: read off the motors (bit-identical to motor_transform_point).
+  const glm::vec3* positions = nullptr;
   glm::vec3 target{0.0f};            // model space; must be finite
   glm::vec3 pole_vector{0.0f, 1.0f, 0.0f};  // model-space direction the mid joint bends toward; finite
   float weight = 1.0f;               // [0, 1]: 0 leaves the pose, 1 solves fully (corrections are nlerped)
@@ -33,7 +38,7 @@ struct TwoBoneIKJob {
   Motor* mid_joint_correction = nullptr;
   bool* reached = nullptr;           // optional: the end joint reaches the target (weight 1, no clamp/soften)
 
-  bool Validate() const;  // pointers, finite inputs, weight and soften in [0, 1]
+  bool Validate() const;  // pointers, finite inputs (positions too when given), weight and soften in [0, 1]
   bool Run() const;       // false when invalid (outputs untouched)
 };
 
