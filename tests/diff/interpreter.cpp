@@ -100,7 +100,11 @@ class Interp {
 
   void top(const Stmt& s) {
     switch (s.kind) {
-      case Stmt::Kind::Pragma: return;  // output/range pragmas change no value
+      case Stmt::Kind::Pragma:
+        // '#pragma input M 1 e1^e2 ...': M is the sum of the inputs "M[k]" times the k-th declared blade.
+        // Other pragmas (output, range, ...) change no value.
+        if (s.words.size() >= 3 && s.words[0] == "input") mv_inputs_[s.words[1]] = {s.words.begin() + 2, s.words.end()};
+        return;
       case Stmt::Kind::MacroDef: macros_[s.name][arity(s)] = &s; latest_[s.name] = &s; return;
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
       case Stmt::Kind::Assign: break;
@@ -133,6 +137,16 @@ class Interp {
     }
     auto g = globals_.find(n);
     if (g != globals_.end()) return g->second;
+    auto mv = mv_inputs_.find(n);
+    if (mv != mv_inputs_.end()) {
+      MV sum;
+      for (size_t k = 0; k < mv->second.size(); ++k) {
+        auto c = inputs_.find(n + "[" + std::to_string(k) + "]");
+        if (c == inputs_.end()) throw Refused("no value for input " + n + "[" + std::to_string(k) + "]");
+        sum += static_cast<Real>(c->second) * oracle::null_blade<Real>(mv->second[k]);
+      }
+      return sum;
+    }
     auto in = inputs_.find(n);
     if (in == inputs_.end()) throw Refused("no value for input " + n);
     return scalar(static_cast<Real>(in->second));
@@ -233,6 +247,7 @@ class Interp {
   }
 
   const std::map<std::string, double>& inputs_;
+  std::map<std::string, std::vector<std::string>> mv_inputs_;  // '#pragma input' name -> its blades
   std::map<std::string, MV> globals_;
   std::map<std::string, std::map<size_t, const Stmt*>> macros_;
   std::map<std::string, const Stmt*> latest_;

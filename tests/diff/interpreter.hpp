@@ -30,7 +30,8 @@ struct Outputs {
 };
 
 // Runs the script with the given scalar inputs (a name not in `inputs` that is read before it is assigned
-// is refused).
+// is refused). A multivector input declared by '#pragma input M BLADE...' reads its coefficients from the
+// inputs "M[0]", "M[1]", ... in the pragma's blade order.
 Outputs interpret(const cgagen::front::Script& script, const std::map<std::string, double>& inputs);
 
 }  // namespace diff

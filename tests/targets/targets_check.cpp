@@ -3,9 +3,11 @@
 // interpreter, and compares every output blade with the reference.
 //
 // Reference: the script's -O0 program (its statements as written, no optimizer) evaluated in double by
-// opt::evaluate, the evaluator behind `cgagen --eval`. The compiled C++ kernels are held to the dense R(4,1)
-// oracle by tests/kernels, and `--eval` to the compiled kernels; the targets here print the -O2 program,
-// so an optimizer or printer fault in any language shows up as a difference.
+// opt::evaluate, the evaluator behind `cgagen --eval`. The fixture (LANG = reference) holds that reference
+// itself to the oracle: every sample is also run by the AST interpreter over the dense R(4,1) oracle of
+// tests/diff (no code shared with gen/ beyond the parser), and the two must agree to 1e-9 of each output's
+// size, or the fixture fails and with it every language. The targets print the -O2 program, so an optimizer
+// or printer fault in any language shows up as a difference.
 //
 // Inputs: uniform in [-1, 1], rounded to float (the same values go to float and double code). Samples at
 // which the script is ill-conditioned are redrawn: each input is perturbed by a relative 2^-20 and the sample
@@ -33,11 +35,13 @@
 
 #include <unistd.h>
 
+#include "algebra/blade.hpp"
 #include "emit/emit.hpp"
 #include "expand/expand.hpp"
 #include "front/parser.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
+#include "interpreter.hpp"  // tests/diff: CluScript over the oracle
 
 using namespace cgagen;
 namespace fs = std::filesystem;
@@ -167,6 +171,44 @@ Case load(const std::string& path, bool numeric) {
     fs::rename(tmp, cache);
   }
   return c;
+}
+
+// The reference against the oracle (see the top): the largest disagreement over a case's samples, or
+// infinity when the interpreter refuses the script (said on stderr).
+double oracle_disagreement(const Case& c) {
+  static const std::map<std::string, unsigned> index = [] {
+    std::map<std::string, unsigned> m;
+    for (unsigned k = 0; k < oracle::kBlades; ++k) m[oracle::null_blade_names()[k]] = k;
+    return m;
+  }();
+  front::SourceFile file = front::SourceFile::load(c.path);
+  const front::Script script = front::parse(file);
+  double worst = 0;
+  for (size_t row = 0; row < c.inputs.size(); ++row) {
+    std::map<std::string, double> in;
+    size_t off = 0;
+    for (size_t i = 0; i < c.prog.inputs.size(); ++i) {
+      const auto& ki = c.prog.inputs[i];
+      if (!ki.is_multivector) in[ki.name] = c.inputs[row][off++];
+      else
+        for (size_t k = 0; k < ki.symbols.size(); ++k) in[ki.name + "[" + std::to_string(k) + "]"] = c.inputs[row][off++];
+    }
+    std::vector<double> got;
+    try {
+      const diff::Outputs out = diff::interpret(script, in);
+      for (const auto& o : c.prog.outputs) {
+        auto v = out.values.find(o.name);
+        if (v == out.values.end()) throw diff::Refused("no output " + o.name);
+        const auto coeffs = oracle::to_null_basis(v->second);
+        for (const auto& slot : o.slots) got.push_back(static_cast<double>(coeffs.at(index.at(algebra::blade_name(slot.blade)))));
+      }
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: the oracle interpreter refuses the script: %s\n", c.name.c_str(), e.what());
+      return INFINITY;
+    }
+    worst = std::max(worst, max_error(c, got, c.expected[row]));
+  }
+  return worst;
 }
 
 void write_rows(const std::string& path, const std::vector<std::vector<double>>& rows) {
@@ -862,6 +904,14 @@ int main(int argc, char** argv) {
     std::printf("%zu scripts, %d inputs each, reference (-O0, opt::evaluate; cached by targets/reference) in %.2f s\n", cases.size(), kSamples,
                 std::chrono::duration<double>(t1 - t0).count());
   if (lang == "reference") {
+    bool ok = true;
+    for (const Case& c : cases) {
+      const double d = oracle_disagreement(c);
+      std::printf("reference %-22s vs the oracle interpreter on %zu inputs: max %.3g %s\n", c.name.c_str(), c.inputs.size(), d,
+                  d <= 1e-9 ? "ok" : "FAIL");
+      ok &= d <= 1e-9;
+    }
+    if (!ok) return 1;
   } else if (lang == "python") run_python(cases, gendir, work);
   else if (lang == "javascript") run_javascript(cases, gendir, work);
   else if (lang == "rust") run_rust(cases, gendir, work);
