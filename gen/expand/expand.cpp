@@ -702,7 +702,7 @@ class Expander {
   // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there.
   ex signed_sample(const ex& c, size_t k) {
     try {
-      ex v = GiNaC::evalf(c.subs(signed_samples_[k]));
+      ex v = GiNaC::evalf(c.subs(signed_samples_[k], GiNaC::subs_options::no_pattern));
       if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
     } catch (const std::exception&) {
       // a pole at this point
@@ -783,7 +783,7 @@ class Expander {
   ex inline_values(const ex& e) {
     GiNaC::exmap subs;
     collect_inlined(e, subs);
-    return subs.empty() ? e : e.subs(subs);
+    return subs.empty() ? e : e.subs(subs, GiNaC::subs_options::no_pattern);
   }
 
   void collect_inlined(const ex& e, GiNaC::exmap& subs) {
