@@ -5,17 +5,30 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "cli_run.hpp"
 
 using cga_test::run;
-using cga_test::write_temp;
 
 namespace {
+
+// text written to NAME in a folder of this process's own: ctest -j runs the cases as parallel processes,
+// which wrote the same gaalop_case.clu under one another.
+std::string write_temp(const std::string& name, const std::string& text) {
+  static const std::string dir = [] {
+    const std::string d = std::string(CGA_BINARY_DIR) + "/gaalop-" + std::to_string(static_cast<long>(getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return cga_test::write_temp(dir.substr(std::string(CGA_BINARY_DIR).size() + 1) + "/" + name, text);
+}
 
 // "--eval" output lines "NAME BLADE VALUE" as NAME/BLADE -> value, in order.
 std::vector<std::pair<std::string, double>> values(const std::string& text) {
