@@ -142,6 +142,9 @@ void register_generator_benchmarks() {
       if (e.path().extension() == ".clu") worst.push_back(e.path());
     std::sort(worst.begin(), worst.end());
     worst.push_back(CGA_BENCH_CIRCLE3);
+#ifdef CGA_BENCH_GPS
+    worst.push_back(CGA_BENCH_GPS);  // Gaalop's GPS example: > 120 s at -O2 before issue 14's DAG walks
+#endif
     scripts.insert(scripts.end(), worst.begin(), worst.end());
   }
 #endif

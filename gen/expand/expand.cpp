@@ -26,6 +26,9 @@
 namespace cgagen {
 namespace {
 
+// Substitution options for maps whose keys are all symbols (the result is that of a plain subs()).
+constexpr unsigned kSymbolSubs = GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product;
+
 using front::CompileError;
 using front::Expr;
 using front::SourceLoc;
@@ -702,7 +705,8 @@ class Expander {
   // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there.
   ex signed_sample(const ex& c, size_t k) {
     try {
-      ex v = GiNaC::evalf(c.subs(signed_samples_[k], GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product));
+      // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
+      ex v = GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
       if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
     } catch (const std::exception&) {
       // a pole at this point
@@ -783,7 +787,7 @@ class Expander {
   ex inline_values(const ex& e) {
     GiNaC::exmap subs;
     collect_inlined(e, subs);
-    return subs.empty() ? e : e.subs(subs);
+    return subs.empty() ? e : e.subs(subs, kSymbolSubs);
   }
 
   void collect_inlined(const ex& e, GiNaC::exmap& subs) {

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <unordered_map>
 
 #include "opt/internal.hpp"
+#include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
 
 namespace cgagen::opt::detail {
@@ -15,23 +17,21 @@ using namespace GiNaC;
 // The size of e for the work budget: its symbol occurrences. Unlike a node count this does not depend on
 // GiNaC's process-dependent choices ((a-b)*x or -(b-a)*x), so budget decisions and notes are the same in
 // every process.
-size_t tree_size(const ex& e) {
-  size_t n = 0;
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) n += is_a<symbol>(*it);
-  return n;
-}
+size_t tree_size(const ex& e) { return symbolic::tree_symbol_count(e); }
 
 bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
 
 bool has_denominator(const ex& e) {
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
-    if (is_a<power>(*it) && is_a<numeric>(it->op(1)) && ex_to<numeric>(it->op(1)).is_negative()) return true;
-  return false;
+  return symbolic::visit_nodes_once(e, [](const ex& x) {
+    return is_a<power>(x) && is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_negative();
+  });
 }
 
 void collect_symbols(const ex& e, ExSet& out) {
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
-    if (is_a<symbol>(*it)) out.insert(*it);
+  symbolic::visit_nodes_once(e, [&](const ex& x) {
+    if (is_a<symbol>(x)) out.insert(x);
+    return false;
+  });
 }
 
 Rat canonical(const ex& e) {
@@ -76,12 +76,13 @@ constexpr size_t kMaxNormalNodes = 1000;
 // The tree_size of the largest argument of a function call or non-integer power in e.
 size_t largest_call_argument(const ex& e) {
   size_t n = 0;
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
-    if (is_a<function>(*it))
-      for (size_t i = 0; i < it->nops(); ++i) n = std::max(n, tree_size(it->op(i)));
-    else if (is_a<power>(*it) && !(is_a<numeric>(it->op(1)) && ex_to<numeric>(it->op(1)).is_integer()))
-      n = std::max(n, tree_size(it->op(0)));
-  }
+  symbolic::visit_nodes_once(e, [&](const ex& x) {
+    if (is_a<function>(x))
+      for (size_t i = 0; i < x.nops(); ++i) n = std::max(n, tree_size(x.op(i)));
+    else if (is_a<power>(x) && !(is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer()))
+      n = std::max(n, tree_size(x.op(0)));
+    return false;
+  });
   return n;
 }
 
@@ -113,24 +114,36 @@ Rat combine_fractions(const Rat& r) {
 
 // An upper estimate of the number of terms of expand(e) when the symbols in `sizes` stand for sums of that
 // many terms (used to keep -O1 from expanding products of large values).
-double estimate_terms(const ex& e, const std::map<ex, double, ex_is_less>& sizes) {
+namespace {
+double estimate_terms_memo(const ex& e, const std::map<ex, double, ex_is_less>& sizes,
+                           std::unordered_map<const basic*, std::pair<ex, double>>& memo) {
   if (is_a<symbol>(e)) {
     auto it = sizes.find(e);
     return it == sizes.end() ? 1 : it->second;
   }
-  if (is_a<add>(e)) {
-    double n = 0;
-    for (size_t i = 0; i < e.nops(); ++i) n += estimate_terms(e.op(i), sizes);
-    return n;
+  const bool sum = is_a<add>(e), product = is_a<mul>(e);
+  const bool integer_power = is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer();
+  if (!sum && !product && !integer_power) return 1;
+  auto it = memo.find(symbolic::node_of(e));
+  if (it != memo.end()) return it->second.second;
+  double n;
+  if (sum) {
+    n = 0;
+    for (size_t i = 0; i < e.nops(); ++i) n += estimate_terms_memo(e.op(i), sizes, memo);
+  } else if (product) {
+    n = 1;
+    for (size_t i = 0; i < e.nops(); ++i) n *= estimate_terms_memo(e.op(i), sizes, memo);
+  } else {
+    n = std::pow(estimate_terms_memo(e.op(0), sizes, memo), ex_to<numeric>(e.op(1)).to_double());
   }
-  if (is_a<mul>(e)) {
-    double n = 1;
-    for (size_t i = 0; i < e.nops(); ++i) n *= estimate_terms(e.op(i), sizes);
-    return n;
-  }
-  if (is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer())
-    return std::pow(estimate_terms(e.op(0), sizes), ex_to<numeric>(e.op(1)).to_double());
-  return 1;
+  memo.emplace(symbolic::node_of(e), std::make_pair(e, n));
+  return n;
+}
+}  // namespace
+
+double estimate_terms(const ex& e, const std::map<ex, double, ex_is_less>& sizes) {
+  std::unordered_map<const basic*, std::pair<ex, double>> memo;
+  return estimate_terms_memo(e, sizes, memo);
 }
 
 // e (an expanded sum) collected recursively: a polynomial in xs[0] whose coefficients are polynomials in

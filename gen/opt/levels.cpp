@@ -24,6 +24,11 @@ namespace {
 
 // Above this estimated size a value is not substituted into its users but kept as a temporary.
 constexpr double kMaxInlineTerms = 4000;
+// Above this size (tree_size, symbol occurrences counted as a tree) of a value with its earlier values
+// substituted, it keeps them as temporaries too: the term estimate misses values that are sums under roots
+// and divisors, and the zero test's normal() on such a form does not finish (issue 14: GPS trilateration,
+// whose distance checks reach 15 million). The bundled scripts stay below 11000, GPS's spheres at 92000.
+constexpr size_t kMaxInlineTreeSize = 100000;
 // Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
 // The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
 constexpr size_t kMaxExpandedNodes = 4000;
@@ -95,8 +100,10 @@ Substituted substitute(const Kernel& k) {
       const ex& sym = v.symbols[i];
       if (!s.needed.count(sym)) continue;
       Rat r;
-      if (estimate_terms(v.coeffs[i], sizes) <= kMaxInlineTerms) {
-        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+      ex inlined;
+      if (estimate_terms(v.coeffs[i], sizes) <= kMaxInlineTerms &&
+          tree_size(inlined = v.coeffs[i].subs(subst, subs_options::no_pattern)) <= kMaxInlineTreeSize) {
+        r = canonical(inlined);
       } else {
         ExSet used;
         collect_symbols(v.coeffs[i], used);

@@ -2,6 +2,7 @@
 #include "symbolic/multivector.hpp"
 
 #include "symbolic/budget.hpp"
+#include "symbolic/dag.hpp"
 
 #include "algebra/algebra.hpp"
 
@@ -18,14 +19,10 @@ namespace {
 
 // Does e contain a power with a negative exponent (a denominator)? Only then is normal() worth calling.
 bool has_denominator(const GiNaC::ex& e) {
-  if (GiNaC::is_a<GiNaC::power>(e)) {
-    const GiNaC::ex& exponent = e.op(1);
-    if (GiNaC::is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_negative())
-      return true;
-  }
-  for (size_t i = 0; i < e.nops(); ++i)
-    if (has_denominator(e.op(i))) return true;
-  return false;
+  return visit_nodes_once(e, [](const GiNaC::ex& x) {
+    return GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
+           GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_negative();
+  });
 }
 
 // Terms of an expanded coefficient (a sum's terms; anything else is one).
@@ -49,8 +46,10 @@ namespace {
 std::vector<GiNaC::exmap> probe_points(const GiNaC::ex& x) {
   using namespace GiNaC;
   std::set<ex, ex_is_less> symbols;
-  for (auto it = x.preorder_begin(); it != x.preorder_end(); ++it)
-    if (is_a<symbol>(*it)) symbols.insert(*it);
+  visit_nodes_once(x, [&](const ex& e) {
+    if (is_a<symbol>(e)) symbols.insert(e);
+    return false;
+  });
   std::map<std::string, ex> by_name;
   for (const ex& s : symbols) by_name.emplace(ex_to<symbol>(s).get_name(), s);
   std::uint64_t state = 0x9E3779B97F4A7C15ull;
@@ -71,7 +70,7 @@ bool clearly_nonzero(const GiNaC::ex& x, const std::vector<GiNaC::exmap>& points
     exmap approx;
     for (const auto& [s, v] : at) approx[s] = ex_to<numeric>(v).evalf();
     try {
-      const ex f = x.subs(approx, subs_options::no_pattern).evalf();
+      const ex f = DagSubs(approx)(x).evalf();
       if (is_a<numeric>(f) && abs(ex_to<numeric>(f)) > numeric(1, 1000)) return true;
     } catch (const std::exception&) {
       // a pole at the probe
@@ -90,7 +89,7 @@ bool zero_after_float_probes(const GiNaC::ex& x, const std::vector<GiNaC::exmap>
   using namespace GiNaC;
   for (const exmap& at : points) {
     try {
-      const ex v = x.subs(at, subs_options::no_pattern);
+      const ex v = DagSubs(at)(x);
       if (is_a<numeric>(v) && ex_to<numeric>(v).is_rational() && !v.is_zero()) return false;
     } catch (const std::exception&) {
       // a pole at the probe: decide exactly
@@ -272,5 +271,43 @@ std::string Multivector::str() const {
 }
 
 bool operator==(const Multivector& a, const Multivector& b) { return (a - b).is_zero(); }
+
+std::size_t tree_symbol_count(const GiNaC::ex& e) {
+  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> memo;
+  auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
+    if (GiNaC::is_a<GiNaC::symbol>(x)) return 1;
+    if (x.nops() == 0) return 0;
+    auto it = memo.find(node_of(x));
+    if (it != memo.end()) return it->second.second;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
+    memo.emplace(node_of(x), std::make_pair(x, n));
+    return n;
+  };
+  return count(count, e);
+}
+
+GiNaC::ex DagSubs::operator()(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  if (is_a<symbol>(e)) {
+    auto it = at_.find(e);
+    return it == at_.end() ? e : it->second;
+  }
+  if (e.nops() == 0) return e;
+  // Sums, products, powers and function calls are rebuilt from their substituted operands (what subs
+  // does); anything else goes to GiNaC.
+  if (!is_a<add>(e) && !is_a<mul>(e) && !is_a<power>(e) && !is_a<function>(e))
+    return e.subs(at_, subs_options::no_pattern);
+  auto it = memo_.find(node_of(e));
+  if (it != memo_.end()) return it->second.second;
+  struct Op : map_function {
+    DagSubs& self;
+    explicit Op(DagSubs& s) : self(s) {}
+    ex operator()(const ex& x) override { return self(x); }
+  } op(*this);
+  ex r = e.map(op);
+  memo_.emplace(node_of(e), std::make_pair(e, r));
+  return r;
+}
 
 }  // namespace cgagen::symbolic

@@ -1,0 +1,53 @@
+// Walks over a GiNaC expression as the DAG it is. Values substituted into each other share most of their
+// subexpressions; GiNaC's preorder iterator, subs() and evalf() treat them as trees, which costs time
+// exponential in the depth of the substitution chain (issue 14, the GPS trilateration script).
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <cstddef>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+namespace cgagen::symbolic {
+
+// The node's identity: the shared object ex points to.
+inline const GiNaC::basic* node_of(const GiNaC::ex& e) { return &GiNaC::ex_to<GiNaC::basic>(e); }
+
+// Calls f(node) once per distinct node of e reachable through op() (the nodes the preorder iterator
+// visits, each shared one once); stops and returns true as soon as f returns true.
+template <class F>
+bool visit_nodes_once(const GiNaC::ex& e, F&& f) {
+  std::unordered_set<const GiNaC::basic*> seen;
+  std::vector<GiNaC::ex> keep;  // keeps visited nodes (op() may make fresh ones) alive: no address reuse
+  std::vector<GiNaC::ex> stack{e};
+  while (!stack.empty()) {
+    GiNaC::ex x = std::move(stack.back());
+    stack.pop_back();
+    if (!seen.insert(node_of(x)).second) continue;
+    keep.push_back(x);
+    if (f(x)) return true;
+    for (std::size_t i = x.nops(); i-- > 0;) stack.push_back(x.op(i));
+  }
+  return false;
+}
+
+// The number of symbol occurrences of e counted as a tree (what a preorder walk counts), in time linear in
+// the DAG.
+std::size_t tree_symbol_count(const GiNaC::ex& e);
+
+// e.subs(at, subs_options::no_pattern) for a map from symbols to values, computing each shared node once.
+// Throws what subs would throw (a division by zero at a pole).
+class DagSubs {
+ public:
+  explicit DagSubs(const GiNaC::exmap& at) : at_(at) {}
+  GiNaC::ex operator()(const GiNaC::ex& e);
+
+ private:
+  const GiNaC::exmap& at_;
+  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, GiNaC::ex>> memo_;  // node -> (node, value)
+};
+
+}  // namespace cgagen::symbolic
