@@ -51,6 +51,9 @@ const std::vector<IkCase>& ik_cases() {
   return cases;
 }
 
+// kPositions: the solves with the positions handed in (TwoBoneIKJob::positions), as the reference gets them;
+// otherwise the job derives them from the joint motors.
+template <bool kPositions>
 void bm_two_bone_cga(benchmark::State& state) {
   const std::vector<IkCase>& cases = ik_cases();
   Motor c1, c2;
@@ -60,28 +63,9 @@ void bm_two_bone_cga(benchmark::State& state) {
   std::size_t i = 0, ok = 0;
   for (auto _ : state) {
     const IkCase& c = cases[i++ & 1023];
-    job.start_joint = &c.start, job.mid_joint = &c.mid, job.end_joint = &c.end;
-    job.target = c.target, job.pole_vector = c.pole;
-    ok += job.Run();
-    benchmark::DoNotOptimize(c1);
-    benchmark::DoNotOptimize(c2);
-  }
-  if (ok != i) state.SkipWithError("TwoBoneIKJob::Run returned false");
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
-}
-
-// The same solves with the positions handed in (TwoBoneIKJob::positions), as the reference gets them.
-void bm_two_bone_cga_positions(benchmark::State& state) {
-  const std::vector<IkCase>& cases = ik_cases();
-  Motor c1, c2;
-  bool reached = false;
-  TwoBoneIKJob job;
-  job.start_joint_correction = &c1, job.mid_joint_correction = &c2, job.reached = &reached;
-  std::size_t i = 0, ok = 0;
-  for (auto _ : state) {
-    const IkCase& c = cases[i++ & 1023];
     const glm::vec3 positions[3] = {c.s, c.m, c.e};
-    job.start_joint = &c.start, job.mid_joint = &c.mid, job.end_joint = &c.end, job.positions = positions;
+    job.start_joint = &c.start, job.mid_joint = &c.mid, job.end_joint = &c.end;
+    if constexpr (kPositions) job.positions = positions;
     job.target = c.target, job.pole_vector = c.pole;
     ok += job.Run();
     benchmark::DoNotOptimize(c1);
@@ -133,8 +117,8 @@ void bm_aim_reference(benchmark::State& state) {
 
 void register_ik_benchmarks() {
   const std::string section = "IK, one solve (1024 random chains, cycled)";
-  benchmark::RegisterBenchmark("ik/two_bone/cga", bm_two_bone_cga);
-  benchmark::RegisterBenchmark("ik/two_bone/cga_positions", bm_two_bone_cga_positions);
+  benchmark::RegisterBenchmark("ik/two_bone/cga", bm_two_bone_cga<false>);
+  benchmark::RegisterBenchmark("ik/two_bone/cga_positions", bm_two_bone_cga<true>);
   benchmark::RegisterBenchmark("ik/two_bone/quaternion_reference", bm_two_bone_reference);
   benchmark::RegisterBenchmark("ik/aim/cga", bm_aim_cga);
   benchmark::RegisterBenchmark("ik/aim/quaternion_reference", bm_aim_reference);
