@@ -113,9 +113,8 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
   }
 }
 
-TEST_CASE("large meshes (prefetching, non-temporal output stores) skin as the portable loops, aligned outputs or not", "[skinning][simd]") {
-  // 2^17 + 13 vertices: past the size from which the SIMD loops prefetch and the matrix loops stream their
-  // outputs, with a remainder.
+TEST_CASE("large meshes (prefetching) skin as the portable loops, aligned outputs or not", "[skinning][simd]") {
+  // 2^17 + 13 vertices: past the size from which the SIMD loops prefetch their inputs, with a remainder.
   const std::size_t n = (std::size_t{1} << 17) + 13;
   const SkinnedMesh mesh = make_random_skinned_mesh(n, 64, 71);
   const Palettes pal = make_palettes(make_random_transforms(64, 72, 2.0f, 0.3f));

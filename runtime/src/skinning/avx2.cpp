@@ -55,37 +55,25 @@ CGA_AVX2 CGA_ALWAYS_INLINE void transpose_pairs(const __m256 u[4], __m256& rx, _
 }
 
 
-// Stores 8 floats at p; kStream: as non-temporal stores (two 16-byte ones: p is only 16-byte aligned).
-template <bool kStream>
-CGA_AVX2 CGA_ALWAYS_INLINE void store8(float* __restrict p, __m256 v) {
-  if constexpr (kStream) {
-    _mm_stream_ps(p, _mm256_castps256_ps128(v));
-    _mm_stream_ps(p + 4, _mm256_extractf128_ps(v, 1));
-  } else {
-    _mm256_storeu_ps(p, v);
-  }
-}
-
 // The portable renormalization on 8 lanes: n / |n|, or 0 when |n| = 0.
-template <bool kStream>
 CGA_AVX2 CGA_ALWAYS_INLINE void store_unit8(__m256 x, __m256 y, __m256 z, float* __restrict ox,
                                             float* __restrict oy, float* __restrict oz) {
   const __m256 len2 = _mm256_fmadd_ps(z, z, _mm256_fmadd_ps(y, y, _mm256_mul_ps(x, x)));
   const __m256 one_if_nonzero = _mm256_and_ps(_mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));
   const __m256 inv = _mm256_div_ps(one_if_nonzero, _mm256_sqrt_ps(_mm256_max_ps(len2, _mm256_set1_ps(1e-30f))));
-  store8<kStream>(ox, _mm256_mul_ps(x, inv));
-  store8<kStream>(oy, _mm256_mul_ps(y, inv));
-  store8<kStream>(oz, _mm256_mul_ps(z, inv));
+  _mm256_storeu_ps(ox, _mm256_mul_ps(x, inv));
+  _mm256_storeu_ps(oy, _mm256_mul_ps(y, inv));
+  _mm256_storeu_ps(oz, _mm256_mul_ps(z, inv));
 }
 
-template <bool kNormals, bool kStream>
+template <bool kNormals, bool kPrefetch>
 CGA_AVX2 CGA_ALWAYS_INLINE void matrix_block_avx2(const float* __restrict pal, const Streams& streams,
                                                   std::size_t begin, std::size_t end) {
   const Streams s = streams;  // a local copy: GCC reloads the pointers after every store otherwise
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
-    if constexpr (kStream) prefetch_ahead<kNormals>(s, i);
+    if constexpr (kPrefetch) prefetch_ahead<kNormals>(s, i);
     // Vertices k and k + 4 together, so only the 4 (or 8) pair registers live across the group; unrolled,
     // so they stay in registers.
     __m256 p[4], n[4];
@@ -103,22 +91,22 @@ CGA_AVX2 CGA_ALWAYS_INLINE void matrix_block_avx2(const float* __restrict pal, c
     }
     __m256 x, y, z;
     transpose_pairs(p, x, y, z);
-    store8<kStream>(s.ox + i, x);
-    store8<kStream>(s.oy + i, y);
-    store8<kStream>(s.oz + i, z);
+    _mm256_storeu_ps(s.ox + i, x);
+    _mm256_storeu_ps(s.oy + i, y);
+    _mm256_storeu_ps(s.oz + i, z);
     if constexpr (kNormals) {
       transpose_pairs(n, x, y, z);
-      store_unit8<kStream>(x, y, z, s.onx + i, s.ony + i, s.onz + i);
+      store_unit8(x, y, z, s.onx + i, s.ony + i, s.onz + i);
     }
   }
   if (i < end) matrix_block<kNormals>(pal, s, i, end);
 }
 
-template <bool kNormals, bool kStream>
+template <bool kNormals, bool kPrefetch>
 CGA_AVX2 bool matrix_block_avx2_fn(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
                                    std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
-  matrix_block_avx2<kNormals, kStream>(pal, s, begin, end);
+  matrix_block_avx2<kNormals, kPrefetch>(pal, s, begin, end);
   return true;
 }
 
@@ -186,21 +174,24 @@ CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, c
 }
 
 
-template <bool kNormals>
+template <bool kNormals, bool kPrefetch>
 CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, const Streams& s, std::size_t begin,
                                                  std::size_t end) {
   alignas(64) MotorRows rows;
   std::size_t i = begin;
-  for (; i + 8 <= end; i += 8) motor_blend8_avx2(pal, s, i, rows, i - begin);
+  for (; i + 8 <= end; i += 8) {
+    if constexpr (kPrefetch) prefetch_ahead<kNormals>(s, i);
+    motor_blend8_avx2(pal, s, i, rows, i - begin);
+  }
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
   motor_rows_apply<kNormals>(rows, s, begin, end);
 }
 
-template <bool kNormals>
+template <bool kNormals, bool kPrefetch>
 CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, const Streams& s, std::size_t begin,
                                                            std::size_t end, std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
-  motor_block_avx2<kNormals>(pal, s, begin, end);
+  motor_block_avx2<kNormals, kPrefetch>(pal, s, begin, end);
   return true;
 }
 
@@ -213,7 +204,8 @@ const SkinKernels* avx2_kernels() {
       {{matrix_block_avx2_fn<false, false>, matrix_block_avx2_fn<false, true>},
        {matrix_block_avx2_fn<true, false>, matrix_block_avx2_fn<true, true>}},
       {portable_kernels().dq[0], portable_kernels().dq[1]},
-      {{motor_block_avx2_fn<false>, motor_block_avx2_fn<false>}, {motor_block_avx2_fn<true>, motor_block_avx2_fn<true>}}};
+      {{motor_block_avx2_fn<false, false>, motor_block_avx2_fn<false, true>},
+       {motor_block_avx2_fn<true, false>, motor_block_avx2_fn<true, true>}}};
   return has ? &k : nullptr;
 }
 

@@ -227,17 +227,11 @@ bool SkinningJob::Run() const {
   const std::size_t n = vertex_count();
   const bool normals = has_normals();
   // A large mesh (kLargeVertices or more) streams from memory: the SIMD loops prefetch their inputs ahead
-  // (prefetch_ahead), and the matrix loops write the outputs with non-temporal stores, which skip reading each
-  // output line before writing it (its outputs are out of cache by the time anyone reads them anyway). Those
-  // stores need 16-byte aligned output streams (std::vector's are). Small meshes keep plain stores: their
-  // outputs stay in cache for the next stage.
-  const auto aligned16 = [](std::span<float> v) {
-    return v.empty() || reinterpret_cast<std::uintptr_t>(v.data()) % 16 == 0;
-  };
+  // (prefetch_ahead). Outputs are written with plain stores. Non-temporal stores were tried: they gained
+  // 10 % on one host and halved the throughput on another (docs/bench.md), and ozz-animation uses plain
+  // stores too.
   const bool packed = is_packed();
   const bool large = packed && n >= kLargeVertices;
-  const bool stream = large && aligned16(out_px) && aligned16(out_py) && aligned16(out_pz) &&
-                      aligned16(out_nx) && aligned16(out_ny) && aligned16(out_nz);
 
   // Per-run palette preparation into the loops' layout (loops.hpp), on the stack (Run() never allocates): lbs
   // transposes its matrices, cga_points converts every motor once with the generated kernel, cga_motors
@@ -250,7 +244,7 @@ bool SkinningJob::Run() const {
     case SkinningMethod::lbs:
       for (std::size_t e = 0; e < palette; ++e)
         matrix_entry_from_rows(reinterpret_cast<const float*>(&matrices[e]), converted + kEntry * e);
-      block = k.matrix[normals][stream];
+      block = k.matrix[normals][large];
       break;
     case SkinningMethod::cga_points:
       for (std::size_t e = 0; e < palette; ++e) {
@@ -258,7 +252,7 @@ bool SkinningJob::Run() const {
         detail::motor_matrix(motors[e].c.data(), rows);
         matrix_entry_from_rows(rows, converted + kEntry * e);
       }
-      block = k.matrix[normals][stream];
+      block = k.matrix[normals][large];
       break;
     case SkinningMethod::dqs:
       pack_dual_quats(dual_quats, std::span<float>(converted, 8 * palette));
@@ -280,9 +274,6 @@ bool SkinningJob::Run() const {
   bool ok = true;
   for (std::size_t begin = 0; begin < n && ok; begin += kBlock)
     ok = block(converted, s, begin, std::min(n, begin + kBlock), palette);
-#if defined(__x86_64__) && defined(__GNUC__)
-  if (stream) __builtin_ia32_sfence();  // non-temporal stores are weakly ordered: publish them before returning
-#endif
   return ok;
 }
 

@@ -35,7 +35,7 @@ using simd::high;
 // Vertices per block: a block's joints and weights are checked first (they are then in L1 for the skinning
 // pass), and cga_motors' blended rows of a block fit in L1 (12 x 256 floats).
 constexpr std::size_t kBlock = 256;
-// From this many vertices on, a mesh is "large": prefetching and non-temporal stores (see SkinningJob::Run).
+// From this many vertices on, a mesh is "large": the SIMD loops prefetch their inputs (see SkinningJob::Run).
 constexpr std::size_t kLargeVertices = std::size_t{1} << 17;
 // Floats per converted palette entry (matrix and motor entries; dq entries take 8).
 constexpr std::size_t kEntry = 16;
@@ -252,7 +252,7 @@ using BlockFn = bool (*)(const float* pal, const Streams& s, std::size_t begin, 
 // uses the AVX2 matrix loops, the AVX2 one the portable dqs loop).
 struct SkinKernels {
   const char* name;
-  BlockFn matrix[2][2];  // lbs and cga_points, [normals][stream: large mesh, 16-byte aligned outputs]
+  BlockFn matrix[2][2];  // lbs and cga_points, [normals][large mesh]
   BlockFn dq[2];         // dqs, [normals]
   BlockFn motor[2][2];   // cga_motors, [normals][large mesh]
 };

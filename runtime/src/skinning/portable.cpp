@@ -54,7 +54,7 @@ CGA_SKIN_CLONES __attribute__((flatten)) bool motor_block_pn(const float* pal, c
 }  // namespace
 
 const SkinKernels& portable_kernels() {
-  // The portable loops have no streaming variant: [.][0] and [.][1] are the same function.
+  // The portable loops have no prefetching variant: [.][0] and [.][1] are the same function.
   static const SkinKernels k{"portable",
                              {{matrix_block_p, matrix_block_p}, {matrix_block_pn, matrix_block_pn}},
                              {dq_block_p, dq_block_pn},
