@@ -1,10 +1,12 @@
 // SkinningJob on strided streams (ozz's in_positions_stride): an interleaved vertex buffer (position, normal
 // and a texture coordinate per vertex, 8 floats) skinned in place of the packed streams gives bit-identical
-// results to the packed run with every method and instruction set, including a partial last block; the size
-// rules for strided spans are checked with clear errors.
+// results to the packed run with every method and instruction set, including a partial last block, and so
+// does a 48-byte engine vertex with its joints and weights interleaved too; the size rules for strided spans
+// are checked with clear errors.
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "cga/runtime/skinning.hpp"
@@ -137,4 +139,85 @@ TEST_CASE("strided spans must cover the vertex count at their stride", "[skinnin
     CHECK_THAT(job.ValidationError(), Catch::Contains("vertex 7 influence 1"));
     CHECK_FALSE(job.Run());
   }
+}
+
+namespace {
+
+// A vertex as engines store it, skin data included: 48 bytes.
+struct EngineVertex {
+  float p[3], n[3];
+  std::array<float, 4> w;
+  std::array<std::uint16_t, 4> j;
+};
+static_assert(sizeof(EngineVertex) == 48);
+
+}  // namespace
+
+TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the packed streams do",
+          "[skinning][strided]") {
+  const SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 78u);
+  const RandomPalettes pal = make_random_palettes(24, 1, 6u);
+  const std::size_t n = mesh.vertex_count();
+  std::vector<EngineVertex> in(n);
+  for (std::size_t i = 0; i < n; ++i)
+    in[i] = {{mesh.px[i], mesh.py[i], mesh.pz[i]}, {mesh.nx[i], mesh.ny[i], mesh.nz[i]}, mesh.weights[i],
+             mesh.joints[i]};
+  constexpr std::size_t kFloats = sizeof(EngineVertex) / sizeof(float);  // 12
+  const float* base = in.front().p;
+  const std::span<const float> floats(base, kFloats * n);
+  for (SkinningMethod method : kAllSkinningMethods)
+    for (int isa = 0; isa < 3; ++isa) {
+      CAPTURE(to_string(method), isa);
+      SkinnedOutput packed;
+      SkinningJob a = make_skinning_job(method, mesh, packed);
+      set_palette(a, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
+      a.use_simd = isa > 0, a.use_avx512 = isa > 1;
+      REQUIRE(a.Run());
+
+      std::vector<float> out(6 * n, -7.0f);
+      SkinningJob b;
+      b.method = method;
+      b.in_px = floats, b.in_py = floats.subspan(1), b.in_pz = floats.subspan(2);
+      b.in_nx = floats.subspan(3), b.in_ny = floats.subspan(4), b.in_nz = floats.subspan(5);
+      b.in_positions_stride = b.in_normals_stride = kFloats;
+      // The shortest spans the size rules allow: (n - 1) * stride + 1 quadruples.
+      b.weights = {&in.front().w, (n - 1) * 3 + 1};
+      b.weights_stride = sizeof(EngineVertex) / sizeof(std::array<float, 4>);
+      b.joints = {&in.front().j, (n - 1) * 6 + 1};
+      b.joints_stride = sizeof(EngineVertex) / sizeof(std::array<std::uint16_t, 4>);
+      const std::span<float> o(out);
+      b.out_px = o, b.out_py = o.subspan(1), b.out_pz = o.subspan(2);
+      b.out_nx = o.subspan(3), b.out_ny = o.subspan(4), b.out_nz = o.subspan(5);
+      b.out_positions_stride = b.out_normals_stride = 6;
+      set_palette(b, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
+      b.use_simd = a.use_simd, b.use_avx512 = a.use_avx512;
+      REQUIRE(b.vertex_count() == n);
+      REQUIRE(b.ValidationError() == "");
+      REQUIRE(b.Run());
+      std::size_t mismatches = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const float want[6] = {packed.px[i], packed.py[i], packed.pz[i], packed.nx[i], packed.ny[i], packed.nz[i]};
+        mismatches += std::memcmp(out.data() + 6 * i, want, sizeof want) != 0;
+      }
+      CHECK(mismatches == 0);
+
+      if (method == SkinningMethod::lbs && isa == 0) {
+        INFO("a weight span one quadruple short, a bad joint and a NaN weight are refused with the vertex");
+        SkinningJob c = b;
+        c.weights = c.weights.first(c.weights.size() - 1);
+        CHECK_THAT(c.ValidationError(), Catch::Contains("weight quadruples for 1000 vertices at stride 3"));
+        CHECK_FALSE(c.Run());
+        std::vector<EngineVertex> bad = in;
+        bad[613].j[2] = 24;
+        bad[987].w[1] = std::numeric_limits<float>::quiet_NaN();
+        c = b;
+        c.joints = {&bad.front().j, b.joints.size()};
+        CHECK_THAT(c.ValidationError(), Catch::Contains("vertex 613 influence 2: joint 24 is outside"));
+        CHECK_FALSE(c.Run());
+        c.joints = b.joints;
+        c.weights = {&bad.front().w, b.weights.size()};
+        CHECK_THAT(c.ValidationError(), Catch::Contains("vertex 987 influence 1"));
+        CHECK_FALSE(c.Run());
+      }
+    }
 }

@@ -98,8 +98,9 @@ bool strided_fits(std::size_t n, std::size_t stride, std::span<const float> x, s
 // The O(1) checks: sizes, strides, normals, palette limits.
 std::string shape_error(const SkinningJob& job) {
   if (job.in_positions_stride == 0 || job.in_normals_stride == 0 || job.out_positions_stride == 0 ||
-      job.out_normals_stride == 0)
-    return "a stream stride is 0 (1 is packed; an interleaved buffer's stride is its vertex size in floats)";
+      job.out_normals_stride == 0 || job.joints_stride == 0 || job.weights_stride == 0)
+    return "a stream stride is 0 (1 is packed; an interleaved buffer's stride is its vertex size in the span's "
+           "elements)";
   const std::size_t n = job.vertex_count();
   if (job.is_packed()) {
     if (job.in_py.size() != n || job.in_pz.size() != n)
@@ -117,8 +118,11 @@ std::string shape_error(const SkinningJob& job) {
                          job.out_positions_stride, stream_extent(n, job.out_positions_stride), job.out_px.size(),
                          job.out_py.size(), job.out_pz.size());
   }
-  if (job.joints.size() != n) return fmt::format("{} joint quadruples for {} vertices", job.joints.size(), n);
-  if (job.weights.size() != n) return fmt::format("{} weight quadruples for {} vertices", job.weights.size(), n);
+  if (job.joints_stride == 1 ? job.joints.size() != n : job.joints.size() < stream_extent(n, job.joints_stride))
+    return fmt::format("{} joint quadruples for {} vertices at stride {}", job.joints.size(), n, job.joints_stride);
+  if (job.weights_stride == 1 ? job.weights.size() != n : job.weights.size() < stream_extent(n, job.weights_stride))
+    return fmt::format("{} weight quadruples for {} vertices at stride {}", job.weights.size(), n,
+                       job.weights_stride);
   const bool any_in_normals = !job.in_nx.empty() || !job.in_ny.empty() || !job.in_nz.empty();
   const bool any_out_normals = !job.out_nx.empty() || !job.out_ny.empty() || !job.out_nz.empty();
   if (any_in_normals) {
@@ -151,17 +155,17 @@ std::string data_error(const SkinningJob& job) {
   const std::size_t palette = palette_size(job);
   for (std::size_t i = 0; i < job.vertex_count(); ++i)
     for (int k = 0; k < 4; ++k) {
-      if (job.joints[i][k] >= palette)
-        return fmt::format("vertex {} influence {}: joint {} is outside the {} palette of {} entries", i, k,
-                           job.joints[i][k], to_string(job.method), palette);
-      if (!std::isfinite(job.weights[i][k]))
-        return fmt::format("vertex {} influence {}: weight {} is not finite", i, k, job.weights[i][k]);
-      if (job.weights[i][k] < 0.0f)
-        return fmt::format("vertex {} influence {}: weight {} is negative", i, k, job.weights[i][k]);
+      const std::uint16_t joint = job.joints[i * job.joints_stride][k];
+      const float weight = job.weights[i * job.weights_stride][k];
+      if (joint >= palette)
+        return fmt::format("vertex {} influence {}: joint {} is outside the {} palette of {} entries", i, k, joint,
+                           to_string(job.method), palette);
+      if (!std::isfinite(weight)) return fmt::format("vertex {} influence {}: weight {} is not finite", i, k, weight);
+      if (weight < 0.0f) return fmt::format("vertex {} influence {}: weight {} is negative", i, k, weight);
     }
   // lbs and cga-points scale a vertex by its weight sum: an unnormalized vertex would be silently misplaced.
   for (std::size_t i = 0; i < job.vertex_count(); ++i) {
-    const auto& w = job.weights[i];
+    const auto& w = job.weights[i * job.weights_stride];
     const float sum = w[0] + w[1] + w[2] + w[3];
     if (!(std::abs(sum - 1.0f) <= kWeightSumTolerance))
       return fmt::format("vertex {}: weights sum to {}, not 1 (renormalize them)", i, sum);
@@ -194,16 +198,21 @@ bool run_strided(const SkinningJob& job, BlockFn block, const float* pal, std::s
   const bool normals = job.has_normals();
   const std::size_t ip = job.in_positions_stride, in = job.in_normals_stride;
   const std::size_t op = job.out_positions_stride, on = job.out_normals_stride;
+  const std::size_t js = job.joints_stride, ws = job.weights_stride;
   alignas(64) float buf[12][kBlock];
+  alignas(64) std::array<std::uint16_t, 4> joints[kBlock];
+  alignas(64) std::array<float, 4> weights[kBlock];
   for (std::size_t begin = 0; begin < n; begin += kBlock) {
     const std::size_t count = std::min(kBlock, n - begin);
     for (std::size_t v = 0; v < count; ++v) {
       const std::size_t i = begin + v;
       buf[0][v] = job.in_px[i * ip], buf[1][v] = job.in_py[i * ip], buf[2][v] = job.in_pz[i * ip];
       if (normals) buf[3][v] = job.in_nx[i * in], buf[4][v] = job.in_ny[i * in], buf[5][v] = job.in_nz[i * in];
+      if (js != 1) joints[v] = job.joints[i * js];
+      if (ws != 1) weights[v] = job.weights[i * ws];
     }
-    const Streams s{buf[0], buf[1], buf[2], buf[3], buf[4], buf[5], job.joints.data() + begin,
-                    job.weights.data() + begin, buf[6], buf[7], buf[8], buf[9], buf[10], buf[11]};
+    const Streams s{buf[0], buf[1], buf[2], buf[3], buf[4], buf[5], js == 1 ? job.joints.data() + begin : joints,
+                    ws == 1 ? job.weights.data() + begin : weights, buf[6], buf[7], buf[8], buf[9], buf[10], buf[11]};
     if (!block(pal, s, 0, count, palette)) return false;
     for (std::size_t v = 0; v < count; ++v) {
       const std::size_t i = begin + v;

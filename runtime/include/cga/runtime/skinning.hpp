@@ -55,9 +55,12 @@ inline constexpr float kWeightSumTolerance = 1e-3f;
 // Size rules (n = vertex_count()):
 //   packed streams (every stride 1, the default): each position/normal span holds exactly n floats;
 //   strided streams: vertex i of a stream is at [i * stride], so each span covers at least (n - 1) * stride + 1
-//     floats (an interleaved buffer: in_px = {buf, size}, in_py = {buf + 1, size - 1}, ..., stride = floats
-//     per vertex); n is then joints.size();
-//   joints, weights: n entries each; palette of `method`: at most kMaxConvertedPalette entries.
+//     elements (an interleaved buffer: in_px = {buf, size}, in_py = {buf + 1, size - 1}, ..., stride = floats
+//     per vertex); n is then ceil(joints.size() / joints_stride);
+//   joints, weights: n entries each when packed, (n - 1) * stride + 1 when strided (skin data interleaved with
+//     the vertex: a 48-byte vertex x y z nx ny nz w0..w3 j0..j3 has weights at byte 24, stride 3 quadruples of
+//     floats, and joints at byte 40, stride 6 quadruples of uint16);
+//   palette of `method`: at most kMaxConvertedPalette entries.
 struct SkinningJob {
   SkinningMethod method = SkinningMethod::lbs;
 
@@ -83,6 +86,8 @@ struct SkinningJob {
   // bytes); 1 = packed structure of arrays. Strided runs stage 256 vertices at a time on the stack.
   std::size_t in_positions_stride = 1, in_normals_stride = 1;
   std::size_t out_positions_stride = 1, out_normals_stride = 1;
+  // Entries of their own span (quadruples) from one vertex's joints / weights to the next; 1 = packed.
+  std::size_t joints_stride = 1, weights_stride = 1;
 
   // Run lbs / cga_points / cga_motors on the hand-written AVX2 + FMA loops when the CPU has them (the default).
   // false: always the portable loops, which agree to float rounding; tests use it to check both paths.
@@ -101,9 +106,12 @@ struct SkinningJob {
   bool Run() const;
 
   bool is_packed() const {
-    return in_positions_stride == 1 && in_normals_stride == 1 && out_positions_stride == 1 && out_normals_stride == 1;
+    return in_positions_stride == 1 && in_normals_stride == 1 && out_positions_stride == 1 &&
+           out_normals_stride == 1 && joints_stride == 1 && weights_stride == 1;
   }
-  std::size_t vertex_count() const { return is_packed() ? in_px.size() : joints.size(); }
+  std::size_t vertex_count() const {
+    return is_packed() || joints_stride == 0 ? in_px.size() : (joints.size() + joints_stride - 1) / joints_stride;
+  }
   bool has_normals() const { return !in_nx.empty(); }
 };
 
