@@ -1,5 +1,6 @@
 // Skinning throughput (vertices/s) of the runtime's SkinningJob per method, positions only and with
-// normals: on a deterministic random mesh (1 M vertices, 64 bones, 4 influences) and on the real character
+// normals: on a deterministic random mesh (1 M vertices, 64 bones, 4 influences; also at 64 K vertices, which
+// stay in cache, and at 1 M in one 48-byte interleaved stride as engines store vertices) and on the real character
 // BCN_Epileptic in a pose of its clip. Two plain GLM loops (no blocking, no hand SIMD: what a straightforward
 // engine loop does) are measured beside them as references for the "plain GLM LBS / DQS loop" numbers.
 #include <memory>
@@ -26,6 +27,7 @@ namespace cga::bench {
 namespace {
 
 constexpr std::size_t kRandomVertices = 1u << 20;  // "1 M vertices"
+constexpr std::size_t kCacheVertices = 1u << 16;   // "64 K vertices"
 constexpr int kRandomBones = 64;
 constexpr std::uint32_t kMeshSeed = 20240601;
 constexpr std::uint32_t kPoseSeed = 7;
@@ -63,6 +65,82 @@ const SkinScene& random_scene() {
     return s;
   }();
   return scene;
+}
+
+// The same random mesh at 64 K vertices: inputs and outputs (2.6-4.5 MB) stay in this host's caches.
+const SkinScene& random64k_scene() {
+  static const SkinScene scene = [] {
+    SkinScene s;
+    s.meshes.push_back(make_random_skinned_mesh(kCacheVertices, kRandomBones, kMeshSeed));
+    s.vertices = kCacheVertices;
+    add_palettes(s, kRandomBones, kPoseSeed);
+    return s;
+  }();
+  return scene;
+}
+
+// A vertex as engines store it: position, normal and skin data in one 48-byte stride.
+struct EngineVertex {
+  float p[3], n[3];
+  std::array<float, 4> w;
+  std::array<std::uint16_t, 4> j;
+};
+static_assert(sizeof(EngineVertex) == 48);
+
+// random1M's mesh as one interleaved buffer of EngineVertex; outputs x y z nx ny nz interleaved (24 bytes).
+struct InterleavedScene {
+  std::vector<EngineVertex> in;
+  std::vector<float> out;
+};
+
+const InterleavedScene& interleaved_scene() {
+  static const InterleavedScene scene = [] {
+    const SkinnedMesh& mesh = random_scene().meshes.front();
+    InterleavedScene s;
+    s.in.resize(mesh.vertex_count());
+    for (std::size_t i = 0; i < s.in.size(); ++i)
+      s.in[i] = {{mesh.px[i], mesh.py[i], mesh.pz[i]}, {mesh.nx[i], mesh.ny[i], mesh.nz[i]}, mesh.weights[i],
+                 mesh.joints[i]};
+    s.out.assign(6 * s.in.size(), 0.0f);
+    return s;
+  }();
+  return scene;
+}
+
+void bm_skinning_interleaved(benchmark::State& state, SkinningMethod method, bool normals) {
+  const SkinScene& scene = random_scene();
+  InterleavedScene& il = const_cast<InterleavedScene&>(interleaved_scene());  // outputs only are written
+  const std::size_t n = il.in.size();
+  constexpr std::size_t kFloats = sizeof(EngineVertex) / sizeof(float);
+  const std::span<const float> in(il.in.front().p, kFloats * n);
+  const std::span<float> out(il.out);
+  SkinningJob job;
+  job.method = method;
+  job.in_px = in, job.in_py = in.subspan(1), job.in_pz = in.subspan(2);
+  job.out_px = out, job.out_py = out.subspan(1), job.out_pz = out.subspan(2);
+  if (normals) {
+    job.in_nx = in.subspan(3), job.in_ny = in.subspan(4), job.in_nz = in.subspan(5);
+    job.out_nx = out.subspan(3), job.out_ny = out.subspan(4), job.out_nz = out.subspan(5);
+  }
+  job.in_positions_stride = job.in_normals_stride = kFloats;
+  job.out_positions_stride = job.out_normals_stride = 6;
+  job.weights = {&il.in.front().w, (n - 1) * 3 + 1};
+  job.weights_stride = sizeof(EngineVertex) / sizeof(std::array<float, 4>);
+  job.joints = {&il.in.front().j, (n - 1) * 6 + 1};
+  job.joints_stride = sizeof(EngineVertex) / sizeof(std::array<std::uint16_t, 4>);
+  job.matrices = scene.matrices.front();
+  job.dual_quats = scene.dual_quats.front();
+  job.motors = scene.motors.front();
+  if (const std::string error = job.ValidationError(); !error.empty()) {
+    state.SkipWithError(error.c_str());
+    return;
+  }
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(job.Run());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+  state.SetLabel(std::to_string(n) + " vertices, 48-byte interleaved input");
 }
 
 // The palettes of every skinned mesh of `ch` in its first clip's pose at `time`, computed by the runtime's
@@ -264,6 +342,7 @@ void register_skinning_benchmarks() {
   };
   const Scene scenes[] = {
       {"random1M", random_scene, "1 M random vertices, 64 bones, 4 influences"},
+      {"random64K", random64k_scene, "64 K random vertices (cache-resident), 64 bones, 4 influences"},
       {"BCN_Epileptic", character_scene, "BCN_Epileptic.X meshes, posed by the runtime's jobs"},
   };
   for (const Scene& sc : scenes)
@@ -280,6 +359,13 @@ void register_skinning_benchmarks() {
                     sc.fn == random_scene ? target_for(m, normals) : std::nullopt, {}});
       }
       if (sc.fn != random_scene) continue;
+      for (SkinningMethod m : kAllSkinningMethods) {
+        const std::string name = std::string("skinning/interleaved1M/") + kind + "/" + std::string(to_string(m));
+        benchmark::RegisterBenchmark(name.c_str(), bm_skinning_interleaved, m, normals)->Unit(benchmark::kMillisecond);
+        add_figure({name, "Skinning, " + kind + ": 1 M random vertices in one 48-byte interleaved stride",
+                    std::string(to_string(m)), Metric::mega_items_per_s, "skinning/interleaved1M/" + kind + "/lbs",
+                    "lbs", std::nullopt, {}});
+      }
       for (PlainLoop loop : {PlainLoop::lbs, PlainLoop::dqs}) {
         const std::string label = loop == PlainLoop::lbs ? "plain GLM lbs loop" : "plain GLM dqs loop";
         const std::string name = prefix + (loop == PlainLoop::lbs ? "plain_glm_lbs" : "plain_glm_dqs");

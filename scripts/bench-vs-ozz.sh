@@ -25,7 +25,7 @@ for r in $(seq 1 "$ROUNDS"); do
   echo "round $r/$ROUNDS: ozz" >&2
   "${pin[@]}" "$ozz_bench" > "$work/ozz_$r.txt"
   echo "round $r/$ROUNDS: cga-bench" >&2
-  "${pin[@]}" "$BUILD_DIR/bench/cga-bench" --benchmark_filter='^(skinning/random1M/|pose/paper$)' \
+  "${pin[@]}" "$BUILD_DIR/bench/cga-bench" --benchmark_filter='^(skinning/(random1M|random64K|interleaved1M)/|pose/paper$)' \
     --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
     --benchmark_out="$work/cga_$r.json" --benchmark_out_format=json >/dev/null 2>&1
 done
@@ -34,44 +34,57 @@ python3 - "$work" "$ROUNDS" <<'PY'
 import json, re, statistics, sys
 work, rounds = sys.argv[1], int(sys.argv[2])
 methods = ["lbs", "cga-points", "cga-motors", "dqs"]
-rows = {"positions": [], "positions+normals": []}
+# (cga-bench scene, ozz line tag, title)
+cases = [("random1M", "1M", "1 M random vertices"),
+         ("random64K", "64K", "64 K random vertices (cache-resident)"),
+         ("interleaved1M", "1M interleaved", "1 M random vertices in one 48-byte interleaved stride")]
+kinds = {"positions": "P", "positions+normals": "PN"}
+rows = {(scene, kind): [] for scene, _, _ in cases for kind in kinds}
 pose = []
 for r in range(1, rounds + 1):
     text = open(f"{work}/ozz_{r}.txt").read()
-    ozz = {}
-    for kind, tag in (("positions", "P "), ("positions+normals", "PN")):
-        m = re.search(rf"ozz SkinningJob {tag} 1M .*?: ([0-9.]+) Mvert/s", text)
-        if not m: sys.exit(f"bench-vs-ozz: no '{tag}' 1M line in ozz output of round {r}")
-        ozz[kind] = float(m.group(1))
+    ozz = {(m.group(2).strip(), m.group(1)): float(m.group(3)) for m in
+           re.finditer(r"ozz SkinningJob (PN|P) +(.+?) n=\d+ inf=4: ([0-9.]+) Mvert/s", text)}
     m = re.search(r"ozz pose full: sample x2\+blend\+L2M\+invbind\s+joints=\d+:\s+([0-9.]+) ns/pose", text)
     ozz_pose_ns = float(m.group(1)) if m else None
     cga = {}
     for b in json.load(open(f"{work}/cga_{r}.json"))["benchmarks"]:
         if b.get("aggregate_name") == "median":
             cga[b["run_name"]] = b
-    for kind in rows:
-        row = {"ozz": ozz[kind]}
-        for meth in methods:
-            b = cga.get(f"skinning/random1M/{kind}/{meth}")
-            row[meth] = b["items_per_second"] / 1e6 / ozz[kind] if b else None
-        rows[kind].append(row)
+    for scene, tag, _ in cases:
+        for kind, ozz_kind in kinds.items():
+            if (tag, ozz_kind) not in ozz: sys.exit(f"bench-vs-ozz: no '{ozz_kind} {tag}' line in ozz output of round {r}")
+            row = {"ozz": ozz[(tag, ozz_kind)]}
+            for meth in methods:
+                b = cga.get(f"skinning/{scene}/{kind}/{meth}")
+                row[meth] = b["items_per_second"] / 1e6 / row["ozz"] if b else None
+            rows[(scene, kind)].append(row)
     b = cga.get("pose/paper")
     if b and ozz_pose_ns:
         ns = b["real_time"] * {"ns": 1, "us": 1e3, "ms": 1e6}[b["time_unit"]]
         pose.append((ozz_pose_ns, ns))
 
 def fmt(v): return "–" if v is None else f"{v:.2f}"
-for kind, rs in rows.items():
-    print(f"\n### Skinning, {kind}: 1 M random vertices, 64 joints, 4 influences, one core")
-    print("| round | ozz (M vertices/s) | " + " | ".join(methods) + " |")
-    print("|---|---|" + "---|" * len(methods))
-    for i, row in enumerate(rs, 1):
-        print(f"| {i} | {row['ozz']:.0f} | " + " | ".join(fmt(row[m]) for m in methods) + " |")
-    med = []
-    for m in methods:
-        v = [row[m] for row in rs if row[m] is not None]
-        med.append(f"**{statistics.median(v):.2f}** ({min(v):.2f}–{max(v):.2f})" if v else "–")
-    print(f"| median (spread) | {statistics.median(r['ozz'] for r in rs):.0f} | " + " | ".join(med) + " |")
+summary = []
+for scene, _, title in cases:
+    for kind in kinds:
+        rs = rows[(scene, kind)]
+        print(f"\n### Skinning, {kind}: {title}, 64 joints, 4 influences, one core")
+        print("| round | ozz (M vertices/s) | " + " | ".join(methods) + " |")
+        print("|---|---|" + "---|" * len(methods))
+        for i, row in enumerate(rs, 1):
+            print(f"| {i} | {row['ozz']:.0f} | " + " | ".join(fmt(row[m]) for m in methods) + " |")
+        med = []
+        for m in methods:
+            v = [row[m] for row in rs if row[m] is not None]
+            med.append(f"**{statistics.median(v):.2f}** ({min(v):.2f}–{max(v):.2f})" if v else "–")
+        ozz_med = statistics.median(r['ozz'] for r in rs)
+        print(f"| median (spread) | {ozz_med:.0f} | " + " | ".join(med) + " |")
+        summary.append(f"| {title}, {kind} | {ozz_med:.0f} | " + " | ".join(med) + " |")
+print("\n### Summary: median speed ratio to ozz's SkinningJob in the same round (spread over rounds)")
+print("| case | ozz (M vertices/s) | " + " | ".join(methods) + " |")
+print("|---|---|" + "---|" * len(methods))
+print("\n".join(summary))
 if pose:
     print("\n### Pose: two clips sampled, blended, to model space, times inverse binds (ozz: 54 joints; cga-bench pose/paper)")
     print("| round | ozz (µs/pose) | cga paper (µs/pose) | speed ratio to ozz |")

@@ -1,5 +1,7 @@
 // ozz-animation side of scripts/bench.sh --vs-ozz: SkinningJob throughput and the pose pipeline, on the same
-// kind of data as cga-bench (1 M random vertices, 64 joints, 4 influences; a 54-joint humanoid).
+// kind of data as cga-bench (1 M and 64 K random vertices, 64 joints, 4 influences, packed and in one 48-byte
+// interleaved stride; a 54-joint humanoid).
+#include <cstddef>
 #include <cstring>
 #include <string>
 
@@ -90,6 +92,81 @@ static void bench_skinning(int n, const char* tag) {
           float on = acc[4 * r] * nn[0] + acc[4 * r + 1] * nn[1] + acc[4 * r + 2] * nn[2];
           maxerr = std::max(maxerr, (double)std::fabs(on - outn[3 * i + r]));
         }
+      }
+    }
+    Stats s = time_it([&] { job.Run(); clobber(); });
+    std::printf("ozz SkinningJob %-2s %s n=%d inf=4: %.1f Mvert/s (median; min-max %.1f-%.1f) %.2f ns/vert maxerr=%.2g\n",
+                pn ? "PN" : "P", tag, n, n / s.med / 1e6, n / s.mx / 1e6, n / s.mn / 1e6,
+                s.med / n * 1e9, maxerr);
+  }
+}
+
+// The same mesh as engines store it: position, normal and skin data in one 48-byte stride (as cga-bench's
+// skinning/interleaved1M); outputs x y z nx ny nz interleaved (24 bytes).
+struct EngineVertex {
+  float p[3], n[3], w[4];
+  uint16_t j[4];
+};
+static_assert(sizeof(EngineVertex) == 48, "48-byte vertex");
+
+static void bench_skinning_interleaved(int n, const char* tag) {
+  const int kJoints = 64;
+  auto js = make_joints(kJoints);
+  std::vector<math::Float4x4> mats(kJoints);
+  for (int j = 0; j < kJoints; ++j) {
+    float m[12];
+    rigid_to_3x4(js[j], m);
+    mats[j].cols[0] = math::simd_float4::Load(m[0], m[4], m[8], 0.f);
+    mats[j].cols[1] = math::simd_float4::Load(m[1], m[5], m[9], 0.f);
+    mats[j].cols[2] = math::simd_float4::Load(m[2], m[6], m[10], 0.f);
+    mats[j].cols[3] = math::simd_float4::Load(m[3], m[7], m[11], 1.f);
+  }
+  MeshData md = make_mesh(n, kJoints);
+  std::vector<EngineVertex> in(n);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) {
+      if (k < 3) in[i].p[k] = md.pos[3 * i + k], in[i].n[k] = md.nrm[3 * i + k];
+      in[i].w[k] = md.wgt[4 * i + k], in[i].j[k] = md.idx[4 * i + k];
+    }
+  std::vector<float> out(6 * n);
+  const std::size_t bytes = sizeof(EngineVertex) * n;
+  const char* base = reinterpret_cast<const char*>(in.data());
+  const auto floats_from = [&](std::size_t offset) {
+    return span<const float>(reinterpret_cast<const float*>(base + offset), (bytes - offset) / sizeof(float));
+  };
+  for (int pn = 0; pn < 2; ++pn) {
+    geometry::SkinningJob job;
+    job.vertex_count = n;
+    job.influences_count = 4;
+    job.joint_matrices = make_span(mats);
+    job.joint_indices = span<const uint16_t>(reinterpret_cast<const uint16_t*>(base + offsetof(EngineVertex, j)),
+                                             (bytes - offsetof(EngineVertex, j)) / sizeof(uint16_t));
+    job.joint_indices_stride = sizeof(EngineVertex);
+    job.joint_weights = floats_from(offsetof(EngineVertex, w));
+    job.joint_weights_stride = sizeof(EngineVertex);
+    job.in_positions = floats_from(offsetof(EngineVertex, p));
+    job.in_positions_stride = sizeof(EngineVertex);
+    job.out_positions = make_span(out);
+    job.out_positions_stride = 6 * sizeof(float);
+    if (pn) {
+      job.in_normals = floats_from(offsetof(EngineVertex, n));
+      job.in_normals_stride = sizeof(EngineVertex);
+      job.out_normals = span<float>(out.data() + 3, out.size() - 3);
+      job.out_normals_stride = 6 * sizeof(float);
+    }
+    if (!job.Run()) { std::printf("interleaved skinning job failed\n"); std::exit(1); }
+    double maxerr = 0;
+    for (int i = 0; i < std::min(n, 20000); ++i) {
+      float acc[12] = {0};
+      for (int k = 0; k < 4; ++k) {
+        float m[12];
+        rigid_to_3x4(js[md.idx[4 * i + k]], m);
+        for (int e = 0; e < 12; ++e) acc[e] += md.wgt[4 * i + k] * m[e];
+      }
+      const float* p = &md.pos[3 * i];
+      for (int r = 0; r < 3; ++r) {
+        float o = acc[4 * r] * p[0] + acc[4 * r + 1] * p[1] + acc[4 * r + 2] * p[2] + acc[4 * r + 3];
+        maxerr = std::max(maxerr, (double)std::fabs(o - out[6 * i + r]));
       }
     }
     Stats s = time_it([&] { job.Run(); clobber(); });
@@ -233,7 +310,11 @@ int main(int argc, char** argv) {
   bool do_skin = true, do_pose = true;
   if (argc > 1 && !std::strcmp(argv[1], "skin")) do_pose = false;
   if (argc > 1 && !std::strcmp(argv[1], "pose")) do_skin = false;
-  if (do_skin) { bench_skinning(1000000, "1M "); bench_skinning(100000, "100k"); }
+  if (do_skin) {
+    bench_skinning(1000000, "1M ");
+    bench_skinning(65536, "64K");
+    bench_skinning_interleaved(1000000, "1M interleaved");
+  }
   if (do_pose) bench_pose();
   return 0;
 }
