@@ -1011,21 +1011,25 @@ class Expander {
       // invert (Gaalop's MathFunction INVERT): the inverse of a multivector, 1/X as the division defines it.
       if (fn == "invert") return divide(Multivector(ex(1)), args[0], *e.args[0]);
       if (fn == "Dual") return args[0].dual();
-      // Normalize(X) = X / abs(X), abs being the magnitude sqrt(|<X ~X>_0|) (as #pragma normalize rewrites).
-      if (fn == "Normalize") return divide(args[0], magnitude(args[0]), *e.args[0]);
-      // The two points of a point pair PP (in the form Gaalop's GPS example intersects spheres into):
-      // (PP +- sqrt(|PP.PP|)) / (einf.PP); first with +, second with -. Not normalized (e0 weight != 1).
+      // Gaalop's CGA Normalize: -X / (X.einf), a point scaled to e0 weight 1 (not X / abs(X), which is what
+      // the other algebras' Normalize and #pragma normalize do).
+      if (fn == "Normalize") return divide(-args[0], inner(args[0], Multivector::einf()), *e.args[0]);
+      // Gaalop's CGA ExtractFirstPoint / ExtractSecondPoint of X, the outer product of three dual spheres (the
+      // form Gaalop's GPS example builds): with D = *X, the point pair, (D +- sqrt(|X.X|)) / (einf.D); first
+      // with +, second with -. Not normalized (e0 weight != 1).
       if (fn == "ExtractFirstPoint" || fn == "ExtractSecondPoint") {
-        const Multivector& pp = args[0];
-        Multivector root = Multivector(GiNaC::sqrt(GiNaC::abs(scalar_part_if_scalar(inner(pp, pp)).scalar())));
-        Multivector num = fn == "ExtractFirstPoint" ? pp + root : pp - root;
-        return divide(num, inner(Multivector::einf(), pp), *e.args[0]);
+        const Multivector dpp = args[0].dual();
+        Multivector root =
+            Multivector(GiNaC::sqrt(GiNaC::abs(scalar_part_if_scalar(inner(args[0], args[0])).scalar())));
+        Multivector num = fn == "ExtractFirstPoint" ? dpp + root : dpp - root;
+        return divide(num, inner(Multivector::einf(), dpp), *e.args[0]);
       }
       if (fn == "coefficient") return coefficient(args[0], args[1], *e.args[1]);
       if (fn == "SphereN3" && args.size() == 2) {
-        // SphereN3(P, r): the dual sphere around the conformal point P, P - r^2/2 einf.
+        // Gaalop's SphereN3(P, r) = *(P - r^2/2 einf): the dual of the (inner product null space) sphere around
+        // the conformal point P, a 4-vector; Gaalop's scripts write *SphereN3(...) for the vector form.
         const ex r = scalar_arg(fn, args, e, 1);
-        return args[0] - Multivector::blade(4, r * r / 2);
+        return (args[0] - Multivector::blade(4, r * r / 2)).dual();
       }
       // The arguments of the remaining built-ins must all be scalars.
       std::vector<ex> s;
@@ -1036,10 +1040,10 @@ class Expander {
         p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2);
         return p + Multivector::e0();
       }
-      if (fn == "SphereN3") {  // SphereN3(x, y, z, r): the dual sphere VecN3(x, y, z) - r^2/2 einf
+      if (fn == "SphereN3") {  // SphereN3(x, y, z, r) = SphereN3(VecN3(x, y, z), r) = *(VecN3(x, y, z) - r^2/2 einf)
         Multivector p = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
         p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - s[3] * s[3]) / 2);
-        return p + Multivector::e0();
+        return (p + Multivector::e0()).dual();
       }
       if (fn == "TranslatorN3") {
         Multivector t = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);

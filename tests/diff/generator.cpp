@@ -130,7 +130,7 @@ class Gen {
       case 16: return sc(2) + "*" + mv(d, extra_leaf);
       case 17: return "Dual(" + mv(d, extra_leaf) + ")";
       case 18: return "invert(" + divisor() + ")";
-      case 19: return "Normalize(" + input() + "*e1 + " + number() + "*e3)";
+      case 19: return "Normalize(" + number() + "*VecN3(" + input() + ", " + number() + ", " + input() + "))";
       case 20: return "abs(" + mv(d, extra_leaf) + ")";
       case 21: return mv(d, extra_leaf) + "/" + divisor() + "*" + mv(d, extra_leaf);
       case 22:

@@ -216,8 +216,10 @@ class Interp {
     if (f == "ceil") return scalar(std::ceil(s(0)));
     if (f == "exp") return exponential(a.at(0));
     if (f == "VecN3" || f == "createPoint") return point(s(0), s(1), s(2));
-    if (f == "SphereN3" && a.size() == 4) return point(s(0), s(1), s(2)) - (0.5 * s(3) * s(3)) * oracle::einf<Real>();
-    if (f == "SphereN3") return a[0] - (0.5 * s(1) * s(1)) * oracle::einf<Real>();
+    // Gaalop's SphereN3 is the dual of the vector sphere P - r^2/2 einf.
+    if (f == "SphereN3" && a.size() == 4)
+      return oracle::dual(point(s(0), s(1), s(2)) - (0.5 * s(3) * s(3)) * oracle::einf<Real>());
+    if (f == "SphereN3") return oracle::dual(a[0] - (0.5 * s(1) * s(1)) * oracle::einf<Real>());
     if (f == "TranslatorN3") return scalar(1) - 0.5 * (vec(s(0), s(1), s(2)) * oracle::einf<Real>());
     if (f == "RotorN3") {
       const Real x = s(0), y = s(1), z = s(2), phi = s(3);
@@ -227,7 +229,7 @@ class Interp {
     }
     if (f == "Dual") return oracle::dual(a.at(0));
     if (f == "invert") return divide(scalar(1), a.at(0));
-    if (f == "Normalize") return divide(a.at(0), magnitude(a[0]));
+    if (f == "Normalize") return divide(Real(-1) * a.at(0), oracle::inner(a[0], oracle::einf<Real>()));  // Gaalop's CGA macro
     if (f == "coefficient") {
       // the blade argument is one null-basis blade times +-1: find it
       const MV& blade = a.at(1);

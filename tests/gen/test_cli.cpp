@@ -245,9 +245,13 @@ TEST_CASE("Gaalop forms: 1.0 as the scalar blade, abs of a multivector, coeffici
       // the scalar c with which the multivector holds c * blade; e2^e1 = -e1^e2
       {"?c = coefficient(x*e1^e2 + y*e3, e2^e1); ?d = coefficient(x*e1^e2 + y*e3, e3);", "x=3 y=4",
        "c 1 -3\nd 1 4\n"},
-      // the dual sphere around (1,2,3) of radius 2: VecN3(1,2,3) - 2 einf, in both of Gaalop's forms
-      {"?s = SphereN3(1,2,3,r); ?t = SphereN3(VecN3(1,2,3), r);", "r=2",
-       "s e1 1\ns e2 2\ns e3 3\ns einf 5\ns e0 1\nt e1 1\nt e2 2\nt e3 3\nt einf 5\nt e0 1\n"},
+      // Gaalop's SphereN3 around (1,2,3) of radius 2 is *(VecN3(1,2,3) - 2 einf), in both of its forms; its
+      // dual, as Gaalop's scripts take it (*SphereN3), is -(VecN3(1,2,3) - 2 einf) (** = -1 in CGA)
+      {"?s = *SphereN3(1,2,3,r); ?t = *SphereN3(VecN3(1,2,3), r);", "r=2",
+       "s e1 -1\ns e2 -2\ns e3 -3\ns einf -5\ns e0 -1\nt e1 -1\nt e2 -2\nt e3 -3\nt einf -5\nt e0 -1\n"},
+      {"?s = SphereN3(1,2,3,r);", "r=2",
+       // -(V.I) by hand, V = e1 + 2 e2 + 3 e3 + 5 einf + e0, I = e1^e2^e3^einf^e0, einf.e0 = -1
+       "s e1^e2^e3^einf 5\ns e1^e2^e3^e0 -1\ns e1^e2^einf^e0 -3\ns e1^e3^einf^e0 2\ns e2^e3^einf^e0 -1\n"},
       // a macro overloaded by argument count, one form calling the other (not a recursion)
       {"S = {VecN3(_P(1),_P(2),_P(3)) - _P(4)*_P(4)/2*einf}\nS = {S(_P(1),0,0,_P(2))}\n?a = S(x, r);", "x=1 r=2",
        "a e1 1\na einf -1.5\na e0 1\n"},

@@ -142,15 +142,21 @@ TEST_CASE("scalar functions of Gaalop's MathFunction: floor, ceil, fact, invert"
 }
 
 TEST_CASE("CGA macros: Normalize, Dual, ExtractFirstPoint, ExtractSecondPoint", "[gaalop]") {
-  check_eval("?n = Normalize(3*x*e1 + 4*x*e2);", "x=2", {{"n/e1", 0.6}, {"n/e2", 0.8}});
+  // Gaalop's CGA Normalize: -X/(X.einf), a point of any weight scaled to e0 weight 1.
+  check_eval("?n = Normalize(x*VecN3(1, 2, 3));", "x=-2.5",
+             {{"n/e1", 1}, {"n/e2", 2}, {"n/e3", 3}, {"n/einf", 7}, {"n/e0", 1}});
+  check_error("?n = Normalize(3*x*e1 + 4*x*e2);", "1:23", "division by zero");  // X.einf = 0
   // Dual(s) = s * -(e1^e2^e3^einf^e0)
   check_eval("?d = Dual(x);", "x=2", {{"d/e1^e2^e3^einf^e0", -2}});
-  // the two points of the pair VecN3(1,2,3)^VecN3(4,5,x), each normalized to weight 1 as Gaalop's GPS does
-  const std::string pp = "P = VecN3(1,2,3)^VecN3(4,5,x);\nf = ExtractFirstPoint(P);\n?fn = -f/(f.einf);\n"
-                         "g = ExtractSecondPoint(P);\n?gn = -g/(g.einf);\n";
-  check_eval(pp, "x=6",
-             {{"fn/e1", 4}, {"fn/e2", 5}, {"fn/e3", 6}, {"fn/einf", 38.5}, {"fn/e0", 1},
-              {"gn/e1", 1}, {"gn/e2", 2}, {"gn/e3", 3}, {"gn/einf", 7}, {"gn/e0", 1}});
+  // Gaalop's GPS form: three spheres P - r^2/2 einf around (0,0,0), (4,0,0) and (0,4,0) through (1,1,+-2) meet
+  // in the point pair *(S1^S2^S3); ExtractFirstPoint / ExtractSecondPoint give its two points, normalized here.
+  const std::string pp = "S1 = VecN3(0,0,0) - r1*r1/2*einf;\nS2 = VecN3(4,0,0) - r2*r2/2*einf;\n"
+                         "S3 = VecN3(0,4,0) - r2*r2/2*einf;\n"
+                         "X = S1^S2^S3;\nf = ExtractFirstPoint(X);\n?fn = Normalize(f);\n"
+                         "g = ExtractSecondPoint(X);\n?gn = Normalize(g);\n";
+  check_eval(pp, "r1=2.449489742783178 r2=3.7416573867739413",  // sqrt(6), sqrt(14)
+             {{"fn/e1", 1}, {"fn/e2", 1}, {"fn/e3", -2}, {"fn/einf", 3}, {"fn/e0", 1},
+              {"gn/e1", 1}, {"gn/e2", 1}, {"gn/e3", 2}, {"gn/einf", 3}, {"gn/e0", 1}});
   // A script's own macro of the same name wins over the built-in.
   check_eval("Normalize = { _P(1)*2 }\n?n = Normalize(x);", "x=3", {{"n/1", 6}});
 }
