@@ -305,15 +305,20 @@ class Parser {
     return {std::move(e), check_depth(depth, op.loc)};
   }
 
-  // Does the '(' at peek() hold a condition (a comparison, '&&', '||' or '!' at its own level)?
-  bool parenthesized_condition() {
+  // Does the '(' at peek(at) hold a condition: a comparison, '&&', '||' or '!' at its own level, or nothing
+  // but a parenthesized condition ("((a < b))")?
+  bool parenthesized_condition(size_t at = 0) {
     int depth = 0;
-    for (size_t k = 0;; ++k) {
+    for (size_t k = at;; ++k) {
       const Token& t = peek(k);
       switch (t.kind) {
         case TokKind::LParen: ++depth; break;
         case TokKind::RParen:
           if (--depth == 0) return false;
+          // The group at at+1 closes here, right before ours: "((...))" is a condition when its inside is.
+          if (depth == 1 && peek(at + 1).kind == TokKind::LParen && peek(k + 1).kind == TokKind::RParen &&
+              matching_paren(at + 1) == k)
+            return parenthesized_condition(at + 1);
           break;
         case TokKind::Compare:
         case TokKind::AndAnd:
@@ -327,6 +332,17 @@ class Parser {
         case TokKind::RBrace: return false;
         default: break;
       }
+    }
+  }
+
+  // The index (for peek) of the ')' that closes the '(' at peek(at); 0 when it is not closed.
+  size_t matching_paren(size_t at) {
+    int depth = 0;
+    for (size_t k = at;; ++k) {
+      const TokKind kind = peek(k).kind;
+      if (kind == TokKind::LParen) ++depth;
+      else if (kind == TokKind::RParen && --depth == 0) return k;
+      else if (kind == TokKind::End || kind == TokKind::Semi || kind == TokKind::LBrace || kind == TokKind::RBrace) return 0;
     }
   }
 
