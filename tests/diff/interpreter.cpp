@@ -118,11 +118,21 @@ class Interp {
     if (s.marker == Marker::Output || s.marker == Marker::Visual) mark(s.name);
   }
 
-  // if/else as a program runs it: the condition decides which branch runs. As cgagen defines it
+  // if/else as a program runs it: the condition decides which branch runs (the other is evaluated too, for
+  // its refusals, then forgotten). As cgagen defines it
   // (docs/language.md): a name that only the branch not taken assigns and that had no value before is 0
   // after the 'if', and the outputs either branch marks are outputs.
   void branch(const Stmt& s) {
     const bool taken = holds(*s.value);
+    {
+      // cgagen expands both branches, so it refuses a branch that cannot be evaluated (exp of a multivector
+      // that is not a bivector) even where it never runs: run the other branch too, for its refusals only.
+      const auto globals = globals_;
+      const auto marks = marks_;
+      for (const auto& st : taken ? s.else_body : s.body) top(*st);
+      globals_ = globals;
+      marks_ = marks;
+    }
     for (const auto& st : taken ? s.body : s.else_body) top(*st);
     std::vector<std::pair<std::string, bool>> names;  // name, marked as an output
     assigned(s.body, names);
