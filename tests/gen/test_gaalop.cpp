@@ -4,8 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -29,6 +31,18 @@ std::string write_temp(const std::string& name, const std::string& text) {
     return d;
   }();
   return cga_test::write_temp(dir.substr(std::string(CGA_BINARY_DIR).size() + 1) + "/" + name, text);
+}
+
+// Runs a program: its exit status and stdout.
+cga_test::Result run_program(const std::string& cmd) {
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) throw std::runtime_error("popen failed");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 // "--eval" output lines "NAME BLADE VALUE" as NAME/BLADE -> value, in order.
@@ -159,6 +173,44 @@ TEST_CASE("if/else on scalar conditions: both outcomes, every comparison and con
   const std::string dist = "P = VecN3(x, y, 0);\nd = -2*(P.VecN3(0,0,0));\nif (d > 1) { s = 1/d; } else { s = 1; }\n?Q = s*P;";
   check_eval(dist, "x=3 y=4", {{"Q/e1", 3.0 / 25}, {"Q/e2", 4.0 / 25}, {"Q/einf", 0.5}, {"Q/e0", 1.0 / 25}});
   check_eval(dist, "x=0.5 y=0", {{"Q/e1", 0.5}, {"Q/e2", 0}, {"Q/einf", 0.125}, {"Q/e0", 1}});
+}
+
+TEST_CASE("if/else: the emitted C++ compiled and run takes each branch as --eval does", "[gaalop][if]") {
+  const std::string script = std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/reach_clamp.clu";
+  const std::string dir = (std::filesystem::path(write_temp("if_cpp.keep", "")).parent_path() / "if_cpp").string();
+  std::filesystem::create_directories(dir);
+  REQUIRE(run("-o " + dir + "/reach_clamp.hpp " + script).code == 0);
+  // Inside the reach sphere, outside it (x = 3), and the else-if and else sides of the second if.
+  const std::vector<std::vector<double>> inputs = {{0.25, 0.5, -0.125, 1}, {3, 0.5, 0.25, 1}, {0.5, 0.25, -0.5, 2}};
+  std::string main = "#include <cstdio>\n#include \"reach_clamp.hpp\"\nint main() {\n  double Q[5], side[4], k[5];\n";
+  for (const auto& in : inputs) {
+    main += "  cga::kernels::reach_clamp(" + std::to_string(in[0]) + ", " + std::to_string(in[1]) + ", " +
+            std::to_string(in[2]) + ", " + std::to_string(in[3]) + ", Q, side, k);\n";
+    main += "  for (double v : Q) std::printf(\"%.17g\\n\", v);\n  for (double v : side) std::printf(\"%.17g\\n\", v);\n"
+            "  for (double v : k) std::printf(\"%.17g\\n\", v);\n";
+  }
+  main += "}\n";
+  std::ofstream(dir + "/main.cpp") << main;
+  REQUIRE(std::system(("c++ -std=c++17 -Wall -Werror -o " + dir + "/main " + dir + "/main.cpp 2> " + dir + "/cc.log").c_str()) == 0);
+  auto ran = run_program(dir + "/main");
+  REQUIRE(ran.code == 0);
+  std::istringstream got(ran.out);
+  int branches_outside = 0;
+  for (const auto& in : inputs) {
+    auto r = run("--eval " + script + " x=" + std::to_string(in[0]) + " y=" + std::to_string(in[1]) +
+                 " z=" + std::to_string(in[2]) + " r=" + std::to_string(in[3]));
+    REQUIRE(r.code == 0);
+    const auto want = values(r.out);
+    REQUIRE(want.size() == 14);
+    for (const auto& [what, v] : want) {
+      double x = 0;
+      REQUIRE(static_cast<bool>(got >> x));
+      INFO(what << " at x=" << in[0]);
+      CHECK(x == Approx(v).margin(1e-14));
+    }
+    if (want[0].second != Approx(in[0])) ++branches_outside;  // Q e1 = s x, s != 1 outside the sphere
+  }
+  CHECK(branches_outside == 1);
 }
 
 TEST_CASE("if/else: what is not supported is a located error", "[gaalop][if]") {
