@@ -308,6 +308,8 @@ class Parser {
   // Does the '(' at peek(at) hold a condition: a comparison, '&&', '||' or '!' at its own level, or nothing
   // but a parenthesized condition ("((a < b))")?
   bool parenthesized_condition(size_t at = 0) {
+    // Deeper than the nesting limit it cannot parse anyway: as an expression it reaches the limit's error.
+    if (at > static_cast<size_t>(kMaxNesting)) return false;
     int depth = 0;
     for (size_t k = at;; ++k) {
       const Token& t = peek(k);

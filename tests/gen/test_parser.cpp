@@ -267,6 +267,11 @@ TEST_CASE("if/else: malformed conditions and branches are located errors", "[par
   CHECK(error_at("if (a < b) x = 1; else { M = { 1 } }").find("1:26 a macro cannot be defined inside 'else'") == 0);
   CHECK(error_at("else x = 1;").find("1:1 'else' without an 'if'") == 0);
   CHECK(error_at("if (a < ) x = 1;").find("1:9 expected expression") == 0);
+  // Parentheses around a condition nest up to the limit, like any others; deeper is the nesting error.
+  CHECK(script("if (" + std::string(200, '(') + "a < b" + std::string(200, ')') + ") x = 1;") ==
+        "(if (< a b) (then (= x 1)))\n");
+  const std::string deep = "if (" + std::string(100000, '(') + "a < b" + std::string(100000, ')') + ") x = 1;";
+  CHECK(error_at(deep).find("expression nested too deeply") != std::string::npos);
 }
 
 TEST_CASE("macro definitions", "[parser]") {
