@@ -439,7 +439,10 @@ class Expander {
     if (!v.is_scalar())
       throw CompileError(e.loc, "a condition compares scalars; this is " + describe(v) +
                                     " (compare a coefficient, coefficient(v, e1), or a magnitude, abs(v))");
-    return v.scalar();
+    const ex c = v.scalar();
+    if (GiNaC::is_a<GiNaC::numeric>(c) && !GiNaC::ex_to<GiNaC::numeric>(c).is_real())
+      throw CompileError(e.loc, "a condition compares real numbers; this one is complex");
+    return c;
   }
 
   void exec_local(const Stmt& s) {

@@ -216,6 +216,7 @@ TEST_CASE("if/else: the emitted C++ compiled and run takes each branch as --eval
 TEST_CASE("if/else: what is not supported is a located error", "[gaalop][if]") {
   check_error("?p = x;\nif (x*e1 < 1) p = 2;", "2:6", "a condition compares scalars");
   check_error("?p = x;\nif (x = 1) p = 2;", "2:7", "compare with '=='");
+  check_error("?p = x;\nif (sqrt(-1) < 2) p = 2;", "2:5", "a condition compares real numbers");
   check_error("?p = x;\nif (x < 1 < 2) p = 2;", "2:11", "comparisons do not chain");
   check_error("?p = x < 1;", "1:8", "may only appear in the condition of an 'if'");
   check_error("?p = x;\nif (x < 1) { M = { _P(1) } }", "2:14", "a macro cannot be defined inside 'if'");
