@@ -20,6 +20,7 @@
 #include "expand/algebra_builtins.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
+#include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
 #include "symbolic/probes.hpp"
 #include "symbolic/select.hpp"
@@ -505,6 +506,14 @@ class Expander {
     kv.loc = s.loc;
     Multivector ref;
     for (const auto& [b, c] : v.terms()) {
+      // A complex constant (sqrt(-4) = 2i, log(-1) = i pi): the targets have real numbers only, and the
+      // printers would drop the i (sqrt(-4)*x printed as 2*x). The emitted C would give NaN; say so here.
+      // (Each shared node once: coefficients are DAGs whose trees can be exponentially large.)
+      if (symbolic::visit_nodes_once(c, [](const ex& x) {
+            return GiNaC::is_a<GiNaC::numeric>(x) && !GiNaC::ex_to<GiNaC::numeric>(x).is_real();
+          }))
+        throw CompileError(s.loc, "the value of '" + s.name + "' is complex (a square root or logarithm of a "
+                                    "negative constant); the generated code computes with real numbers only");
       std::optional<ex> at_sample = sample(c);
       if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));

@@ -217,6 +217,9 @@ TEST_CASE("if/else: what is not supported is a located error", "[gaalop][if]") {
   check_error("?p = x;\nif (x*e1 < 1) p = 2;", "2:6", "a condition compares scalars");
   check_error("?p = x;\nif (x = 1) p = 2;", "2:7", "compare with '=='");
   check_error("?p = x;\nif (sqrt(-1) < 2) p = 2;", "2:5", "a condition compares real numbers");
+  // Not if/else: a complex constant in a value (sqrt(-4)*x was printed, and --eval'd, as 2*x).
+  check_error("?p = sqrt(-4)*x;", "1:2", "the value of 'p' is complex");
+  check_error("a = log(-1);\n?p = a*x;", "1:1", "the value of 'a' is complex");
   check_error("?p = x;\nif (x < 1 < 2) p = 2;", "2:11", "comparisons do not chain");
   check_error("?p = x < 1;", "1:8", "may only appear in the condition of an 'if'");
   check_error("?p = x;\nif (x < 1) { M = { _P(1) } }", "2:14", "a macro cannot be defined inside 'if'");
