@@ -211,6 +211,12 @@ std::string dump_expr(const front::ExprPtr& e) {
     case K::Binary:
       return std::string("(") + binary_name(e->binary_op) + " " + dump_expr(e->args.at(0)) + " " +
              dump_expr(e->args.at(1)) + ")";
+    case K::Compare:
+    case K::Logic: {
+      std::string s = "(" + e->text;
+      for (const auto& a : e->args) s += " " + dump_expr(a);
+      return s + ")";
+    }
     case K::Call: {
       std::string s = "(call " + e->text;
       for (const auto& a : e->args) s += " " + dump_expr(a);
@@ -242,6 +248,14 @@ void dump_stmt(const front::Stmt& s, std::string& out, const std::string& indent
     }
     case front::Stmt::Kind::ExprStmt:
       out += indent + where + " expr " + dump_expr(s.value) + "\n";
+      break;
+    case front::Stmt::Kind::If:
+      out += indent + where + " if " + dump_expr(s.value) + "\n";
+      for (const auto& b : s.body) dump_stmt(*b, out, indent + "  ");
+      if (s.else_loc.line > 0) {
+        out += indent + std::to_string(s.else_loc.line) + ":" + std::to_string(s.else_loc.col) + " else\n";
+        for (const auto& b : s.else_body) dump_stmt(*b, out, indent + "  ");
+      }
       break;
   }
 }

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "symbolic/select.hpp"
+
 #ifndef CGAGEN_TEMPLATE_DIR
 #define CGAGEN_TEMPLATE_DIR "templates"
 #endif
@@ -199,6 +201,16 @@ class Printer {
     if (is_a<add>(b) || is_a<mul>(b)) return print(b, 2);
     if (opt::is_sqrt(b)) return call("sqrt", print(b.op(0)));
     if (is_a<power>(b)) return call("pow", print(b.op(0)) + ", " + print(b.op(1)));
+    if (cgagen::symbolic::is_select(b)) {
+      const std::string op = cgagen::symbolic::select_operator(b);
+      auto it = sx_.compare_names.find(op);
+      return fill_pattern(sx_.select, {{"a", print(b.op(0), 1)},
+                                       {"b", print(b.op(1), 1)},
+                                       {"op", it == sx_.compare_names.end() ? op : it->second},
+                                       {"x", print(b.op(2))},
+                                       {"y", print(b.op(3))},
+                                       {"T", prec_.type}});
+    }
     if (is_a<function>(b)) {
       std::string name = ex_to<function>(b).get_name();
       std::string s;
@@ -510,3 +522,4 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
 }
 
 }  // namespace cgagen::emit
+

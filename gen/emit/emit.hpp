@@ -39,6 +39,10 @@ struct Syntax {
   std::map<std::string, std::string> math_names;  // renamed functions; a value containing "${" is a
                                                    // whole pattern with ${args}
   std::string call = "${fn}(${args})";  // a call: ${fn} (prefix + name), ${args}
+  // if/else as a select (docs/language.md): ${x} when "${a} ${op} ${b}" holds, else ${y}; ${op} is <, <= or
+  // == as spelled in compare_names.
+  std::string select = "(${a} ${op} ${b} ? ${x} : ${y})";
+  std::map<std::string, std::string> compare_names;  // "<=" -> "\\le" (LaTeX); others as written
   std::string mul = " * ", div = " / ";
   std::string comment = "//";          // line comment
   std::string qualifiers;              // {{qualifiers}} of the function template ("inline", CUDA's)

@@ -139,6 +139,7 @@ std::vector<Syntax> make_targets() {
   wgsl.assign = "${elem} = ${value};  ${c} ${blade}";
   wgsl.blade_list = "${c} ${out}: ${list}";  // WGSL has no strings: the blade lists are comments
   wgsl.blade_quote = "";
+  wgsl.select = "select(${y}, ${x}, ${a} ${op} ${b})";  // WGSL: select(false value, true value, condition)
   wgsl.ident = wgsl_ident;
   wgsl.text = wgsl_ident;  // the function's name is the script's; blade names and file names pass unchanged
   t.push_back(wgsl);
@@ -160,6 +161,7 @@ std::vector<Syntax> make_targets() {
   py.math_prefix = "_np.";
   py.math_names = {{"atan2", "arctan2"}, {"asin", "arcsin"}, {"acos", "arccos"}, {"atan", "arctan"},
                    {"pow", "power"}};
+  py.select = "_np.where(${a} ${op} ${b}, ${x}, ${y})";  // element-wise: inputs may be broadcast arrays
   py.comment = "#";
   py.indent = "    ";
   py.scalar_param = "${name}";
@@ -196,6 +198,7 @@ std::vector<Syntax> make_targets() {
   rust.precisions = {prec("f32", true, "_f32"), prec("f64", false, "_f64")};
   rust.math_prefix = "${T}::";
   rust.math_names = {{"pow", "powf"}};
+  rust.select = "(if ${a} ${op} ${b} { ${x} } else { ${y} })";
   rust.scalar_param = "${name}: ${T}";
   rust.mv_param = "${name}: &[${T}; ${n}]";
   rust.out_param = "${name}: &mut [${T}; ${n}]";
@@ -212,6 +215,8 @@ std::vector<Syntax> make_targets() {
   tex.call = "\\operatorname{${fn}}(${args})";
   tex.math_names = {{"sqrt", "\\sqrt{${args}}"}};
   tex.mul = " \\cdot ";
+  tex.select = "\\begin{cases} ${x} & \\text{if } ${a} ${op} ${b} \\\\ ${y} & \\text{otherwise} \\end{cases}";
+  tex.compare_names = {{"<=", "\\le"}, {"==", "="}};
   tex.comment = "%";
   tex.indent = "";
   tex.scalar_param = "$${name}$";

@@ -20,8 +20,10 @@
 #include "expand/algebra_builtins.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
+#include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
 #include "symbolic/probes.hpp"
+#include "symbolic/select.hpp"
 
 namespace cgagen {
 namespace {
@@ -210,8 +212,7 @@ class Expander {
     symbolic::WorkBudget budget;
     define_algebra_builtins();
     for (const auto& [loc, message] : script.warnings) kernel_.warnings.push_back({loc, message});
-    for (const auto& s : script.statements)
-      if (s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::MacroDef) script_names_.insert(s->name);
+    collect_script_names(script.statements);
     for (const auto& s : script.statements) {
       // GiNaC's own faults (a pole, an overflow) anywhere in a statement become a diagnostic, not a crash.
       try {
@@ -310,11 +311,27 @@ class Expander {
 
   // ---- statements --------------------------------------------------------------------------------
 
+  // Every name the script assigns or defines as a macro, inside if/else branches too.
+  void collect_script_names(const std::vector<front::StmtPtr>& statements) {
+    for (const auto& s : statements) {
+      if (s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::MacroDef) script_names_.insert(s->name);
+      if (s->kind == Stmt::Kind::If) {
+        collect_script_names(s->body);
+        collect_script_names(s->else_body);
+      }
+    }
+  }
+
   void exec_top(const Stmt& s) {
     switch (s.kind) {
-      case Stmt::Kind::Pragma: pragma(s); return;
+      case Stmt::Kind::Pragma:
+        if (!assigned_in_branch_.empty())
+          throw CompileError(s.loc, "'#pragma' inside if/else is not supported: put it before the 'if'");
+        pragma(s);
+        return;
       case Stmt::Kind::MacroDef: define_macro(s); return;
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
+      case Stmt::Kind::If: exec_if(s); return;
       case Stmt::Kind::Assign: break;
     }
     if (s.value && normalize_outputs_ && s.marker == front::Marker::Output) {
@@ -336,8 +353,103 @@ class Expander {
     if (s.marker == front::Marker::Output || s.marker == front::Marker::Visual) mark(s.name, s.loc);
   }
 
+  // ---- if / else ----------------------------------------------------------------------------------
+  // Both branches are expanded, each from the state before the 'if'. Afterwards every name that either
+  // branch assigns holds, per blade, select(condition, its value at the end of the then-branch, its value at
+  // the end of the else-branch); a branch that leaves the name alone contributes the value from before the
+  // 'if', or 0 where the name had none. No branch is taken at run time: the kernel stays straight-line code.
+  std::vector<std::vector<std::string>*> assigned_in_branch_;  // names assigned, per active branch
+
+  void exec_if(const Stmt& s) {
+    const symbolic::Condition cond = condition(*s.value);
+    const std::map<std::string, Multivector> before = globals_;
+    const size_t inputs_at_if = kernel_.inputs.size();
+    struct Branch {
+      std::vector<std::string> names;  // in order of assignment, with repeats
+      std::map<std::string, Multivector> values;
+    };
+    auto run_branch = [&](const std::vector<front::StmtPtr>& body) {
+      Branch b;
+      assigned_in_branch_.push_back(&b.names);
+      struct Pop {
+        std::vector<std::vector<std::string>*>& stack;
+        ~Pop() { stack.pop_back(); }
+      } pop{assigned_in_branch_};
+      for (const auto& st : body) exec_top(*st);
+      for (const auto& n : b.names)
+        if (auto it = globals_.find(n); it != globals_.end()) b.values[n] = it->second;
+      // Back to the state before the 'if', keeping the inputs a branch introduced (a name read before any
+      // assignment is an input wherever it is read).
+      globals_ = before;
+      for (size_t i = inputs_at_if; i < kernel_.inputs.size(); ++i)
+        if (!kernel_.inputs[i].is_multivector) globals_[kernel_.inputs[i].name] = Multivector(kernel_.inputs[i].symbols.at(0));
+      return b;
+    };
+    const Branch then_branch = run_branch(s.body);
+    const Branch else_branch = run_branch(s.else_body);
+    std::vector<std::string> names;
+    for (const Branch* b : {&then_branch, &else_branch})
+      for (const auto& n : b->names)
+        if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    for (const auto& n : names) {
+      auto side = [&](const Branch& b) {
+        if (auto it = b.values.find(n); it != b.values.end()) return it->second;
+        if (auto it = globals_.find(n); it != globals_.end()) return it->second;
+        return Multivector();
+      };
+      const Multivector x = side(then_branch), y = side(else_branch);
+      std::set<algebra::BladeIndex> blades;
+      for (const auto& [b, c] : x.terms()) blades.insert(b);
+      for (const auto& [b, c] : y.terms()) blades.insert(b);
+      Multivector merged;
+      for (auto b : blades) merged.set(b, symbolic::make_select(cond, x.coeff(b), y.coeff(b)));
+      Stmt st;
+      st.kind = Stmt::Kind::Assign;
+      st.loc = s.loc;
+      st.name = n;
+      record_value(st, merged);
+    }
+  }
+
+  // An if condition over scalars.
+  symbolic::Condition condition(const Expr& e) {
+    using Op = symbolic::Condition::Op;
+    symbolic::Condition c;
+    if (e.kind == Expr::Kind::Logic) {
+      c.op = e.text == "!" ? Op::Not : e.text == "&&" ? Op::And : Op::Or;
+      c.l = std::make_shared<symbolic::Condition>(condition(*e.args.at(0)));
+      if (c.op != Op::Not) c.r = std::make_shared<symbolic::Condition>(condition(*e.args.at(1)));
+      return c;
+    }
+    if (e.kind == Expr::Kind::Compare) {
+      static const std::map<std::string, Op> ops = {{"<", Op::Lt}, {"<=", Op::Le}, {">", Op::Gt},
+                                                    {">=", Op::Ge}, {"==", Op::Eq}, {"!=", Op::Ne}};
+      c.op = ops.at(e.text);
+      c.a = condition_operand(*e.args.at(0));
+      c.b = condition_operand(*e.args.at(1));
+      return c;
+    }
+    c.op = Op::Ne;  // a scalar alone: true when nonzero
+    c.a = condition_operand(e);
+    c.b = 0;
+    return c;
+  }
+
+  ex condition_operand(const Expr& e) {
+    const Multivector v = scalar_part_if_scalar(eval(e));
+    if (!v.is_scalar())
+      throw CompileError(e.loc, "a condition compares scalars; this is " + describe(v) +
+                                    " (compare a coefficient, coefficient(v, e1), or a magnitude, abs(v))");
+    const ex c = v.scalar();
+    if (GiNaC::is_a<GiNaC::numeric>(c) && !GiNaC::ex_to<GiNaC::numeric>(c).is_real())
+      throw CompileError(e.loc, "a condition compares real numbers; this one is complex");
+    return c;
+  }
+
   void exec_local(const Stmt& s) {
     switch (s.kind) {
+      case Stmt::Kind::If:
+        throw CompileError(s.loc, "if/else inside a macro is not supported: put the 'if' around the macro's call");
       case Stmt::Kind::Pragma: throw CompileError(s.loc, "'#pragma' is not allowed inside a macro");
       case Stmt::Kind::MacroDef: define_macro(s); return;
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
@@ -394,6 +506,14 @@ class Expander {
     kv.loc = s.loc;
     Multivector ref;
     for (const auto& [b, c] : v.terms()) {
+      // A complex constant (sqrt(-4) = 2i, log(-1) = i pi): the targets have real numbers only, and the
+      // printers would drop the i (sqrt(-4)*x printed as 2*x). The emitted C would give NaN; say so here.
+      // (Each shared node once: coefficients are DAGs whose trees can be exponentially large.)
+      if (symbolic::visit_nodes_once(c, [](const ex& x) {
+            return GiNaC::is_a<GiNaC::numeric>(x) && !GiNaC::ex_to<GiNaC::numeric>(x).is_real();
+          }))
+        throw CompileError(s.loc, "the value of '" + s.name + "' is complex (a square root or logarithm of a "
+                                    "negative constant); the generated code computes with real numbers only");
       std::optional<ex> at_sample = sample(c);
       if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
@@ -407,6 +527,8 @@ class Expander {
       definitions_[sym] = c;
     }
     if (bind) globals_[s.name] = ref;  // (a macro's output does not become a global name)
+    if (bind)
+      for (auto* names : assigned_in_branch_) names->push_back(s.name);
     if (s.marker == front::Marker::EvalOnly) evaluated_values_.push_back(static_cast<int>(kernel_.values.size()));
     if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
     kernel_.values.push_back(std::move(kv));
@@ -911,6 +1033,9 @@ class Expander {
         break;
       }
       case Expr::Kind::Call: return call(e);
+      case Expr::Kind::Compare:
+      case Expr::Kind::Logic:
+        throw CompileError(e.loc, "'" + e.text + "' may only appear in the condition of an 'if'");
     }
     throw CompileError(e.loc, "internal error: unknown expression kind");
   }

@@ -42,6 +42,8 @@ struct Expr {
     Unary,     // unary_op, args[0]
     Binary,    // binary_op, args[0], args[1]
     Call,      // text: callee name (built-in function or macro), args: the arguments
+    Compare,   // text: "<", "<=", ">", ">=", "==" or "!=", args[0], args[1] (scalars; if conditions only)
+    Logic,     // text: "&&" or "||" (args[0], args[1]) or "!" (args[0]) over conditions
   };
   Kind kind = Kind::Number;
   SourceLoc loc;  // the operator token for Unary/Binary, the name for Call, the token otherwise
@@ -69,13 +71,17 @@ struct Stmt {
     MacroDef,  // name = { body...; result }   result may be null for a macro with no final expression
     Pragma,    // words: the pragma's whitespace-separated words after "#pragma" (e.g. {"output","M","1","e1^e2"})
     ExprStmt,  // value;  a bare expression (evaluated and discarded)
+    If,        // if (value) { body } else { else_body }: value is the condition (Compare, Logic or a
+               // scalar, true when nonzero); else_body is empty without 'else'. See docs/language.md.
   };
   Kind kind = Kind::Assign;
   SourceLoc loc;  // the name (Assign/MacroDef), the '#' (Pragma), the expression start (ExprStmt)
   Marker marker = Marker::None;
   std::string name;
   ExprPtr value;                 // Assign, ExprStmt
-  std::vector<StmtPtr> body;     // MacroDef: the statements before the final expression
+  std::vector<StmtPtr> body;     // MacroDef: the statements before the final expression; If: the then-branch
+  std::vector<StmtPtr> else_body;  // If: the else-branch (an 'else if' is an If inside it)
+  SourceLoc else_loc;              // If: the 'else' keyword (line 0 without one)
   ExprPtr result;                // MacroDef: the final expression (the macro's value)
   std::vector<std::string> words;     // Pragma
   std::vector<SourceLoc> word_locs;   // Pragma: where each word starts

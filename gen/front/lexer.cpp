@@ -54,6 +54,9 @@ std::string describe(TokKind kind) {
     case TokKind::Colon: return "':'";
     case TokKind::Bang: return "'!'";
     case TokKind::Pragma: return "pragma";
+    case TokKind::Compare: return "comparison";
+    case TokKind::AndAnd: return "'&&'";
+    case TokKind::OrOr: return "'||'";
   }
   return "token";
 }
@@ -187,6 +190,26 @@ Token Lexer::next() {
     while (pos_ < text_.size() && is_ident_char(text_[pos_])) ++pos_;
     t.kind = TokKind::Ident;
     t.text = text_.substr(start, pos_ - start);
+    return t;
+  }
+  // Two-character operators of if conditions: <= >= == != && ||, and < >.
+  const char d = pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0';
+  if ((c == '<' || c == '>' || c == '=' || c == '!') && d == '=') {
+    pos_ += 2;
+    t.kind = TokKind::Compare;
+    t.text = text_.substr(start, 2);
+    return t;
+  }
+  if ((c == '&' && d == '&') || (c == '|' && d == '|')) {
+    pos_ += 2;
+    t.kind = c == '&' ? TokKind::AndAnd : TokKind::OrOr;
+    t.text = text_.substr(start, 2);
+    return t;
+  }
+  if (c == '<' || c == '>') {
+    ++pos_;
+    t.kind = TokKind::Compare;
+    t.text = text_.substr(start, 1);
     return t;
   }
   switch (c) {

@@ -33,6 +33,9 @@ enum class TokKind {
   Colon,     // :
   Bang,      // !
   Pragma,    // a whole pragma line; words/word_locs hold what follows "#pragma"
+  Compare,   // < <= > >= == != (text: the operator), in if conditions
+  AndAnd,    // &&
+  OrOr,      // ||
 };
 
 struct Token {

@@ -5,6 +5,7 @@
 // (kMaxTreeDepth), so no input can overflow the stack here or in the stages that walk the tree.
 #include <algorithm>
 #include <deque>
+#include <optional>
 #include <string>
 
 #include "front/lexer.hpp"
@@ -149,10 +150,14 @@ class Parser {
         if (t.text == "loop" && peek(1).kind != TokKind::Assign)
           throw CompileError(t.loc, "'loop' needs '#pragma unroll N' on the line before it: only loops with a "
                                     "constant trip count are supported (they are unrolled)");
-        if (((t.text == "if" || t.text == "while") && peek(1).kind == TokKind::LParen) ||
-            ((t.text == "else" || t.text == "break") && peek(1).kind != TokKind::Assign))
-          throw CompileError(t.loc, "'" + std::string(t.text) + "': control flow (if/else, break of Gaalop 2.0's "
-                                    "precompiler) is not supported; write each case as its own script");
+        if (t.text == "if" && peek(1).kind == TokKind::LParen) return if_statement();
+        if (t.text == "else" && peek(1).kind != TokKind::Assign)
+          throw CompileError(t.loc, "'else' without an 'if' before it");
+        if ((t.text == "while" && peek(1).kind == TokKind::LParen) ||
+            (t.text == "break" && peek(1).kind != TokKind::Assign))
+          throw CompileError(t.loc, "'" + std::string(t.text) + "': only if/else and loops with a constant trip count "
+                                    "('#pragma unroll N' before 'loop') are supported; a '" + std::string(t.text) +
+                                    "' would need a trip count known at generation time");
         if (peek(1).kind == TokKind::Assign) {
           if (peek(2).kind == TokKind::LBrace) return macro();
           return assignment(Marker::None, take());
@@ -172,6 +177,175 @@ class Parser {
   void no_assignment_to_expression() {
     if (peek().kind == TokKind::Assign)
       throw CompileError(peek().loc, "the left side of '=' must be a name");
+    no_condition_operator();
+  }
+
+  // A comparison or && || outside an if condition: say where they may appear.
+  void no_condition_operator() {
+    const TokKind k = peek().kind;
+    if (k == TokKind::Compare || k == TokKind::AndAnd || k == TokKind::OrOr)
+      throw CompileError(peek().loc, "'" + std::string(peek().text) +
+                                         "' may only appear in the condition of an 'if' (a value cannot be a truth value)");
+  }
+
+  // ---- if / else ---------------------------------------------------------------------------------
+  // Gaalop 2.0: if (CONDITION) STATEMENT-OR-BLOCK [else STATEMENT-OR-BLOCK]; 'else if' chains. Both
+  // branches are expanded and every name they assign becomes a select per blade (docs/language.md).
+  StmtPtr if_statement() {
+    Token kw = take();    // 'if'
+    Token open = take();  // '('
+    Nest nest(*this, kw.loc);
+    auto st = std::make_shared<Stmt>();
+    st->kind = Stmt::Kind::If;
+    st->loc = kw.loc;
+    st->value = condition().expr;
+    if (peek().kind == TokKind::Assign)
+      throw CompileError(peek().loc, "'=' in a condition: compare with '=='");
+    expect(TokKind::RParen, "expected ')' to close the condition of 'if' opened at " + at_text(open.loc));
+    branch(st->body, "if", kw.loc);
+    if (peek().kind == TokKind::Ident && peek().text == "else" && peek(1).kind != TokKind::Assign) {
+      Token e = take();
+      st->else_loc = e.loc;
+      if (peek().kind == TokKind::Ident && peek().text == "if" && peek(1).kind == TokKind::LParen)
+        st->else_body.push_back(if_statement());
+      else
+        branch(st->else_body, "else", e.loc);
+    }
+    return st;
+  }
+
+  // '{' statements '}' or one statement.
+  void branch(std::vector<StmtPtr>& out, const std::string& what, SourceLoc at) {
+    if (accept(TokKind::LBrace)) {
+      for (;;) {
+        if (peek().kind == TokKind::RBrace) break;
+        if (peek().kind == TokKind::End) fail_after("expected '}' to close the '" + what + "' at " + at_text(at));
+        if (is_unroll()) {
+          unrolled_loop(out);
+          continue;
+        }
+        if (peek().kind == TokKind::Ident && peek(1).kind == TokKind::Assign && peek(2).kind == TokKind::LBrace)
+          throw CompileError(peek().loc, "a macro cannot be defined inside '" + what + "'");
+        if (StmtPtr st = statement()) out.push_back(std::move(st));
+      }
+      take();  // '}'
+    } else if (is_unroll()) {
+      unrolled_loop(out);
+    } else if (peek().kind == TokKind::End) {
+      fail_after("expected a statement or '{' after '" + what + "'");
+    } else if (peek().kind == TokKind::Ident && peek(1).kind == TokKind::Assign && peek(2).kind == TokKind::LBrace) {
+      throw CompileError(peek().loc, "a macro cannot be defined inside '" + what + "'");
+    } else if (StmtPtr st = statement()) {
+      out.push_back(std::move(st));
+    }
+  }
+
+  Parsed make_logic(const Token& op, Parsed a, std::optional<Parsed> b) {
+    auto e = std::make_shared<Expr>();
+    e->kind = Expr::Kind::Logic;
+    e->text = std::string(op.text);
+    e->loc = op.loc;
+    int depth = a.depth;
+    e->args.push_back(std::move(a.expr));
+    if (b) {
+      depth = std::max(depth, b->depth);
+      e->args.push_back(std::move(b->expr));
+    }
+    return {std::move(e), check_depth(depth + 1, op.loc)};
+  }
+
+  // condition: and_condition { '||' and_condition }
+  Parsed condition() {
+    Parsed lhs = and_condition();
+    while (peek().kind == TokKind::OrOr) {
+      Token op = take();
+      lhs = make_logic(op, std::move(lhs), and_condition());
+    }
+    return lhs;
+  }
+
+  // and_condition: not_condition { '&&' not_condition }
+  Parsed and_condition() {
+    Parsed lhs = not_condition();
+    while (peek().kind == TokKind::AndAnd) {
+      Token op = take();
+      lhs = make_logic(op, std::move(lhs), not_condition());
+    }
+    return lhs;
+  }
+
+  // not_condition: '!' not_condition | '(' condition ')' | expression [comparison expression]
+  // A parenthesis opens a condition when a comparison, '&&', '||' or '!' stands directly inside it.
+  Parsed not_condition() {
+    if (peek().kind == TokKind::Bang) {
+      Token op = take();
+      Nest nest(*this, op.loc);
+      return make_logic(op, not_condition(), std::nullopt);
+    }
+    if (peek().kind == TokKind::LParen && parenthesized_condition()) {
+      Token open = take();
+      Nest nest(*this, open.loc);
+      Parsed inside = condition();
+      expect(TokKind::RParen, "expected ')' to close '(' at " + at_text(open.loc));
+      return inside;
+    }
+    Parsed lhs = expression();
+    if (peek().kind != TokKind::Compare) return lhs;
+    Token op = take();
+    Parsed rhs = expression();
+    if (peek().kind == TokKind::Compare)
+      throw CompileError(peek().loc, "comparisons do not chain: write a < b && b < c");
+    auto e = std::make_shared<Expr>();
+    e->kind = Expr::Kind::Compare;
+    e->text = std::string(op.text);
+    e->loc = op.loc;
+    const int depth = std::max(lhs.depth, rhs.depth) + 1;
+    e->args.push_back(std::move(lhs.expr));
+    e->args.push_back(std::move(rhs.expr));
+    return {std::move(e), check_depth(depth, op.loc)};
+  }
+
+  // Does the '(' at peek(at) hold a condition: a comparison, '&&', '||' or '!' at its own level, or nothing
+  // but a parenthesized condition ("((a < b))")?
+  bool parenthesized_condition(size_t at = 0) {
+    // Deeper than the nesting limit it cannot parse anyway: as an expression it reaches the limit's error.
+    if (at > static_cast<size_t>(kMaxNesting)) return false;
+    int depth = 0;
+    for (size_t k = at;; ++k) {
+      const Token& t = peek(k);
+      switch (t.kind) {
+        case TokKind::LParen: ++depth; break;
+        case TokKind::RParen:
+          if (--depth == 0) return false;
+          // The group at at+1 closes here, right before ours: "((...))" is a condition when its inside is.
+          if (depth == 1 && peek(at + 1).kind == TokKind::LParen && peek(k + 1).kind == TokKind::RParen &&
+              matching_paren(at + 1) == k)
+            return parenthesized_condition(at + 1);
+          break;
+        case TokKind::Compare:
+        case TokKind::AndAnd:
+        case TokKind::OrOr:
+        case TokKind::Bang:
+          if (depth == 1) return true;
+          break;
+        case TokKind::End:
+        case TokKind::Semi:
+        case TokKind::LBrace:
+        case TokKind::RBrace: return false;
+        default: break;
+      }
+    }
+  }
+
+  // The index (for peek) of the ')' that closes the '(' at peek(at); 0 when it is not closed.
+  size_t matching_paren(size_t at) {
+    int depth = 0;
+    for (size_t k = at;; ++k) {
+      const TokKind kind = peek(k).kind;
+      if (kind == TokKind::LParen) ++depth;
+      else if (kind == TokKind::RParen && --depth == 0) return k;
+      else if (kind == TokKind::End || kind == TokKind::Semi || kind == TokKind::LBrace || kind == TokKind::RBrace) return 0;
+    }
   }
 
   StmtPtr pragma() {
@@ -219,6 +393,7 @@ class Parser {
     st->name = std::string(name.text);
     st->value = expression().expr;
     if (peek().kind == TokKind::Assign) throw CompileError(peek().loc, "expected ';' after statement");
+    no_condition_operator();
     // Inside a macro, an assignment that ends its line without ';' is accepted, as Gaalop's parser recovers
     // from it (its own QuestionLineMacro test script is written so), with a warning.
     if (macro_depth_ > 0 && peek().kind != TokKind::Semi && peek().loc.line > prev_end_.line) {
@@ -252,7 +427,8 @@ class Parser {
       if (t.kind == TokKind::End) fail_after(unclosed);
       bool statement_form = t.kind == TokKind::Pragma || t.kind == TokKind::Semi || t.kind == TokKind::Question ||
                             t.kind == TokKind::Colon || t.kind == TokKind::Bang || t.kind == TokKind::LBrace ||
-                            (t.kind == TokKind::Ident && peek(1).kind == TokKind::Assign);
+                            (t.kind == TokKind::Ident && peek(1).kind == TokKind::Assign) ||
+                            (t.kind == TokKind::Ident && t.text == "if" && peek(1).kind == TokKind::LParen);
       if (statement_form) {
         if (StmtPtr s = statement()) st->body.push_back(std::move(s));
         continue;

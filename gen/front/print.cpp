@@ -33,6 +33,8 @@ void print(const Expr& e, std::string& out) {
     case Expr::Kind::Unary: out += "("; out += unary_name(e.unary_op); break;
     case Expr::Kind::Binary: out += "("; out += binary_name(e.binary_op); break;
     case Expr::Kind::Call: out += "(call " + e.text; break;
+    case Expr::Kind::Compare:
+    case Expr::Kind::Logic: out += "(" + e.text; break;
   }
   for (const ExprPtr& a : e.args) {
     out += ' ';
@@ -76,6 +78,25 @@ void print(const Stmt& s, std::string& out) {
       if (s.result) {
         out += " (result ";
         print(*s.result, out);
+        out += ')';
+      }
+      out += ')';
+      return;
+    case Stmt::Kind::If:
+      out += "(if ";
+      if (s.value) print(*s.value, out);
+      out += " (then";
+      for (const StmtPtr& b : s.body) {
+        out += ' ';
+        print(*b, out);
+      }
+      out += ')';
+      if (s.else_loc.line > 0) {
+        out += " (else";
+        for (const StmtPtr& b : s.else_body) {
+          out += ' ';
+          print(*b, out);
+        }
         out += ')';
       }
       out += ')';

@@ -49,9 +49,13 @@ class FactorSums {
     return r;
   }
 
-  // The symbols that are direct factors of a product term (not under a power).
+  // The symbols that are direct factors of a term (not under a power): those of a product, or the term
+  // itself when it is a bare symbol. A bare symbol must count: GiNaC's hash order (which moves with ASLR)
+  // decides whether a sum inside a product reads t - t*d or -t + t*d, and -t is a product, t is not; counting
+  // only products made the factoring (and the kernel) differ from process to process.
   static std::vector<ex> direct_symbols(const ex& term) {
     std::vector<ex> out;
+    if (is_a<symbol>(term)) out.push_back(term);
     if (is_a<mul>(term))
       for (size_t i = 0; i < term.nops(); ++i)
         if (is_a<symbol>(term.op(i))) out.push_back(term.op(i));

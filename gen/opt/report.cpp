@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "symbolic/select.hpp"
+
 namespace cgagen::opt {
 
 using namespace GiNaC;
@@ -106,6 +108,10 @@ class Evaluator {
     if (is_a<symbol>(b) || is_a<numeric>(b) || is_a<constant>(b) || is_a<add>(b) || is_a<mul>(b)) return eval(b);
     if (is_sqrt(b)) return std::sqrt(eval(b.op(0)));
     if (is_a<power>(b)) return std::pow(eval(b.op(0)), eval(b.op(1)));
+    if (symbolic::is_select(b)) {  // printed c ? x : y: only the chosen branch is evaluated
+      const bool holds = symbolic::select_holds(symbolic::select_operator(b), eval(b.op(0)), eval(b.op(1)));
+      return eval(b.op(holds ? 2 : 3));
+    }
     if (is_a<function>(b)) {
       std::string f = ex_to<function>(b).get_name();
       std::vector<double> a;

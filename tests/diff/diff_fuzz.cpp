@@ -3,7 +3,8 @@
 // code computes: the same path as `cgagen --eval`) and through the oracle interpreter (interpreter.hpp),
 // and requires agreement to 1e-9 relative (to the output's largest coefficient) or a refusal by both.
 // Refusals for cgagen's work budget are counted, not failures (the budget is a deliberate limit). Every
-// --compile-every'th program's emitted C++ is compiled with the system compiler (one run at the end).
+// --compile-every'th program's emitted C++ is compiled with the system compiler and its GLSL with glslangValidator
+// (one run each at the end).
 // Committed regressions (--regressions DIR, *.clu whose first line is "// inputs: a=1 b=-0.5 ...") are
 // replayed first. Exit 0 when everything agrees; the failing scripts are printed (and, with --work-dir,
 // written to WORK/finds/).
@@ -49,7 +50,7 @@ std::map<std::string, unsigned> null_index() {
 }
 
 Result run_cgagen(const cgagen::front::Script& script, const std::map<std::string, double>& inputs,
-                  cgagen::opt::Level level, std::string* cpp, const std::string& name) {
+                  cgagen::opt::Level level, std::string* cpp, std::string* glsl, const std::string& name) {
   static const std::map<std::string, unsigned> index = null_index();
   Result r;
   try {
@@ -71,6 +72,11 @@ Result run_cgagen(const cgagen::front::Script& script, const std::map<std::strin
     if (cpp) {
       cgagen::emit::EmitOptions eo;
       *cpp = cgagen::emit::emit(p, eo);
+    }
+    if (glsl) {
+      cgagen::emit::EmitOptions eo;
+      eo.target = cgagen::emit::Target::Glsl;
+      *glsl = cgagen::emit::emit(p, eo);
     }
   } catch (const cgagen::front::CompileError& e) {
     r.refused = true;
@@ -136,7 +142,7 @@ struct Stats {
 
 // Checks one script; returns "" or the failure.
 std::string check(const std::string& text, const std::map<std::string, double>& inputs, const std::string& name,
-                  Stats& st, std::string* cpp) {
+                  Stats& st, std::string* cpp, std::string* glsl = nullptr) {
   cgagen::front::SourceFile file(name + ".clu", text);
   cgagen::front::Script script;
   try {
@@ -152,7 +158,8 @@ std::string check(const std::string& text, const std::map<std::string, double>& 
   bool any_budget = false;
   std::string failure;
   for (auto level : {cgagen::opt::Level::O0, cgagen::opt::Level::O1, cgagen::opt::Level::O2}) {
-    const Result cg = run_cgagen(script, inputs, level, level == cgagen::opt::Level::O2 ? cpp : nullptr, name);
+    const bool o2 = level == cgagen::opt::Level::O2;
+    const Result cg = run_cgagen(script, inputs, level, o2 ? cpp : nullptr, o2 ? glsl : nullptr, name);
     if (cg.budget) {
       any_budget = true;
       continue;
@@ -224,14 +231,18 @@ int main(int argc, char** argv) {
     }
   }
   std::string compile_unit = "#include <cmath>\n";
-  int compiled = 0;
+  std::string shader = "#version 330\n";  // the sampled kernels' GLSL, in one vertex shader for glslang
+  int compiled = 0, if_sampled = 0;
   for (int i = 0; i < count; ++i) {
     const std::uint64_t s = seed * 1000003ull + static_cast<std::uint64_t>(i);
     diff::Program p = diff::generate(s);
-    std::string cpp;
-    const bool sample = compile_every > 0 && i % compile_every == 0;
+    std::string cpp, glsl;
+    // Every compile_every'th program, and the first five with an if/else (their selects in both languages).
+    const bool with_if = p.text.find("if (") != std::string::npos && if_sampled < 5;
+    const bool sample = compile_every > 0 && (i % compile_every == 0 || with_if);
+    if (sample && with_if) ++if_sampled;
     const std::string name = "diff_" + std::to_string(i);
-    std::string fail = check(p.text, p.inputs, name, st, sample ? &cpp : nullptr);
+    std::string fail = check(p.text, p.inputs, name, st, sample ? &cpp : nullptr, sample ? &glsl : nullptr);
     if (!fail.empty()) {
       ++failures;
       const std::string script = inputs_line(p.inputs) + "\n" + p.text;
@@ -244,6 +255,7 @@ int main(int argc, char** argv) {
       auto at = body.find("#pragma once");
       if (at != std::string::npos) body.erase(at, 12);
       compile_unit += body;
+      shader += glsl;
       ++compiled;
     }
   }
@@ -256,11 +268,20 @@ int main(int argc, char** argv) {
       ++failures;
       std::cout << "the emitted C++ of " << compiled << " sampled programs does not compile: " << unit << "\n";
     }
+    // The same programs' GLSL (issue 14: "compile the emitted C++ and GLSL of a sample").
+    const fs::path vert = fs::path(work) / "sample.vert";
+    std::ofstream(vert) << shader << "\nvoid main() { gl_Position = vec4(0.0); }\n";
+    const std::string glsl_cmd = std::string(GLSLANG_VALIDATOR) + " " + vert.string() + " > " + vert.string() + ".log 2>&1";
+    if (std::system(glsl_cmd.c_str()) != 0) {
+      ++failures;
+      std::cout << "the emitted GLSL of " << compiled << " sampled programs does not compile: " << vert << " (log: "
+                << vert.string() << ".log)\n";
+    }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "diff_fuzz: " << st.programs << " programs (seed " << seed << "): " << st.agreed_values
             << " agree on values, " << st.both_refused << " refused by both, " << st.budget
             << " over cgagen's work budget, " << failures << " failures; " << compiled
-            << " emitted kernels compiled; " << seconds << " s\n";
+            << " emitted kernels compiled (C++ and GLSL); " << seconds << " s\n";
   return failures == 0 ? 0 : 1;
 }

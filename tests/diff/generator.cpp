@@ -37,6 +37,17 @@ class Gen {
         // An output pragma listing some blades, the scalar as Gaalop writes it (1.0) among them.
         t += "#pragma output " + name + " 1.0 e1 e1^e2 einf\n";
       }
+      if (!out && pick(3) == 0) {
+        // if/else: the name assigned in one or both branches (else a name assigned before, or none), an
+        // output marked inside a branch now and then, sometimes an else-if chain.
+        const std::string other = names_.empty() || pick(2) ? name : names_[static_cast<size_t>(pick(static_cast<int>(names_.size())))];
+        t += "if (" + condition(2) + ") {\n  " + std::string(pick(3) == 0 ? "?" : "") + name + " = " + mv(2) + ";\n}";
+        if (pick(3) == 0) t += " else if (" + condition(1) + ") {\n  " + name + " = " + mv(2) + ";\n}";
+        if (pick(4) != 0) t += " else {\n  " + other + " = " + mv(2) + ";\n}";
+        t += "\n";
+        names_.push_back(name);
+        continue;
+      }
       t += std::string(out ? "?" : "") + name + " = " + mv(3) + ";\n";
       names_.push_back(name);
     }
@@ -57,6 +68,27 @@ class Gen {
   std::string number() {
     static const char* n[] = {"2", "0.5", "3", "1.25", "1e-1", "0.75"};
     return n[pick(6)];
+  }
+
+  // An if condition: comparisons of scalars joined by && || !, a scalar alone now and then.
+  std::string condition(int depth) {
+    static const char* ops[] = {"<", "<=", ">", ">=", "!=", "=="};
+    switch (depth <= 0 ? 0 : pick(6)) {
+      case 1: return condition(depth - 1) + " && " + condition(depth - 1);
+      case 2: return condition(depth - 1) + " || " + condition(depth - 1);
+      case 3: return "!(" + condition(depth - 1) + ")";
+      case 4: return "(" + condition(depth - 1) + ")";
+      case 5: return sc(1);
+      default: {
+        const int op = pick(6);
+        // == on two computed values is almost never true: compare an input with itself (or its negation).
+        if (op == 5) {
+          const std::string x = input();
+          return x + " == " + (pick(2) ? x : "-" + x);
+        }
+        return sc(1) + " " + ops[op] + " " + sc(1);
+      }
+    }
   }
 
   // A scalar expression.

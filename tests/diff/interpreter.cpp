@@ -75,6 +75,10 @@ class Interp {
   Outputs run(const cgagen::front::Script& script) {
     for (const auto& s : script.statements)
       if (s->kind == Stmt::Kind::Assign) top_names_.insert(s->name);
+    std::vector<std::pair<std::string, bool>> in_branches;
+    for (const auto& s : script.statements)
+      if (s->kind == Stmt::Kind::If) assigned({s}, in_branches);
+    for (const auto& [n, output] : in_branches) top_names_.insert(n);
     for (const auto& s : script.statements) top(*s);
     Outputs out;
     for (const auto& n : marks_) {
@@ -107,10 +111,63 @@ class Interp {
         return;
       case Stmt::Kind::MacroDef: macros_[s.name][arity(s)] = &s; latest_[s.name] = &s; return;
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
+      case Stmt::Kind::If: branch(s); return;
       case Stmt::Kind::Assign: break;
     }
     if (s.value) globals_[s.name] = eval(*s.value);
     if (s.marker == Marker::Output || s.marker == Marker::Visual) mark(s.name);
+  }
+
+  // if/else as a program runs it: the condition decides which branch runs (the other is evaluated too, for
+  // its refusals, then forgotten). As cgagen defines it
+  // (docs/language.md): a name that only the branch not taken assigns and that had no value before is 0
+  // after the 'if', and the outputs either branch marks are outputs.
+  void branch(const Stmt& s) {
+    const bool taken = holds(*s.value);
+    {
+      // cgagen expands both branches, so it refuses a branch that cannot be evaluated (exp of a multivector
+      // that is not a bivector) even where it never runs: run the other branch too, for its refusals only.
+      const auto globals = globals_;
+      const auto marks = marks_;
+      for (const auto& st : taken ? s.else_body : s.body) top(*st);
+      globals_ = globals;
+      marks_ = marks;
+    }
+    for (const auto& st : taken ? s.body : s.else_body) top(*st);
+    std::vector<std::pair<std::string, bool>> names;  // name, marked as an output
+    assigned(s.body, names);
+    assigned(s.else_body, names);
+    for (const auto& [n, output] : names) {
+      if (!globals_.count(n)) globals_[n] = MV();
+      if (output) mark(n);
+    }
+  }
+
+  static void assigned(const std::vector<cgagen::front::StmtPtr>& body, std::vector<std::pair<std::string, bool>>& out) {
+    for (const auto& st : body) {
+      if (st->kind == Stmt::Kind::If) {
+        assigned(st->body, out);
+        assigned(st->else_body, out);
+      } else if (st->kind == Stmt::Kind::Assign && st->value) {
+        out.push_back({st->name, st->marker == Marker::Output || st->marker == Marker::Visual});
+      }
+    }
+  }
+
+  bool holds(const Expr& c) {
+    if (c.kind == Expr::Kind::Logic) {
+      if (c.text == "!") return !holds(*c.args[0]);
+      if (c.text == "&&") return holds(*c.args[0]) && holds(*c.args[1]);
+      return holds(*c.args[0]) || holds(*c.args[1]);
+    }
+    if (c.kind != Expr::Kind::Compare) return as_scalar(eval(c), "an if condition") != 0;
+    const Real a = as_scalar(eval(*c.args[0]), "a comparison"), b = as_scalar(eval(*c.args[1]), "a comparison");
+    if (c.text == "<") return a < b;
+    if (c.text == "<=") return a <= b;
+    if (c.text == ">") return a > b;
+    if (c.text == ">=") return a >= b;
+    if (c.text == "==") return a == b;
+    return a != b;
   }
 
   static size_t arity(const Stmt& def) {
@@ -176,6 +233,8 @@ class Interp {
         break;
       }
       case Expr::Kind::Call: return call(e);
+      case Expr::Kind::Compare:
+      case Expr::Kind::Logic: throw Refused("a condition outside an if");
     }
     throw Refused("unknown expression");
   }

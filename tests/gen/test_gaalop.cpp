@@ -4,11 +4,14 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <unistd.h>
@@ -28,6 +31,18 @@ std::string write_temp(const std::string& name, const std::string& text) {
     return d;
   }();
   return cga_test::write_temp(dir.substr(std::string(CGA_BINARY_DIR).size() + 1) + "/" + name, text);
+}
+
+// Runs a program: its exit status and stdout.
+cga_test::Result run_program(const std::string& cmd) {
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) throw std::runtime_error("popen failed");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 // "--eval" output lines "NAME BLADE VALUE" as NAME/BLADE -> value, in order.
@@ -114,11 +129,104 @@ TEST_CASE("pragmas cgagen refuses say what and why, at the pragma", "[gaalop]") 
   check_error("#pragma insert int k = 0;\n?p = x*e1;", "1:9", "'#pragma insert' is not supported");
   check_error("#pragma count 3\n?p = x*e1;", "1:9", "'#pragma count' (a loop counter of Gaalop 2.0) is not supported");
   check_error("#pragma frobnicate\n?p = x;", "1:9", "unknown pragma 'frobnicate'");
-  // Gaalop 2.0's control flow: a clear error at the keyword (was "expected ',' or ')' in call to 'if'").
-  check_error("?p = x;\nif (x) { ?p = 2*x; }", "2:1", "control flow (if/else, break");
+  // Gaalop 2.0's control flow that cgagen does not have: a clear error at the keyword.
+  check_error("?p = x;\nwhile (x) { p = 2*x; }", "2:1", "only if/else and loops with a constant trip count");
   check_error("?p = x;\nloop { p = p*x; }", "2:1", "'loop' needs '#pragma unroll N'");
-  check_error("?p = x;\nelse { p = p*x; }", "2:1", "control flow (if/else, break");
+  check_error("?p = x;\nelse { p = p*x; }", "2:1", "'else' without an 'if'");
+  check_error("?p = x;\nbreak;", "2:1", "only if/else and loops with a constant trip count");
   check_eval("loop = 2*x;\n?p = loop;", "x=2", {{"p/1", 4}});  // still an ordinary name when assigned
+}
+
+TEST_CASE("if/else on scalar conditions: both outcomes, every comparison and connective", "[gaalop][if]") {
+  // The clamp of Gaalop 2.0's examples, both ways round.
+  const std::string clamp = "if (x < lo) {\n  c = lo;\n} else if (x > hi) {\n  c = hi;\n} else {\n  c = x;\n}\n?c;";
+  check_eval(clamp, "x=-2 lo=0 hi=1", {{"c/1", 0}});
+  check_eval(clamp, "x=0.25 lo=0 hi=1", {{"c/1", 0.25}});
+  check_eval(clamp, "x=7 lo=0 hi=1", {{"c/1", 1}});
+  // Each comparison on its true and its false side (and at equality for <= >= == !=).
+  const std::vector<std::tuple<std::string, double, double, bool>> cases = {
+      {"<", 1, 2, true},  {"<", 2, 1, false},  {"<", 2, 2, false}, {"<=", 2, 2, true}, {"<=", 3, 2, false},
+      {">", 3, 2, true},  {">", 2, 2, false},  {">=", 2, 2, true}, {">=", 1, 2, false}, {"==", 2, 2, true},
+      {"==", 1, 2, false}, {"!=", 1, 2, true}, {"!=", 2, 2, false}};
+  for (const auto& [op, a, b, holds] : cases) {
+    INFO(op << " " << a << " " << b);
+    check_eval("if (a " + op + " b) ?r = 10*e1; else ?r = 20*e2;",
+               "a=" + std::to_string(a) + " b=" + std::to_string(b),
+               {{"r/e1", holds ? 10.0 : 0.0}, {"r/e2", holds ? 0.0 : 20.0}});
+  }
+  // && || ! and parentheses; a scalar alone is true when nonzero.
+  const std::string logic = "if ((a > 0 && b > 0) || !(c < 1)) s = 1; else s = -1;\n?s = s*x;";
+  check_eval(logic, "a=1 b=1 c=0 x=3", {{"s/1", 3}});
+  check_eval(logic, "a=1 b=-1 c=0 x=3", {{"s/1", -3}});
+  check_eval(logic, "a=-1 b=-1 c=2 x=3", {{"s/1", 3}});
+  check_eval("if (a) ?s = x; else ?s = -x;", "a=0 x=2", {{"s/1", -2}});
+  check_eval("if (a) ?s = x; else ?s = -x;", "a=0.5 x=2", {{"s/1", 2}});
+  // A name only one branch assigns keeps its value from before the 'if' on the other side, or is 0; a
+  // multivector output gets a select per blade; nested ifs; an output marked inside a branch.
+  check_eval("p = x*e1;\nif (y > 0) { p = p + y*e2; q = 5; }\n?p; ?q = q + 0*x;", "x=1 y=2",
+             {{"p/e1", 1}, {"p/e2", 2}, {"q/1", 5}});
+  check_eval("p = x*e1;\nif (y > 0) { p = p + y*e2; q = 5; }\n?p; ?q = q + 0*x;", "x=1 y=-2",
+             {{"p/e1", 1}, {"p/e2", 0}, {"q/1", 0}});
+  check_eval("if (x > 0) { if (y > 0) ?k = 1*e1; else ?k = 2*e1; } else { ?k = 3*e1; }", "x=1 y=-1", {{"k/e1", 2}});
+  check_eval("if (x > 0) { if (y > 0) ?k = 1*e1; else ?k = 2*e1; } else { ?k = 3*e1; }", "x=-1 y=-1", {{"k/e1", 3}});
+  // A condition on a computed value (a point's squared distance), and both sides used after the if.
+  const std::string dist = "P = VecN3(x, y, 0);\nd = -2*(P.VecN3(0,0,0));\nif (d > 1) { s = 1/d; } else { s = 1; }\n?Q = s*P;";
+  check_eval(dist, "x=3 y=4", {{"Q/e1", 3.0 / 25}, {"Q/e2", 4.0 / 25}, {"Q/einf", 0.5}, {"Q/e0", 1.0 / 25}});
+  check_eval(dist, "x=0.5 y=0", {{"Q/e1", 0.5}, {"Q/e2", 0}, {"Q/einf", 0.125}, {"Q/e0", 1}});
+}
+
+TEST_CASE("if/else: the emitted C++ compiled and run takes each branch as --eval does", "[gaalop][if]") {
+  const std::string script = std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/reach_clamp.clu";
+  const std::string dir = (std::filesystem::path(write_temp("if_cpp.keep", "")).parent_path() / "if_cpp").string();
+  std::filesystem::create_directories(dir);
+  REQUIRE(run("-o " + dir + "/reach_clamp.hpp " + script).code == 0);
+  // Inside the reach sphere, outside it (x = 3), and the else-if and else sides of the second if.
+  const std::vector<std::vector<double>> inputs = {{0.25, 0.5, -0.125, 1}, {3, 0.5, 0.25, 1}, {0.5, 0.25, -0.5, 2}};
+  std::string main = "#include <cstdio>\n#include \"reach_clamp.hpp\"\nint main() {\n  double Q[5], side[4], k[5];\n";
+  for (const auto& in : inputs) {
+    main += "  cga::kernels::reach_clamp(" + std::to_string(in[0]) + ", " + std::to_string(in[1]) + ", " +
+            std::to_string(in[2]) + ", " + std::to_string(in[3]) + ", Q, side, k);\n";
+    main += "  for (double v : Q) std::printf(\"%.17g\\n\", v);\n  for (double v : side) std::printf(\"%.17g\\n\", v);\n"
+            "  for (double v : k) std::printf(\"%.17g\\n\", v);\n";
+  }
+  main += "}\n";
+  std::ofstream(dir + "/main.cpp") << main;
+  REQUIRE(std::system(("c++ -std=c++17 -Wall -Werror -o " + dir + "/main " + dir + "/main.cpp 2> " + dir + "/cc.log").c_str()) == 0);
+  auto ran = run_program(dir + "/main");
+  REQUIRE(ran.code == 0);
+  std::istringstream got(ran.out);
+  int branches_outside = 0;
+  for (const auto& in : inputs) {
+    auto r = run("--eval " + script + " x=" + std::to_string(in[0]) + " y=" + std::to_string(in[1]) +
+                 " z=" + std::to_string(in[2]) + " r=" + std::to_string(in[3]));
+    REQUIRE(r.code == 0);
+    const auto want = values(r.out);
+    REQUIRE(want.size() == 14);
+    for (const auto& [what, v] : want) {
+      double x = 0;
+      REQUIRE(static_cast<bool>(got >> x));
+      INFO(what << " at x=" << in[0]);
+      CHECK(x == Approx(v).margin(1e-14));
+    }
+    if (want[0].second != Approx(in[0])) ++branches_outside;  // Q e1 = s x, s != 1 outside the sphere
+  }
+  CHECK(branches_outside == 1);
+}
+
+TEST_CASE("if/else: what is not supported is a located error", "[gaalop][if]") {
+  check_error("?p = x;\nif (x*e1 < 1) p = 2;", "2:6", "a condition compares scalars");
+  check_error("?p = x;\nif (x = 1) p = 2;", "2:7", "compare with '=='");
+  check_error("?p = x;\nif (sqrt(-1) < 2) p = 2;", "2:5", "a condition compares real numbers");
+  // Not if/else: a complex constant in a value (sqrt(-4)*x was printed, and --eval'd, as 2*x).
+  check_error("?p = sqrt(-4)*x;", "1:2", "the value of 'p' is complex");
+  check_error("a = log(-1);\n?p = a*x;", "1:1", "the value of 'a' is complex");
+  check_error("?p = x;\nif (x < 1 < 2) p = 2;", "2:11", "comparisons do not chain");
+  check_error("?p = x < 1;", "1:8", "may only appear in the condition of an 'if'");
+  check_error("?p = x;\nif (x < 1) { M = { _P(1) } }", "2:14", "a macro cannot be defined inside 'if'");
+  check_error("?p = x;\nif (x < 1) {\n#pragma normalize\n}", "3:1", "'#pragma' inside if/else is not supported");
+  check_error("M = { if (_P(1) > 0) { k = 1; } k }\n?p = M(x);", "1:7", "if/else inside a macro is not supported");
+  check_error("?p = x;\nif (x < 1) { p = 2;", "2:20", "expected '}' to close the 'if' at 2:1");
+  check_error("?p = x;\nif (x < 1 { p = 2; }", "2:10", "expected ')' to close the condition of 'if'");
 }
 
 TEST_CASE("loops with a constant trip count are unrolled: #pragma unroll N, loop", "[gaalop]") {

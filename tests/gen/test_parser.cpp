@@ -223,6 +223,57 @@ TEST_CASE("statement forms", "[parser]") {
   CHECK(e.statements[0]->loc.col == 3);
 }
 
+TEST_CASE("if/else: conditions, branches, else-if chains (Gaalop 2.0)", "[parser][if]") {
+  // Comparisons bind looser than every operator; ! tighter than &&, && tighter than ||.
+  CHECK(script("if (a + b < c*d) x = 1;") == "(if (< (+ a b) (* c d)) (then (= x 1)))\n");
+  CHECK(script("if (a <= b && !(c >= d) || e != f) { x = 1; } else { x = 2; y = 3; }") ==
+        "(if (|| (&& (<= a b) (! (>= c d))) (!= e f)) (then (= x 1)) (else (= x 2) (= y 3)))\n");
+  CHECK(script("if (a == b) ?x = 1; else if (a > b) ?x = 2; else ?x = 3;") ==
+        "(if (== a b) (then (?= x 1)) (else (if (> a b) (then (?= x 2)) (else (?= x 3)))))\n");
+  // Parentheses around a condition, around an operand, and nested; a scalar alone; ! of a scalar.
+  CHECK(script("if (((a < b))) x = 1;") == "(if (< a b) (then (= x 1)))\n");
+  CHECK(script("if ((a + b) < c) x = 1;") == "(if (< (+ a b) c) (then (= x 1)))\n");
+  CHECK(script("if (!a) x = 1;") == "(if (! a) (then (= x 1)))\n");
+  CHECK(script("if (a) {} else {}") == "(if a (then) (else))\n");
+  // A block holds any statements, loops included; the 'else' is located.
+  Script s = parse_text("if (a < b) {\n  x = 1;\n  #pragma unroll 2\n  loop x = x*2;\n}\nelse x = 0;");
+  REQUIRE(s.statements.size() == 1);
+  const Stmt& st = *s.statements[0];
+  CHECK(st.kind == Stmt::Kind::If);
+  CHECK(st.body.size() == 3);
+  CHECK(st.else_body.size() == 1);
+  CHECK(st.else_loc.line == 6);
+  CHECK(st.else_loc.col == 1);
+  // 'if' and 'else' stay ordinary names where they are assigned.
+  CHECK(script("else = 2; if = 3;") == "(= else 2)\n(= if 3)\n");
+}
+
+TEST_CASE("if/else: malformed conditions and branches are located errors", "[parser][if]") {
+  auto error_at = [](const std::string& text) -> std::string {
+    try {
+      parse_text(text);
+    } catch (const CompileError& e) {
+      return std::to_string(e.loc().line) + ":" + std::to_string(e.loc().col) + " " + e.what();
+    }
+    return "no error";
+  };
+  CHECK(error_at("if (a < b x = 1;").find("1:10 expected ')' to close the condition of 'if'") == 0);
+  CHECK(error_at("if (a = b) x = 1;").find("1:7 '=' in a condition") == 0);
+  CHECK(error_at("if (a < b < c) x = 1;").find("1:11 comparisons do not chain") == 0);
+  CHECK(error_at("x = a < b;").find("1:7 '<' may only appear in the condition of an 'if'") == 0);
+  CHECK(error_at("x = a && b;").find("1:7 '&&' may only appear") == 0);
+  CHECK(error_at("if (a < b) {\n x = 1;").find("2:8 expected '}' to close the 'if' at 1:1") == 0);
+  CHECK(error_at("if (a < b)").find("1:11 expected a statement or '{' after 'if'") == 0);
+  CHECK(error_at("if (a < b) x = 1; else { M = { 1 } }").find("1:26 a macro cannot be defined inside 'else'") == 0);
+  CHECK(error_at("else x = 1;").find("1:1 'else' without an 'if'") == 0);
+  CHECK(error_at("if (a < ) x = 1;").find("1:9 expected expression") == 0);
+  // Parentheses around a condition nest up to the limit, like any others; deeper is the nesting error.
+  CHECK(script("if (" + std::string(200, '(') + "a < b" + std::string(200, ')') + ") x = 1;") ==
+        "(if (< a b) (then (= x 1)))\n");
+  const std::string deep = "if (" + std::string(100000, '(') + "a < b" + std::string(100000, ')') + ") x = 1;";
+  CHECK(error_at(deep).find("expression nested too deeply") != std::string::npos);
+}
+
 TEST_CASE("macro definitions", "[parser]") {
   CHECK(script("M = { _P(1) * 2 }") == "(macro M (result (* _P1 2)))\n");
   CHECK(script("M = { _P(1) * 2 };") == "(macro M (result (* _P1 2)))\n");
