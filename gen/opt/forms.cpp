@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "opt/internal.hpp"
 #include "symbolic/dag.hpp"
@@ -21,10 +22,33 @@ size_t tree_size(const ex& e) { return symbolic::tree_symbol_count(e); }
 
 bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
 
+namespace {
+bool is_negative_number(const ex& x) { return is_a<numeric>(x) && ex_to<numeric>(x).is_negative(); }
+
+// Does e have a power with a negative numeric exponent? A walk over the stored nodes (a product's factor
+// x^k is a pair (x, k) there), each shared node once.
+bool has_negative_power(const ex& e, std::unordered_set<const basic*>& seen) {
+  if (e.nops() == 0 || !seen.insert(symbolic::node_of(e)).second) return false;
+  if (is_a<mul>(e)) {
+    for (const auto& p : symbolic::pairs_of(e))
+      if (is_negative_number(p.coeff) || has_negative_power(p.rest, seen)) return true;
+    return false;
+  }
+  if (is_a<add>(e)) {
+    for (const auto& p : symbolic::pairs_of(e))
+      if (has_negative_power(p.rest, seen)) return true;
+    return false;
+  }
+  if (is_a<power>(e) && is_negative_number(e.op(1))) return true;
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (has_negative_power(e.op(i), seen)) return true;
+  return false;
+}
+}  // namespace
+
 bool has_denominator(const ex& e) {
-  return symbolic::visit_nodes_once(e, [](const ex& x) {
-    return is_a<power>(x) && is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_negative();
-  });
+  std::unordered_set<const basic*> seen;
+  return has_negative_power(e, seen);
 }
 
 void collect_symbols(const ex& e, ExSet& out) {
@@ -76,13 +100,26 @@ constexpr size_t kMaxNormalNodes = 1000;
 // The tree_size of the largest argument of a function call or non-integer power in e.
 size_t largest_call_argument(const ex& e) {
   size_t n = 0;
-  symbolic::visit_nodes_once(e, [&](const ex& x) {
+  std::unordered_set<const basic*> seen;
+  auto is_integer = [](const ex& k) { return is_a<numeric>(k) && ex_to<numeric>(k).is_integer(); };
+  // Over the stored nodes, each shared one once (a product's factor x^k is a pair (x, k) there).
+  auto walk = [&](auto&& self, const ex& x) -> void {
+    if (x.nops() == 0 || !seen.insert(symbolic::node_of(x)).second) return;
+    if (is_a<add>(x) || is_a<mul>(x)) {
+      const bool product = is_a<mul>(x);
+      for (const auto& p : symbolic::pairs_of(x)) {
+        if (product && !is_integer(p.coeff)) n = std::max(n, tree_size(p.rest));
+        self(self, p.rest);
+      }
+      return;
+    }
     if (is_a<function>(x))
       for (size_t i = 0; i < x.nops(); ++i) n = std::max(n, tree_size(x.op(i)));
-    else if (is_a<power>(x) && !(is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer()))
+    else if (is_a<power>(x) && !is_integer(x.op(1)))
       n = std::max(n, tree_size(x.op(0)));
-    return false;
-  });
+    for (size_t i = 0; i < x.nops(); ++i) self(self, x.op(i));
+  };
+  walk(walk, e);
   return n;
 }
 
@@ -102,7 +139,11 @@ Rat combine_fractions(const Rat& r) {
   // than kMaxNormalNodes nodes, calls and roots stay opaque (temporary symbols).
   exmap opaque;
   const bool large = largest_call_argument(r.num) > kMaxNormalNodes;
-  ex nd = (large ? r.num.to_rational(opaque) : r.num).numer_denom();
+  const ex rational = large ? r.num.to_rational(opaque) : r.num;
+  // With calls and roots opaque, an expression without denominators is an expanded polynomial in symbols:
+  // numer_denom would give it back with denominator 1, longer by that 1 (r.num is expanded, and nonzero).
+  if (large && !has_denominator(rational)) return r;
+  ex nd = rational.numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
   if (large) n = expand(n.subs(opaque, subs_options::no_pattern)), d = expand(d.subs(opaque, subs_options::no_pattern));
   auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };

@@ -32,6 +32,11 @@ constexpr size_t kMaxInlineTreeSize = 100000;
 // Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
 // The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
 constexpr size_t kMaxExpandedNodes = 4000;
+// Past this size of the -O1 form (counted while substituting, over the output coefficients without
+// denominators: a lower bound of the final size) substitution stops: the statement form is certain, and
+// expanding the rest would only cost time (a 200-line dcga script: 2 million symbol occurrences, seconds).
+// The note then says "more than". Above circle3's 208494, which keeps its exact figure.
+constexpr size_t kMaxCountedNodes = 250000;
 
 
 std::string sanitize(const std::string& s) {
@@ -83,12 +88,22 @@ struct Substituted {
   ExSet needed;                        // value symbols the outputs need (transitively)
   std::map<ex, Rat, ex_is_less> full;  // value symbol -> coefficient over inputs and materialized values
   std::vector<ex> materialized;        // value symbols kept as temporaries, in kernel order
+  // Substitution stopped early: the -O1 form has more than kMaxCountedNodes symbol occurrences, `full`
+  // is incomplete and only the statement form is built.
+  bool over_count = false;
 };
 
 Substituted substitute(const Kernel& k) {
   Substituted s;
-  for (const auto& o : k.outputs)
-    for (const auto& sym : k.values.at(o.value).symbols) s.needed.insert(sym);
+  // How many output slots each value coefficient fills: their sizes add up to the -O1 form's size.
+  std::map<ex, size_t, ex_is_less> slot_uses;
+  for (const auto& o : k.outputs) {
+    const auto& v = k.values.at(o.value);
+    for (const auto& sym : v.symbols) s.needed.insert(sym);
+    for (auto b : o.blades)
+      if (int i = blade_pos(v, b); i >= 0) ++slot_uses[v.symbols[static_cast<size_t>(i)]];
+  }
+  size_t counted = 0;  // a lower bound of expanded_size(): output slots without denominators so far
   for (auto v = k.values.rbegin(); v != k.values.rend(); ++v)
     for (size_t i = 0; i < v->blades.size(); ++i)
       if (s.needed.count(v->symbols[i])) collect_symbols(v->coeffs[i], s.needed);
@@ -120,6 +135,14 @@ Substituted substitute(const Kernel& k) {
       subst[sym] = r.value();
       sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
       s.full[sym] = r;
+      // An output coefficient without denominators is the -O1 slot as it stands (combine_fractions keeps it).
+      if (auto u = slot_uses.find(sym); u != slot_uses.end() && !has_denominator(r.num)) {
+        counted += u->second * tree_size(r.num);
+        if (counted > kMaxCountedNodes) {
+          s.over_count = true;
+          return s;
+        }
+      }
     }
   for (const auto& v : k.values)
     for (const auto& sym : v.symbols)
@@ -158,7 +181,12 @@ std::vector<std::vector<SlotPlan>> plan_slots(const Kernel& k, const Substituted
     for (auto b : o.blades) {
       int i = blade_pos(v, b);
       SlotPlan sp{o.name, b, {0, 1}, ex(0)};
-      if (i >= 0) {
+      if (i >= 0 && s.over_count) {
+        // Only the statement form is built: the blade is the value's (the expander dropped the blades whose
+        // coefficients vanish), its value is the value's symbol.
+        sp.value = {v.symbols[i], 1};
+        sp.value_sym = v.symbols[i];
+      } else if (i >= 0) {
         sp.value = combine_fractions(s.full.at(v.symbols[i]));
         sp.value_sym = v.symbols[i];
       }
@@ -214,19 +242,20 @@ size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vecto
   return n;
 }
 
-std::string over_budget_note(const char* level, size_t size) {
-  return std::string(level) + " kept the script's statement form: the expanded form has " + std::to_string(size) +
+std::string over_budget_note(const char* level, size_t size, bool over_count) {
+  return std::string(level) + " kept the script's statement form: the expanded form has " +
+         (over_count ? "more than " + std::to_string(kMaxCountedNodes) : std::to_string(size)) +
          " symbol occurrences (budget " + std::to_string(kMaxExpandedNodes) + ")";
 }
 
 Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
   Program p = skeleton(k, Level::O1);
   p.temps = materialized_temps(k, s);
-  const size_t size = expanded_size(p.temps, plans);
-  if (size > kMaxExpandedNodes) {
+  const size_t size = s.over_count ? 0 : expanded_size(p.temps, plans);
+  if (s.over_count || size > kMaxExpandedNodes) {
     StatementForm f = statement_form(k, s, plans);
     p.temps = std::move(f.temps);
-    p.notes.push_back(over_budget_note("-O1", size));
+    p.notes.push_back(over_budget_note("-O1", size, s.over_count));
     size_t ri = 0;
     for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
       ProgramOutput po{k.outputs[oi].name, {}};
@@ -278,10 +307,10 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
   //    for the CSE passes to finish in time; on such scripts the statement form (3) has always been far
   //    cheaper anyway (paper A.1: 328 against 1516, circle3: 165 against 1402 weighted ops).
   const std::vector<Temp> kept = materialized_temps(k, s);
-  const size_t size = expanded_size(kept, plans);
+  const size_t size = s.over_count ? 0 : expanded_size(kept, plans);
   std::vector<std::string> notes;
-  if (size > kMaxExpandedNodes) {
-    notes.push_back(over_budget_note("-O2", size));
+  if (s.over_count || size > kMaxExpandedNodes) {
+    notes.push_back(over_budget_note("-O2", size, s.over_count));
   } else {
     {
       PhaseTimer t("variant expanded");
@@ -314,7 +343,7 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
   }
   PhaseTimer tc("costs");
   size_t best = 0;
-  long best_cost = program_cost(variants[0]);
+  long best_cost = variants.size() > 1 ? program_cost(variants[0]) : 0;  // one form: nothing to compare
   for (size_t i = 1; i < variants.size(); ++i) {
     long c = program_cost(variants[i]);
     if (c < best_cost) best = i, best_cost = c;

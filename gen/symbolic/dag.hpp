@@ -16,6 +16,20 @@ namespace cgagen::symbolic {
 // The node's identity: the shared object ex points to.
 inline const GiNaC::basic* node_of(const GiNaC::ex& e) { return &GiNaC::ex_to<GiNaC::basic>(e); }
 
+// The terms of a sum / factors of a product as GiNaC stores them: (rest, coeff) pairs, coeff a number (a
+// term's coefficient, a factor's exponent; the sum's or product's numeric overall coefficient is not among
+// them). op(i) rebuilds coeff*rest or rest^coeff as a fresh object at each call, so a walk through op()
+// allocates at every node and never meets a shared node twice; the stored rests are the shared nodes.
+namespace detail {
+struct SeqAccess : GiNaC::expairseq {
+  static const GiNaC::epvector& seq_of(const GiNaC::expairseq& e) { return e.*(&SeqAccess::seq); }
+};
+}  // namespace detail
+// e must be a sum or a product (is_a<expairseq>).
+inline const GiNaC::epvector& pairs_of(const GiNaC::ex& e) {
+  return detail::SeqAccess::seq_of(GiNaC::ex_to<GiNaC::expairseq>(e));
+}
+
 // Calls f(node) once per distinct node of e reachable through op() (the nodes the preorder iterator
 // visits, each shared one once); stops and returns true as soon as f returns true.
 template <class F>

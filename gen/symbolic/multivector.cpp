@@ -273,15 +273,20 @@ std::string Multivector::str() const {
 bool operator==(const Multivector& a, const Multivector& b) { return (a - b).is_zero(); }
 
 std::size_t tree_symbol_count(const GiNaC::ex& e) {
-  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> memo;
+  std::unordered_map<const GiNaC::basic*, std::size_t> memo;  // nodes of e, alive while e is
   auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
     if (GiNaC::is_a<GiNaC::symbol>(x)) return 1;
     if (x.nops() == 0) return 0;
     auto it = memo.find(node_of(x));
-    if (it != memo.end()) return it->second.second;
+    if (it != memo.end()) return it->second;
     std::size_t n = 0;
-    for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
-    memo.emplace(node_of(x), std::make_pair(x, n));
+    if (GiNaC::is_a<GiNaC::expairseq>(x)) {
+      // Sums and products: the coefficients, exponents and overall coefficient are numbers (no symbols).
+      for (const auto& pair : pairs_of(x)) n += self(self, pair.rest);
+    } else {
+      for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
+    }
+    memo.emplace(node_of(x), n);
     return n;
   };
   return count(count, e);
