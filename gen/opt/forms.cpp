@@ -22,34 +22,7 @@ size_t tree_size(const ex& e) { return symbolic::tree_symbol_count(e); }
 
 bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
 
-namespace {
-bool is_negative_number(const ex& x) { return is_a<numeric>(x) && ex_to<numeric>(x).is_negative(); }
-
-// Does e have a power with a negative numeric exponent? A walk over the stored nodes (a product's factor
-// x^k is a pair (x, k) there), each shared node once.
-bool has_negative_power(const ex& e, std::unordered_set<const basic*>& seen) {
-  if (e.nops() == 0 || !seen.insert(symbolic::node_of(e)).second) return false;
-  if (is_a<mul>(e)) {
-    for (const auto& p : symbolic::pairs_of(e))
-      if (is_negative_number(p.coeff) || has_negative_power(p.rest, seen)) return true;
-    return false;
-  }
-  if (is_a<add>(e)) {
-    for (const auto& p : symbolic::pairs_of(e))
-      if (has_negative_power(p.rest, seen)) return true;
-    return false;
-  }
-  if (is_a<power>(e) && is_negative_number(e.op(1))) return true;
-  for (size_t i = 0; i < e.nops(); ++i)
-    if (has_negative_power(e.op(i), seen)) return true;
-  return false;
-}
-}  // namespace
-
-bool has_denominator(const ex& e) {
-  std::unordered_set<const basic*> seen;
-  return has_negative_power(e, seen);
-}
+bool has_denominator(const ex& e) { return symbolic::has_negative_power(e); }
 
 void collect_symbols(const ex& e, ExSet& out) {
   symbolic::visit_nodes_once(e, [&](const ex& x) {
@@ -145,7 +118,7 @@ Rat combine_fractions(const Rat& r) {
   if (large && !has_denominator(rational)) return r;
   ex nd = rational.numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
-  if (large) n = expand(n.subs(opaque, subs_options::no_pattern)), d = expand(d.subs(opaque, subs_options::no_pattern));
+  if (large) n = expand(n.subs(opaque, kSymbolSubs)), d = expand(d.subs(opaque, kSymbolSubs));
   auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
   if (n.is_zero()) return {0, 1};
   if (size(n) + size(d) >= size(r.num)) return r;

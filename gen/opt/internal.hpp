@@ -20,6 +20,10 @@ namespace cgagen::opt::detail {
 using ExSet = std::set<GiNaC::ex, GiNaC::ex_is_less>;
 using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
 
+// subs() options for maps whose keys are all symbols: no pattern matching, and no scan of the whole map
+// for product patterns at every sum and product (seconds with thousands of keys).
+constexpr unsigned kSymbolSubs = GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product;
+
 // CGAGEN_TIMING=1 prints how long each optimizer phase takes (to stderr), for finding hot spots.
 class PhaseTimer {
  public:

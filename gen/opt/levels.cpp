@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "opt/cse.hpp"
 #include "opt/program.hpp"
+#include "symbolic/dag.hpp"
 
 namespace cgagen::opt {
 
@@ -93,6 +95,65 @@ struct Substituted {
   bool over_count = false;
 };
 
+// e.subs(at, kSymbolSubs) for a map from symbols to values, computing each shared node once across all
+// calls (the outputs of a normalized value share one root of a large sum), and the result with each power
+// of non-integer exponent expanded once (expand() would expand that root's argument again for every
+// coefficient it appears in). Valid while `at` only grows; clear() when an entry changes.
+class SharedSubs {
+ public:
+  explicit SharedSubs(const exmap& at) : at_(at) {}
+  void clear() { subs_.clear(); }
+
+  ex subs(const ex& e) {
+    if (is_a<symbol>(e)) {
+      auto it = at_.find(e);
+      return it == at_.end() ? e : it->second;
+    }
+    if (e.nops() == 0) return e;
+    if (auto it = subs_.find(symbolic::node_of(e)); it != subs_.end()) return it->second.second;
+    ex r;
+    if (is_a<add>(e) || is_a<mul>(e)) {
+      const bool product = is_a<mul>(e);
+      const auto& pairs = symbolic::pairs_of(e);
+      exvector parts;
+      parts.reserve(pairs.size() + 1);
+      for (const auto& p : pairs) parts.push_back(product ? pow(subs(p.rest), p.coeff) : subs(p.rest) * p.coeff);
+      if (e.nops() > pairs.size()) parts.push_back(e.op(e.nops() - 1));  // the numeric overall coefficient
+      r = product ? ex(dynallocate<mul>(parts)) : ex(dynallocate<add>(parts));
+    } else if (is_a<power>(e)) {
+      r = pow(subs(e.op(0)), subs(e.op(1)));
+    } else {
+      r = e.subs(at_, kSymbolSubs);
+    }
+    subs_.emplace(symbolic::node_of(e), std::make_pair(e, r));
+    return r;
+  }
+
+  // e with every power of non-integer exponent outside function arguments replaced by its expansion
+  // (what expand(e) does to it, flagged expanded, so that expand(e) takes it as it is).
+  ex roots_expanded(const ex& e) {
+    if (e.nops() == 0 || is_a<function>(e)) return e;  // expand() leaves function arguments alone
+    if (auto it = roots_.find(symbolic::node_of(e)); it != roots_.end()) return it->second.second;
+    ex r;
+    if (is_a<power>(e) && !(is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_integer())) {
+      r = e.expand();
+    } else {
+      struct Op : map_function {
+        SharedSubs& self;
+        explicit Op(SharedSubs& s) : self(s) {}
+        ex operator()(const ex& x) override { return self.roots_expanded(x); }
+      } op(*this);
+      r = e.map(op);
+    }
+    roots_.emplace(symbolic::node_of(e), std::make_pair(e, r));
+    return r;
+  }
+
+ private:
+  const exmap& at_;
+  std::unordered_map<const basic*, std::pair<ex, ex>> subs_, roots_;  // node -> (node kept alive, result)
+};
+
 Substituted substitute(const Kernel& k) {
   Substituted s;
   // How many output slots each value coefficient fills: their sizes add up to the -O1 form's size.
@@ -108,6 +169,7 @@ Substituted substitute(const Kernel& k) {
     for (size_t i = 0; i < v->blades.size(); ++i)
       if (s.needed.count(v->symbols[i])) collect_symbols(v->coeffs[i], s.needed);
   exmap subst;
+  SharedSubs shared(subst);
   std::map<ex, double, ex_is_less> sizes;
   ExSet materialized;
   for (const auto& v : k.values)
@@ -117,8 +179,8 @@ Substituted substitute(const Kernel& k) {
       Rat r;
       ex inlined;
       if (estimate_terms(v.coeffs[i], sizes) <= kMaxInlineTerms &&
-          tree_size(inlined = v.coeffs[i].subs(subst, subs_options::no_pattern)) <= kMaxInlineTreeSize) {
-        r = canonical(inlined);
+          tree_size(inlined = shared.subs(v.coeffs[i])) <= kMaxInlineTreeSize) {
+        r = canonical(shared.roots_expanded(inlined));
       } else {
         ExSet used;
         collect_symbols(v.coeffs[i], used);
@@ -129,8 +191,9 @@ Substituted substitute(const Kernel& k) {
             materialized.insert(u);
             subst.erase(u);
             sizes.erase(u);
+            shared.clear();
           }
-        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+        r = canonical(shared.roots_expanded(shared.subs(v.coeffs[i])));
       }
       subst[sym] = r.value();
       sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
@@ -218,7 +281,7 @@ StatementForm statement_form(const Kernel& k, const Substituted& s, const std::v
   for (const auto& v : k.values)
     for (size_t i = 0; i < v.blades.size(); ++i)
       if (s.needed.count(v.symbols[i])) {
-        ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, subs_options::no_pattern)).value();
+        ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, kSymbolSubs)).value();
         if (is_atomic(c))
           atomic[v.symbols[i]] = c;
         else

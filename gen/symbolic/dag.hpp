@@ -48,6 +48,9 @@ bool visit_nodes_once(const GiNaC::ex& e, F&& f) {
   return false;
 }
 
+// Does e have a power with a negative numeric exponent (a denominator)? Each shared node once.
+bool has_negative_power(const GiNaC::ex& e);
+
 // The number of symbol occurrences of e counted as a tree (what a preorder walk counts), in time linear in
 // the DAG.
 std::size_t tree_symbol_count(const GiNaC::ex& e);

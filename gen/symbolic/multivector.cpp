@@ -18,12 +18,7 @@ namespace cgagen::symbolic {
 namespace {
 
 // Does e contain a power with a negative exponent (a denominator)? Only then is normal() worth calling.
-bool has_denominator(const GiNaC::ex& e) {
-  return visit_nodes_once(e, [](const GiNaC::ex& x) {
-    return GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
-           GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_negative();
-  });
-}
+bool has_denominator(const GiNaC::ex& e) { return has_negative_power(e); }
 
 // Terms of an expanded coefficient (a sum's terms; anything else is one).
 std::size_t term_count(const GiNaC::ex& e) { return GiNaC::is_a<GiNaC::add>(e) ? e.nops() : 1; }
@@ -272,13 +267,44 @@ std::string Multivector::str() const {
 
 bool operator==(const Multivector& a, const Multivector& b) { return (a - b).is_zero(); }
 
+namespace {
+bool is_negative_number(const GiNaC::ex& x) {
+  return GiNaC::is_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_negative();
+}
+
+bool has_negative_power(const GiNaC::ex& e, std::unordered_set<const GiNaC::basic*>& seen) {
+  using namespace GiNaC;
+  if (e.nops() == 0 || !seen.insert(node_of(e)).second) return false;
+  if (is_a<expairseq>(e)) {
+    const bool product = is_a<mul>(e);  // a product's factor x^k is the pair (x, k)
+    for (const auto& p : pairs_of(e))
+      if ((product && is_negative_number(p.coeff)) || has_negative_power(p.rest, seen)) return true;
+    return false;
+  }
+  if (is_a<power>(e) && is_negative_number(e.op(1))) return true;
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (has_negative_power(e.op(i), seen)) return true;
+  return false;
+}
+}  // namespace
+
+bool has_negative_power(const GiNaC::ex& e) {
+  std::unordered_set<const GiNaC::basic*> seen;
+  return has_negative_power(e, seen);
+}
+
 std::size_t tree_symbol_count(const GiNaC::ex& e) {
+  // Large shared nodes (a root's argument under every coefficient of a normalized value) are counted once
+  // per process: the cache keeps them alive, so an address is never reused for another node.
+  constexpr std::size_t kCachedFrom = 256;
+  static std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> cache;
   std::unordered_map<const GiNaC::basic*, std::size_t> memo;  // nodes of e, alive while e is
   auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
     if (GiNaC::is_a<GiNaC::symbol>(x)) return 1;
     if (x.nops() == 0) return 0;
     auto it = memo.find(node_of(x));
     if (it != memo.end()) return it->second;
+    if (auto c = cache.find(node_of(x)); c != cache.end()) return c->second.second;
     std::size_t n = 0;
     if (GiNaC::is_a<GiNaC::expairseq>(x)) {
       // Sums and products: the coefficients, exponents and overall coefficient are numbers (no symbols).
@@ -287,6 +313,7 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
       for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
     }
     memo.emplace(node_of(x), n);
+    if (n >= kCachedFrom) cache.emplace(node_of(x), std::make_pair(x, n));
     return n;
   };
   return count(count, e);
