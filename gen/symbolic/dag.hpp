@@ -6,6 +6,7 @@
 #include <ginac/ginac.h>
 
 #include <cstddef>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -47,6 +48,9 @@ bool visit_nodes_once(const GiNaC::ex& e, F&& f) {
   }
   return false;
 }
+
+// Adds the symbols of e to `symbols`, each shared node visited once.
+void collect_symbols_into(const GiNaC::ex& e, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols);
 
 // Does e have a power with a negative numeric exponent (a denominator)? Each shared node once.
 bool has_negative_power(const GiNaC::ex& e);

@@ -10,7 +10,10 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <sstream>
 #include <vector>
 
@@ -36,37 +39,81 @@ GiNaC::ex canonical(const GiNaC::ex& c) {
 
 namespace {
 
-// Two fixed irregular points for the symbols of x, by symbol name (the same in every process). Evenly spaced
-// values would put e.g. three points on one line (a pole of circle3).
+// A symbol's value at probe point k: irregular in [0.3, 1.7), from its name alone (the same in every
+// process, and the same for every expression, so values of shared nodes can be kept). Evenly spaced values
+// would put e.g. three points on one line (a pole of circle3).
+GiNaC::numeric probe_value(const std::string& name, int k) {
+  std::uint64_t h = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(k + 1);
+  for (unsigned char c : name) h = (h ^ c) * 0x100000001b3ull;
+  h = h * 6364136223846793005ull + 1442695040888963407ull;
+  return GiNaC::numeric(static_cast<long>(300 + (h >> 33) % 1400), 1000);
+}
+
+std::set<GiNaC::ex, GiNaC::ex_is_less> symbols_of(const GiNaC::ex& x) {
+  std::set<GiNaC::ex, GiNaC::ex_is_less> symbols;
+  collect_symbols_into(x, symbols);
+  return symbols;
+}
+
+// Two fixed irregular points for the symbols of x.
 std::vector<GiNaC::exmap> probe_points(const GiNaC::ex& x) {
-  using namespace GiNaC;
-  std::set<ex, ex_is_less> symbols;
-  visit_nodes_once(x, [&](const ex& e) {
-    if (is_a<symbol>(e)) symbols.insert(e);
-    return false;
-  });
-  std::map<std::string, ex> by_name;
-  for (const ex& s : symbols) by_name.emplace(ex_to<symbol>(s).get_name(), s);
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
-  std::vector<exmap> points(2);
-  for (exmap& at : points)
-    for (const auto& [name, s] : by_name) {
-      state = state * 6364136223846793005ull + 1442695040888963407ull;
-      at[s] = numeric(static_cast<long>(300 + (state >> 33) % 1400), 1000);  // in [0.3, 1.7)
-    }
+  std::vector<GiNaC::exmap> points(2);
+  for (const GiNaC::ex& sym : symbols_of(x))
+    for (int k = 0; k < 2; ++k) points[static_cast<size_t>(k)][sym] = probe_value(GiNaC::ex_to<GiNaC::symbol>(sym).get_name(), k);
   return points;
+}
+
+// x in floats at probe point k, each shared node once; the values of large nodes are kept for the process
+// (a root of a large sum under every coefficient of a normalized value). Throws at a pole.
+GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
+  using namespace GiNaC;
+  struct Entry {
+    ex node;  // kept alive: the address is never reused
+    numeric value;
+  };
+  static std::array<std::unordered_map<const basic*, Entry>, 2> cache;
+  std::unordered_map<const basic*, numeric> memo;
+  auto eval = [&](auto&& self, const ex& e) -> numeric {
+    if (is_a<numeric>(e)) return ex_to<numeric>(ex_to<numeric>(e).evalf());
+    if (is_a<symbol>(e)) return ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
+    if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;
+    if (auto it = cache[static_cast<size_t>(k)].find(node_of(e)); it != cache[static_cast<size_t>(k)].end())
+      return it->second.value;
+    numeric v;
+    if (is_a<add>(e) || is_a<mul>(e)) {
+      const bool product = is_a<mul>(e);
+      const auto& pairs = pairs_of(e);
+      v = product ? numeric(1) : numeric(0);
+      for (const auto& p : pairs) {
+        const numeric r = self(self, p.rest), c = ex_to<numeric>(p.coeff);
+        v = product ? v * (c.is_equal(numeric(1)) ? r : ex_to<numeric>(evalf(pow(r, c)))) : v + c * r;
+      }
+      if (e.nops() > pairs.size()) {  // the numeric overall coefficient
+        const numeric oc = ex_to<numeric>(ex_to<numeric>(e.op(e.nops() - 1)).evalf());
+        v = product ? v * oc : v + oc;
+      }
+    } else {
+      // Powers, function calls and anything else: GiNaC on the node with its operands' values.
+      exmap at;
+      for (const ex& sym : symbols_of(e)) at[sym] = probe_value(ex_to<symbol>(sym).get_name(), k).evalf();
+      const ex f = DagSubs(at)(e).evalf();
+      if (!is_a<numeric>(f)) throw std::runtime_error("not a number at the probe");
+      v = ex_to<numeric>(f);
+    }
+    memo.emplace(node_of(e), v);
+    if (e.nops() > 8) cache[static_cast<size_t>(k)].emplace(node_of(e), Entry{e, v});
+    return v;
+  };
+  return eval(eval, x);
 }
 
 // True when x evaluates in floats far from 0 at a probe point: then it is not identically zero (values of a
 // few units cannot cancel to that). Cheap on an unexpanded x, which is where it pays.
-bool clearly_nonzero(const GiNaC::ex& x, const std::vector<GiNaC::exmap>& points) {
+bool clearly_nonzero(const GiNaC::ex& x) {
   using namespace GiNaC;
-  for (const exmap& at : points) {
-    exmap approx;
-    for (const auto& [s, v] : at) approx[s] = ex_to<numeric>(v).evalf();
+  for (int k = 0; k < 2; ++k) {
     try {
-      const ex f = DagSubs(approx)(x).evalf();
-      if (is_a<numeric>(f) && abs(ex_to<numeric>(f)) > numeric(1, 1000)) return true;
+      if (abs(float_value(x, k)) > numeric(1, 1000)) return true;
     } catch (const std::exception&) {
       // a pole at the probe
     }
@@ -96,15 +143,14 @@ bool zero_after_float_probes(const GiNaC::ex& x, const std::vector<GiNaC::exmap>
 }  // namespace
 
 bool is_zero_rational(const GiNaC::ex& x) {
-  const std::vector<GiNaC::exmap> points = probe_points(x);
-  return !clearly_nonzero(x, points) && zero_after_float_probes(x, points);
+  return !clearly_nonzero(x) && zero_after_float_probes(x, probe_points(x));
 }
 
 bool is_identically_zero(const GiNaC::ex& e) {
   // The float probes run on the unexpanded form: that spares expanding large inlined values that are
   // plainly not zero. Expanding cannot bring in symbols, so the same points serve the exact checks.
+  if (clearly_nonzero(e)) return false;
   const std::vector<GiNaC::exmap> points = probe_points(e);
-  if (clearly_nonzero(e, points)) return false;
   const GiNaC::ex x = e.expand();
   if (x.is_zero()) return true;
   return has_denominator(x) && zero_after_float_probes(x, points);
@@ -291,6 +337,24 @@ bool has_negative_power(const GiNaC::ex& e, std::unordered_set<const GiNaC::basi
 bool has_negative_power(const GiNaC::ex& e) {
   std::unordered_set<const GiNaC::basic*> seen;
   return has_negative_power(e, seen);
+}
+
+void collect_symbols_into(const GiNaC::ex& x, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols) {
+  using namespace GiNaC;
+  std::unordered_set<const basic*> seen;
+  auto walk = [&](auto&& self, const ex& e) -> void {
+    if (is_a<symbol>(e)) {
+      symbols.insert(e);
+      return;
+    }
+    if (e.nops() == 0 || !seen.insert(node_of(e)).second) return;
+    if (is_a<expairseq>(e)) {
+      for (const auto& p : pairs_of(e)) self(self, p.rest);
+    } else {
+      for (size_t i = 0; i < e.nops(); ++i) self(self, e.op(i));
+    }
+  };
+  walk(walk, x);
 }
 
 std::size_t tree_symbol_count(const GiNaC::ex& e) {
