@@ -20,6 +20,7 @@
 #include "expand/algebra_builtins.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
+#include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
 #include "symbolic/probes.hpp"
 
@@ -706,7 +707,8 @@ class Expander {
   ex signed_sample(const ex& c, size_t k) {
     try {
       // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
-      ex v = GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
+      auto fast = symbolic::evalf_at(c, signed_samples_[k]);  // no expression built
+      ex v = fast ? ex(*fast) : GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
       if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
     } catch (const std::exception&) {
       // a pole at this point
@@ -729,7 +731,8 @@ class Expander {
     try {
       // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
       // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
-      v = GiNaC::evalf(c.subs(samples_, GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product));
+      auto fast = symbolic::evalf_at(c, samples_);  // no expression built
+      v = fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
     } catch (const std::exception&) {
       return ex(GiNaC::numeric(0));
     }

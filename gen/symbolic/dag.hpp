@@ -6,6 +6,7 @@
 #include <ginac/ginac.h>
 
 #include <cstddef>
+#include <optional>
 #include <set>
 #include <unordered_map>
 #include <unordered_set>
@@ -58,6 +59,12 @@ bool has_negative_power(const GiNaC::ex& e);
 // The number of symbol occurrences of e counted as a tree (what a preorder walk counts), in time linear in
 // the DAG.
 std::size_t tree_symbol_count(const GiNaC::ex& e);
+
+// evalf(e.subs(at)) for a map from symbols to numbers, computed on the stored nodes (each shared node
+// once, no expression built): a number, possibly complex, or nullopt where some node does not evaluate to
+// a number (a symbol without a value, a function GiNaC leaves unevaluated); callers then ask GiNaC. Throws
+// at a pole, as subs/evalf would.
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at);
 
 // e.subs(at, subs_options::no_pattern) for a map from symbols to values, computing each shared node once.
 // Throws what subs would throw (a division by zero at a pole).

@@ -92,8 +92,12 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
         const numeric oc = ex_to<numeric>(ex_to<numeric>(e.op(e.nops() - 1)).evalf());
         v = product ? v * oc : v + oc;
       }
+    } else if (is_a<power>(e)) {
+      const ex f = evalf(pow(self(self, e.op(0)), self(self, e.op(1))));
+      if (!is_a<numeric>(f)) throw std::runtime_error("not a number at the probe");
+      v = ex_to<numeric>(f);
     } else {
-      // Powers, function calls and anything else: GiNaC on the node with its operands' values.
+      // Function calls and anything else: GiNaC on the node with its operands' values.
       exmap at;
       for (const ex& sym : symbols_of(e)) at[sym] = probe_value(ex_to<symbol>(sym).get_name(), k).evalf();
       const ex f = DagSubs(at)(e).evalf();
@@ -101,7 +105,7 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
       v = ex_to<numeric>(f);
     }
     memo.emplace(node_of(e), v);
-    if (e.nops() > 8) cache[static_cast<size_t>(k)].emplace(node_of(e), Entry{e, v});
+    if (!is_a<mul>(e) || e.nops() > 8) cache[static_cast<size_t>(k)].emplace(node_of(e), Entry{e, v});
     return v;
   };
   return eval(eval, x);
@@ -381,6 +385,57 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
     return n;
   };
   return count(count, e);
+}
+
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at) {
+  using namespace GiNaC;
+  std::unordered_map<const basic*, std::optional<numeric>> memo;  // nodes of e, alive while e is
+  auto as_number = [](const ex& f) -> std::optional<numeric> {
+    if (!is_a<numeric>(f)) return std::nullopt;
+    return ex_to<numeric>(f);
+  };
+  auto eval = [&](auto&& self, const ex& x) -> std::optional<numeric> {
+    if (is_a<numeric>(x)) return as_number(evalf(x));
+    if (is_a<symbol>(x)) {
+      auto it = at.find(x);
+      if (it == at.end()) return std::nullopt;
+      return as_number(evalf(it->second));
+    }
+    if (x.nops() == 0) return as_number(evalf(x));  // a constant
+    if (auto it = memo.find(node_of(x)); it != memo.end()) return it->second;
+    std::optional<numeric> v;
+    if (is_a<add>(x) || is_a<mul>(x)) {
+      const bool product = is_a<mul>(x);
+      const auto& pairs = pairs_of(x);
+      ex acc = product ? 1 : 0;
+      bool ok = true;
+      for (const auto& p : pairs) {
+        auto r = self(self, p.rest);
+        if (!r) { ok = false; break; }
+        acc = product ? acc * pow(*r, p.coeff) : acc + *r * p.coeff;
+      }
+      if (ok && x.nops() > pairs.size()) {  // the numeric overall coefficient
+        const ex oc = x.op(x.nops() - 1);
+        acc = product ? acc * oc : acc + oc;
+      }
+      if (ok) v = as_number(evalf(acc));
+    } else if (is_a<power>(x)) {
+      auto b = self(self, x.op(0)), k = self(self, x.op(1));
+      if (b && k) v = as_number(evalf(pow(*b, *k)));
+    } else if (is_a<function>(x)) {
+      exvector args;
+      bool ok = true;
+      for (size_t i = 0; i < x.nops() && ok; ++i) {
+        auto a = self(self, x.op(i));
+        if (a) args.push_back(*a);
+        else ok = false;
+      }
+      if (ok) v = as_number(evalf(function(ex_to<function>(x).get_serial(), args)));
+    }
+    memo.emplace(node_of(x), v);
+    return v;
+  };
+  return eval(eval, e);
 }
 
 GiNaC::ex DagSubs::operator()(const GiNaC::ex& e) {
