@@ -567,9 +567,13 @@ class Expander {
       // Rates for the staging pass (opt/stage.cpp), which checks the names once all inputs are known.
       if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma uniform' needs at least one input name");
       for (size_t i = 1; i < s.words.size(); ++i) kernel_.uniforms.push_back({s.words[i], word_loc(s, i)});
+    } else if (kind == "normalized") {
+      // A promise about inputs (X ~X = 1) for -O2 (opt/levels.cpp checks the names once all inputs are known).
+      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma normalized' needs at least one input name");
+      for (size_t i = 1; i < s.words.size(); ++i) kernel_.normalized.push_back({s.words[i], word_loc(s, i)});
     } else {
       throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
-                                         "onlyEvaluate, in2out, normalize, segments or triangles)");
+                                         "normalized, onlyEvaluate, in2out, normalize, segments or triangles)");
     }
   }
 
