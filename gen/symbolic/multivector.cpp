@@ -396,26 +396,31 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
   };
   auto eval = [&](auto&& self, const ex& x) -> std::optional<numeric> {
     if (is_a<numeric>(x)) return as_number(evalf(x));
+    if (auto it = memo.find(node_of(x)); it != memo.end()) return it->second;  // symbols too: a map lookup
     if (is_a<symbol>(x)) {
       auto it = at.find(x);
-      if (it == at.end()) return std::nullopt;
-      return as_number(evalf(it->second));
+      std::optional<numeric> v;
+      if (it != at.end()) v = as_number(evalf(it->second));
+      memo.emplace(node_of(x), v);
+      return v;
     }
     if (x.nops() == 0) return as_number(evalf(x));  // a constant
-    if (auto it = memo.find(node_of(x)); it != memo.end()) return it->second;
     std::optional<numeric> v;
     if (is_a<add>(x) || is_a<mul>(x)) {
       const bool product = is_a<mul>(x);
       const auto& pairs = pairs_of(x);
-      ex acc = product ? 1 : 0;
+      // Numbers only: no expression objects built (a product's exponents are numbers, a sum's coefficients too).
+      numeric acc = product ? numeric(1) : numeric(0);
       bool ok = true;
       for (const auto& p : pairs) {
         auto r = self(self, p.rest);
         if (!r) { ok = false; break; }
-        acc = product ? acc * pow(*r, p.coeff) : acc + *r * p.coeff;
+        const numeric& c = ex_to<numeric>(p.coeff);
+        if (product) acc = acc * (c.is_equal(numeric(1)) ? *r : r->power(c));
+        else acc = acc + *r * c;
       }
       if (ok && x.nops() > pairs.size()) {  // the numeric overall coefficient
-        const ex oc = x.op(x.nops() - 1);
+        const numeric& oc = ex_to<numeric>(x.op(x.nops() - 1));
         acc = product ? acc * oc : acc + oc;
       }
       if (ok) v = as_number(evalf(acc));

@@ -55,15 +55,12 @@ std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
 std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const std::map<GiNaC::ex, std::uint64_t, GiNaC::ex_is_less>& at) {
   std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
   auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
-    if (GiNaC::is_a<GiNaC::symbol>(x)) {
-      auto it = at.find(x);
-      if (it == at.end()) return std::nullopt;
-      return it->second;
-    }
     if (GiNaC::is_a<GiNaC::numeric>(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
-    if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;
+    if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
     std::optional<std::uint64_t> v;
-    if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
+    if (GiNaC::is_a<GiNaC::symbol>(x)) {
+      if (auto it = at.find(x); it != at.end()) v = it->second;
+    } else if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
       const bool product = GiNaC::is_a<GiNaC::mul>(x);
       const auto& pairs = symbolic::pairs_of(x);
       std::uint64_t acc = product ? 1 : 0;
