@@ -105,7 +105,11 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
       v = ex_to<numeric>(f);
     }
     memo.emplace(node_of(e), v);
-    if (!is_a<mul>(e) || e.nops() > 8) cache[static_cast<size_t>(k)].emplace(node_of(e), Entry{e, v});
+    if (!is_a<mul>(e) || e.nops() > 8) {
+      auto& c = cache[static_cast<size_t>(k)];
+      if (c.size() >= 20000) c.clear();  // bounded in a long-lived process (the fuzzer)
+      c.emplace(node_of(e), Entry{e, v});
+    }
     return v;
   };
   return eval(eval, x);
@@ -364,7 +368,7 @@ void collect_symbols_into(const GiNaC::ex& x, std::set<GiNaC::ex, GiNaC::ex_is_l
 std::size_t tree_symbol_count(const GiNaC::ex& e) {
   // Large shared nodes (a root's argument under every coefficient of a normalized value) are counted once
   // per process: the cache keeps them alive, so an address is never reused for another node.
-  constexpr std::size_t kCachedFrom = 256;
+  constexpr std::size_t kCachedFrom = 256, kMaxCached = 20000;
   static std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> cache;
   std::unordered_map<const GiNaC::basic*, std::size_t> memo;  // nodes of e, alive while e is
   auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
@@ -381,7 +385,10 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
       for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
     }
     memo.emplace(node_of(x), n);
-    if (n >= kCachedFrom) cache.emplace(node_of(x), std::make_pair(x, n));
+    if (n >= kCachedFrom) {
+      if (cache.size() >= kMaxCached) cache.clear();  // bounded in a long-lived process (the fuzzer)
+      cache.emplace(node_of(x), std::make_pair(x, n));
+    }
     return n;
   };
   return count(count, e);
