@@ -118,6 +118,11 @@ size_t largest_call_argument(const ex& e) {
   return n;
 }
 
+bool combine_keeps(const Rat& r) {
+  if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return true;
+  return largest_call_argument(r.num) > kMaxNormalNodes && !has_denominator_outside_calls(r.num);
+}
+
 Rat combine_fractions(const Rat& r) {
   if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return r;
   // When every term has the same denominator D the terms over D stay as many (they are distinct monomials),

@@ -35,8 +35,8 @@ constexpr size_t kMaxInlineTreeSize = 100000;
 // Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
 // The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
 constexpr size_t kMaxExpandedNodes = 4000;
-// Past this size of the -O1 form (counted while substituting, over the output coefficients without
-// denominators: a lower bound of the final size) substitution stops: the statement form is certain, and
+// Past this size of the -O1 form (counted while substituting, over the output coefficients that
+// combine_fractions keeps as they are: a lower bound of the final size) substitution stops: the statement form is certain, and
 // expanding the rest would only cost time (a 200-line dcga script: 2 million symbol occurrences, seconds).
 // The note then says "more than". Above circle3's 208494, which keeps its exact figure.
 constexpr size_t kMaxCountedNodes = 250000;
@@ -165,7 +165,7 @@ Substituted substitute(const Kernel& k) {
     for (auto b : o.blades)
       if (int i = blade_pos(v, b); i >= 0) ++slot_uses[v.symbols[static_cast<size_t>(i)]];
   }
-  size_t counted = 0;  // a lower bound of expanded_size(): output slots without denominators so far
+  size_t counted = 0;  // a lower bound of expanded_size(): output slots known so far
   for (auto v = k.values.rbegin(); v != k.values.rend(); ++v)
     for (size_t i = 0; i < v->blades.size(); ++i)
       if (s.needed.count(v->symbols[i])) collect_symbols(v->coeffs[i], s.needed);
@@ -199,8 +199,8 @@ Substituted substitute(const Kernel& k) {
       subst[sym] = r.value();
       sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
       s.full[sym] = r;
-      // An output coefficient without denominators is the -O1 slot as it stands (combine_fractions keeps it).
-      if (auto u = slot_uses.find(sym); u != slot_uses.end() && !has_denominator(r.num)) {
+      // An output coefficient that combine_fractions keeps is the -O1 slot as it stands.
+      if (auto u = slot_uses.find(sym); u != slot_uses.end() && combine_keeps(r)) {
         counted += u->second * tree_size(r.num);
         if (counted > kMaxCountedNodes) {
           s.over_count = true;
