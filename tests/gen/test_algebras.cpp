@@ -535,7 +535,8 @@ TEST_CASE("op counts: PGA motor and G3 rotor sandwiches at -O2 (the numbers docs
 
 TEST_CASE("a 200-line script in every built-in algebra compiles at -O2") {
   // Times are benchmark figures (bench/bench_generator.cpp, docs/generator.md), not verdicts. dcga's joins of
-  // points are 4-vectors of up to 210 quartic coefficients that -O2 works through for ~12 s of CPU; the test
+  // points are 4-vectors of up to 210 quartic coefficients (~3.5 s of CPU at -O2, 9 s before the work of
+  // docs/generator.md "Generator time"; more under the sanitizers); the test
   // compiles the same script with inner-product joins, and the benchmark keeps the heavy one.
   for (const auto& [name, arity] : kArity) {
     INFO("algebra " << name);
