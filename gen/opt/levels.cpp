@@ -405,6 +405,21 @@ std::vector<std::vector<Rule>> normalization_rules(const KernelInput& in) {
       if (!ok || !(square || bilinear)) continue;
       candidates.push_back({lead, expand(-rest / beta)});
     }
+    // GiNaC's term order (and ex_is_less on symbols) changes from process to process: the rules are put in
+    // the order of their monomials' text, so that the same variants come in the same order everywhere.
+    auto key = [](const Rule& r) {
+      std::vector<std::string> parts;
+      for (const auto& [v, e] : r.lead) parts.push_back(ex_to<symbol>(v).get_name() + "^" + std::to_string(e));
+      std::sort(parts.begin(), parts.end());
+      std::string k;
+      for (const auto& p : parts) k += p + "*";
+      return k;
+    };
+    for (auto& r : candidates)
+      std::sort(r.lead.begin(), r.lead.end(), [](const auto& a, const auto& b) {
+        return ex_to<symbol>(a.first).get_name() < ex_to<symbol>(b.first).get_name();
+      });
+    std::sort(candidates.begin(), candidates.end(), [&](const Rule& a, const Rule& b) { return key(a) < key(b); });
     if (!candidates.empty()) out.push_back(std::move(candidates));
   }
   return out;
