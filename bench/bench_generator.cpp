@@ -171,6 +171,18 @@ void register_generator_benchmarks() {
                 {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
   }
 #endif
+#ifdef CGA_BENCH_DCGA_200
+  // The slowest built-in algebra's 200-line script (tests/gen/test_algebras.cpp's script_200 for dcga).
+  {
+    const std::string name = "generator/dcga_200 (--algebra dcga)";
+    benchmark::RegisterBenchmark(name.c_str(), bm_generate, fs::path(CGA_BENCH_DCGA_200), std::string("dcga"))
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(3);
+    add_figure({name, section, "dcga_200.clu", Metric::ms_per_iter, "", "", std::nullopt,
+                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
+  }
+#endif
 }
 
 }  // namespace cga::bench

@@ -674,7 +674,6 @@ class Expander {
       for (auto b : blades) {
         GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
         samples_[sym] = next_sample();
-    add_signed_input(sym);
         add_signed_input(sym);
         probes_.add_input(sym);
         in.symbols.push_back(sym);
@@ -688,9 +687,13 @@ class Expander {
       // Rates for the staging pass (opt/stage.cpp), which checks the names once all inputs are known.
       if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma uniform' needs at least one input name");
       for (size_t i = 1; i < s.words.size(); ++i) kernel_.uniforms.push_back({s.words[i], word_loc(s, i)});
+    } else if (kind == "normalized") {
+      // A promise about inputs (X ~X = 1) for -O2 (opt/levels.cpp checks the names once all inputs are known).
+      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma normalized' needs at least one input name");
+      for (size_t i = 1; i < s.words.size(); ++i) kernel_.normalized.push_back({s.words[i], word_loc(s, i)});
     } else {
       throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
-                                         "onlyEvaluate, in2out, normalize, segments or triangles)");
+                                         "normalized, onlyEvaluate, in2out, normalize, segments or triangles)");
     }
   }
 
@@ -828,7 +831,8 @@ class Expander {
   ex signed_sample(const ex& c, size_t k) {
     try {
       // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
-      ex v = GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
+      auto fast = symbolic::evalf_at(c, signed_samples_[k]);  // no expression built
+      ex v = fast ? ex(*fast) : GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
       if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
     } catch (const std::exception&) {
       // a pole at this point
@@ -851,7 +855,8 @@ class Expander {
     try {
       // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
       // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
-      v = GiNaC::evalf(c.subs(samples_, GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product));
+      auto fast = symbolic::evalf_at(c, samples_);  // no expression built
+      v = fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
     } catch (const std::exception&) {
       return ex(GiNaC::numeric(0));
     }

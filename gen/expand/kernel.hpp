@@ -67,6 +67,9 @@ struct Kernel {
   std::vector<KernelOutput> outputs;  // in order of first marking as output
   std::vector<ScalarRange> ranges;
   std::vector<UniformName> uniforms;  // `#pragma uniform` names, in script order
+  // `#pragma normalized` names, in script order: multivector inputs the caller promises to pass with
+  // X ~X = 1, which -O2 may use (opt/levels.cpp checks the names).
+  std::vector<UniformName> normalized;
   std::vector<front::Warning> warnings;  // in script order
 };
 

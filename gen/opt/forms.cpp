@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "opt/internal.hpp"
 #include "symbolic/dag.hpp"
@@ -21,18 +22,9 @@ size_t tree_size(const ex& e) { return symbolic::tree_symbol_count(e); }
 
 bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
 
-bool has_denominator(const ex& e) {
-  return symbolic::visit_nodes_once(e, [](const ex& x) {
-    return is_a<power>(x) && is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_negative();
-  });
-}
+bool has_denominator(const ex& e) { return symbolic::has_negative_power(e); }
 
-void collect_symbols(const ex& e, ExSet& out) {
-  symbolic::visit_nodes_once(e, [&](const ex& x) {
-    if (is_a<symbol>(x)) out.insert(x);
-    return false;
-  });
-}
+void collect_symbols(const ex& e, ExSet& out) { symbolic::collect_symbols_into(e, out); }
 
 Rat canonical(const ex& e) {
   ex x = expand(e);
@@ -73,17 +65,62 @@ std::optional<std::pair<ex, ex>> split_common_denominator(const ex& e) {
 // opaque. The bundled scripts' arguments stay below 600 (circle3's radius); a fuzzer find had 10920.
 constexpr size_t kMaxNormalNodes = 1000;
 
+// Does e have a power with a negative integer exponent outside function calls and powers of non-integer
+// exponent (what to_rational leaves of e)?
+bool has_denominator_outside_calls(const ex& e) {
+  std::unordered_set<const basic*> seen;
+  auto is_integer = [](const ex& k) { return is_a<numeric>(k) && ex_to<numeric>(k).is_integer(); };
+  auto walk = [&](auto&& self, const ex& x) -> bool {
+    if (x.nops() == 0 || is_a<function>(x) || !seen.insert(symbolic::node_of(x)).second) return false;
+    if (is_a<add>(x) || is_a<mul>(x)) {
+      const bool product = is_a<mul>(x);
+      for (const auto& p : symbolic::pairs_of(x)) {
+        if (product && !is_integer(p.coeff)) continue;  // opaque
+        if (product && ex_to<numeric>(p.coeff).is_negative()) return true;
+        if (self(self, p.rest)) return true;
+      }
+      return false;
+    }
+    if (is_a<power>(x)) {
+      if (!is_integer(x.op(1))) return false;  // opaque
+      return ex_to<numeric>(x.op(1)).is_negative() || self(self, x.op(0));
+    }
+    for (size_t i = 0; i < x.nops(); ++i)
+      if (self(self, x.op(i))) return true;
+    return false;
+  };
+  return walk(walk, e);
+}
+
 // The tree_size of the largest argument of a function call or non-integer power in e.
 size_t largest_call_argument(const ex& e) {
   size_t n = 0;
-  symbolic::visit_nodes_once(e, [&](const ex& x) {
+  std::unordered_set<const basic*> seen;
+  auto is_integer = [](const ex& k) { return is_a<numeric>(k) && ex_to<numeric>(k).is_integer(); };
+  // Over the stored nodes, each shared one once (a product's factor x^k is a pair (x, k) there).
+  auto walk = [&](auto&& self, const ex& x) -> void {
+    if (x.nops() == 0 || !seen.insert(symbolic::node_of(x)).second) return;
+    if (is_a<add>(x) || is_a<mul>(x)) {
+      const bool product = is_a<mul>(x);
+      for (const auto& p : symbolic::pairs_of(x)) {
+        if (product && !is_integer(p.coeff)) n = std::max(n, tree_size(p.rest));
+        self(self, p.rest);
+      }
+      return;
+    }
     if (is_a<function>(x))
       for (size_t i = 0; i < x.nops(); ++i) n = std::max(n, tree_size(x.op(i)));
-    else if (is_a<power>(x) && !(is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer()))
+    else if (is_a<power>(x) && !is_integer(x.op(1)))
       n = std::max(n, tree_size(x.op(0)));
-    return false;
-  });
+    for (size_t i = 0; i < x.nops(); ++i) self(self, x.op(i));
+  };
+  walk(walk, e);
   return n;
+}
+
+bool combine_keeps(const Rat& r) {
+  if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return true;
+  return largest_call_argument(r.num) > kMaxNormalNodes && !has_denominator_outside_calls(r.num);
 }
 
 Rat combine_fractions(const Rat& r) {
@@ -102,9 +139,13 @@ Rat combine_fractions(const Rat& r) {
   // than kMaxNormalNodes nodes, calls and roots stay opaque (temporary symbols).
   exmap opaque;
   const bool large = largest_call_argument(r.num) > kMaxNormalNodes;
+  // With calls and roots opaque, an expression without denominators outside them is an expanded polynomial
+  // in symbols: numer_denom would give it back with denominator 1, longer by that 1 (r.num is expanded and
+  // nonzero). Checked before to_rational, which substitutes its replacements into every opaque node.
+  if (large && !has_denominator_outside_calls(r.num)) return r;
   ex nd = (large ? r.num.to_rational(opaque) : r.num).numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
-  if (large) n = expand(n.subs(opaque, subs_options::no_pattern)), d = expand(d.subs(opaque, subs_options::no_pattern));
+  if (large) n = expand(n.subs(opaque, kSymbolSubs)), d = expand(d.subs(opaque, kSymbolSubs));
   auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
   if (n.is_zero()) return {0, 1};
   if (size(n) + size(d) >= size(r.num)) return r;

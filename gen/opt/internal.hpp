@@ -20,6 +20,10 @@ namespace cgagen::opt::detail {
 using ExSet = std::set<GiNaC::ex, GiNaC::ex_is_less>;
 using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
 
+// subs() options for maps whose keys are all symbols: no pattern matching, and no scan of the whole map
+// for product patterns at every sum and product (seconds with thousands of keys).
+constexpr unsigned kSymbolSubs = GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product;
+
 // CGAGEN_TIMING=1 prints how long each optimizer phase takes (to stderr), for finding hot spots.
 class PhaseTimer {
  public:
@@ -52,6 +56,9 @@ Rat canonical(const GiNaC::ex& e);
 // Brings a small output coefficient with denominators over one common denominator when that makes it
 // shorter (u.u - 1 with u = x/n folds to 0 or to a plain expression).
 Rat combine_fractions(const Rat& r);
+// True when combine_fractions(r) certainly returns r as it is (no denominator; too many terms; or, with
+// large roots and calls kept opaque, no denominator outside them).
+bool combine_keeps(const Rat& r);
 // An upper estimate of the number of terms of expand(e) when the symbols in `sizes` stand for sums of that
 // many terms (used to keep -O1 from expanding products of large values).
 double estimate_terms(const GiNaC::ex& e, const std::map<GiNaC::ex, double, GiNaC::ex_is_less>& sizes);

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "opt/cse.hpp"
 #include "opt/program.hpp"
+#include "symbolic/dag.hpp"
+#include "symbolic/multivector.hpp"
 
 namespace cgagen::opt {
 
@@ -32,6 +35,11 @@ constexpr size_t kMaxInlineTreeSize = 100000;
 // Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
 // The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
 constexpr size_t kMaxExpandedNodes = 4000;
+// Past this size of the -O1 form (counted while substituting, over the output coefficients that
+// combine_fractions keeps as they are: a lower bound of the final size) substitution stops: the statement form is certain, and
+// expanding the rest would only cost time (a 200-line dcga script: 2 million symbol occurrences, seconds).
+// The note then says "more than". Above circle3's 208494, which keeps its exact figure.
+constexpr size_t kMaxCountedNodes = 250000;
 
 
 std::string sanitize(const std::string& s) {
@@ -83,16 +91,86 @@ struct Substituted {
   ExSet needed;                        // value symbols the outputs need (transitively)
   std::map<ex, Rat, ex_is_less> full;  // value symbol -> coefficient over inputs and materialized values
   std::vector<ex> materialized;        // value symbols kept as temporaries, in kernel order
+  // Substitution stopped early: the -O1 form has more than kMaxCountedNodes symbol occurrences, `full`
+  // is incomplete and only the statement form is built.
+  bool over_count = false;
+};
+
+// e.subs(at, kSymbolSubs) for a map from symbols to values, computing each shared node once across all
+// calls (the outputs of a normalized value share one root of a large sum), and the result with each power
+// of non-integer exponent expanded once (expand() would expand that root's argument again for every
+// coefficient it appears in). Valid while `at` only grows; clear() when an entry changes.
+class SharedSubs {
+ public:
+  explicit SharedSubs(const exmap& at) : at_(at) {}
+  void clear() { subs_.clear(); }
+
+  ex subs(const ex& e) {
+    if (is_a<symbol>(e)) {
+      auto it = at_.find(e);
+      return it == at_.end() ? e : it->second;
+    }
+    if (e.nops() == 0) return e;
+    if (auto it = subs_.find(symbolic::node_of(e)); it != subs_.end()) return it->second.second;
+    ex r;
+    if (is_a<add>(e) || is_a<mul>(e)) {
+      const bool product = is_a<mul>(e);
+      const auto& pairs = symbolic::pairs_of(e);
+      exvector parts;
+      parts.reserve(pairs.size() + 1);
+      for (const auto& p : pairs) parts.push_back(product ? pow(subs(p.rest), p.coeff) : subs(p.rest) * p.coeff);
+      if (e.nops() > pairs.size()) parts.push_back(e.op(e.nops() - 1));  // the numeric overall coefficient
+      r = product ? ex(dynallocate<mul>(parts)) : ex(dynallocate<add>(parts));
+    } else if (is_a<power>(e)) {
+      r = pow(subs(e.op(0)), subs(e.op(1)));
+    } else {
+      r = e.subs(at_, kSymbolSubs);
+    }
+    subs_.emplace(symbolic::node_of(e), std::make_pair(e, r));
+    return r;
+  }
+
+  // e with every power of non-integer exponent outside function arguments replaced by its expansion
+  // (what expand(e) does to it, flagged expanded, so that expand(e) takes it as it is).
+  ex roots_expanded(const ex& e) {
+    if (e.nops() == 0 || is_a<function>(e)) return e;  // expand() leaves function arguments alone
+    if (auto it = roots_.find(symbolic::node_of(e)); it != roots_.end()) return it->second.second;
+    ex r;
+    if (is_a<power>(e) && !(is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_integer())) {
+      r = e.expand();
+    } else {
+      struct Op : map_function {
+        SharedSubs& self;
+        explicit Op(SharedSubs& s) : self(s) {}
+        ex operator()(const ex& x) override { return self.roots_expanded(x); }
+      } op(*this);
+      r = e.map(op);
+    }
+    roots_.emplace(symbolic::node_of(e), std::make_pair(e, r));
+    return r;
+  }
+
+ private:
+  const exmap& at_;
+  std::unordered_map<const basic*, std::pair<ex, ex>> subs_, roots_;  // node -> (node kept alive, result)
 };
 
 Substituted substitute(const Kernel& k) {
   Substituted s;
-  for (const auto& o : k.outputs)
-    for (const auto& sym : k.values.at(o.value).symbols) s.needed.insert(sym);
+  // How many output slots each value coefficient fills: their sizes add up to the -O1 form's size.
+  std::map<ex, size_t, ex_is_less> slot_uses;
+  for (const auto& o : k.outputs) {
+    const auto& v = k.values.at(o.value);
+    for (const auto& sym : v.symbols) s.needed.insert(sym);
+    for (auto b : o.blades)
+      if (int i = blade_pos(v, b); i >= 0) ++slot_uses[v.symbols[static_cast<size_t>(i)]];
+  }
+  size_t counted = 0;  // a lower bound of expanded_size(): output slots known so far
   for (auto v = k.values.rbegin(); v != k.values.rend(); ++v)
     for (size_t i = 0; i < v->blades.size(); ++i)
       if (s.needed.count(v->symbols[i])) collect_symbols(v->coeffs[i], s.needed);
   exmap subst;
+  SharedSubs shared(subst);
   std::map<ex, double, ex_is_less> sizes;
   ExSet materialized;
   for (const auto& v : k.values)
@@ -102,8 +180,8 @@ Substituted substitute(const Kernel& k) {
       Rat r;
       ex inlined;
       if (estimate_terms(v.coeffs[i], sizes) <= kMaxInlineTerms &&
-          tree_size(inlined = v.coeffs[i].subs(subst, subs_options::no_pattern)) <= kMaxInlineTreeSize) {
-        r = canonical(inlined);
+          tree_size(inlined = shared.subs(v.coeffs[i])) <= kMaxInlineTreeSize) {
+        r = canonical(shared.roots_expanded(inlined));
       } else {
         ExSet used;
         collect_symbols(v.coeffs[i], used);
@@ -114,12 +192,21 @@ Substituted substitute(const Kernel& k) {
             materialized.insert(u);
             subst.erase(u);
             sizes.erase(u);
+            shared.clear();
           }
-        r = canonical(v.coeffs[i].subs(subst, subs_options::no_pattern));
+        r = canonical(shared.roots_expanded(shared.subs(v.coeffs[i])));
       }
       subst[sym] = r.value();
       sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
       s.full[sym] = r;
+      // An output coefficient that combine_fractions keeps is the -O1 slot as it stands.
+      if (auto u = slot_uses.find(sym); u != slot_uses.end() && combine_keeps(r)) {
+        counted += u->second * tree_size(r.num);
+        if (counted > kMaxCountedNodes) {
+          s.over_count = true;
+          return s;
+        }
+      }
     }
   for (const auto& v : k.values)
     for (const auto& sym : v.symbols)
@@ -158,7 +245,12 @@ std::vector<std::vector<SlotPlan>> plan_slots(const Kernel& k, const Substituted
     for (auto b : o.blades) {
       int i = blade_pos(v, b);
       SlotPlan sp{o.name, b, {0, 1}, ex(0)};
-      if (i >= 0) {
+      if (i >= 0 && s.over_count) {
+        // Only the statement form is built: the blade is the value's (the expander dropped the blades whose
+        // coefficients vanish), its value is the value's symbol.
+        sp.value = {v.symbols[i], 1};
+        sp.value_sym = v.symbols[i];
+      } else if (i >= 0) {
         sp.value = combine_fractions(s.full.at(v.symbols[i]));
         sp.value_sym = v.symbols[i];
       }
@@ -190,7 +282,7 @@ StatementForm statement_form(const Kernel& k, const Substituted& s, const std::v
   for (const auto& v : k.values)
     for (size_t i = 0; i < v.blades.size(); ++i)
       if (s.needed.count(v.symbols[i])) {
-        ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, subs_options::no_pattern)).value();
+        ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, kSymbolSubs)).value();
         if (is_atomic(c))
           atomic[v.symbols[i]] = c;
         else
@@ -214,19 +306,20 @@ size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vecto
   return n;
 }
 
-std::string over_budget_note(const char* level, size_t size) {
-  return std::string(level) + " kept the script's statement form: the expanded form has " + std::to_string(size) +
+std::string over_budget_note(const char* level, size_t size, bool over_count) {
+  return std::string(level) + " kept the script's statement form: the expanded form has " +
+         (over_count ? "more than " + std::to_string(kMaxCountedNodes) : std::to_string(size)) +
          " symbol occurrences (budget " + std::to_string(kMaxExpandedNodes) + ")";
 }
 
 Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
   Program p = skeleton(k, Level::O1);
   p.temps = materialized_temps(k, s);
-  const size_t size = expanded_size(p.temps, plans);
-  if (size > kMaxExpandedNodes) {
+  const size_t size = s.over_count ? 0 : expanded_size(p.temps, plans);
+  if (s.over_count || size > kMaxExpandedNodes) {
     StatementForm f = statement_form(k, s, plans);
     p.temps = std::move(f.temps);
-    p.notes.push_back(over_budget_note("-O1", size));
+    p.notes.push_back(over_budget_note("-O1", size, s.over_count));
     size_t ri = 0;
     for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
       ProgramOutput po{k.outputs[oi].name, {}};
@@ -266,28 +359,155 @@ Program finish_o2(const Kernel& k, std::vector<Temp> in_temps, std::vector<ex> r
 
 long program_cost(const Program& p) { return program_stats(p).total.weighted(); }
 
-Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
+// ---------------------------------------------------------------------------------------------------------
+// `#pragma normalized X`: the caller promises X ~X = 1. Each blade of X ~X gives a polynomial identity in
+// X's coefficients (scalar part = 1, every other blade = 0); -O2 may rewrite the output polynomials with
+// them. A rule replaces a monomial by a polynomial without it: from the scalar part, a square v^2 (v
+// appearing there only squared) by (1 - the rest) / its coefficient; from another blade, one of its
+// bilinear terms u*w by minus the rest over its coefficient. Each choice of rules (one per identity) gives
+// more candidate forms; the cheapest form wins as always, so the plain forms stay candidates.
+
+struct Rule {
+  std::vector<std::pair<ex, int>> lead;  // the monomial's symbols and exponents
+  ex rhs;                                // what the monomial equals
+};
+
+// The rules one normalized input offers: per identity, its candidate rules (identities without any are left
+// out).
+std::vector<std::vector<Rule>> normalization_rules(const KernelInput& in) {
+  symbolic::Multivector x;
+  for (size_t i = 0; i < in.blades.size(); ++i) x += symbolic::Multivector::blade(in.blades[i], in.symbols[i]);
+  const symbolic::Multivector n = x * x.reverse();
+  std::vector<std::vector<Rule>> out;
+  for (const auto& [blade, c0] : n.terms()) {
+    const ex c = expand(blade == 0 ? c0 - 1 : c0);  // c = 0 when the input is normalized
+    if (!is_a<add>(c)) continue;
+    std::vector<Rule> candidates;
+    for (size_t t = 0; t < c.nops(); ++t) {
+      const ex term = c.op(t);
+      ExSet syms;
+      collect_symbols(term, syms);
+      const ex rest = c - term;
+      const ex beta = term.subs([&] {
+        exmap ones;
+        for (const auto& v : syms) ones[v] = 1;
+        return ones;
+      }(), kSymbolSubs);
+      if (!is_a<numeric>(beta) || beta.is_zero()) continue;
+      std::vector<std::pair<ex, int>> lead;
+      bool ok = true;
+      for (const auto& v : syms) {
+        const int d = term.degree(v);
+        if (rest.has(v) && !(syms.size() == 2 && d == 1)) ok = false;  // a square must be v's only occurrence
+        lead.push_back({v, d});
+      }
+      const bool square = syms.size() == 1 && lead[0].second == 2, bilinear = syms.size() == 2 && lead[0].second == 1 && lead[1].second == 1;
+      if (!ok || !(square || bilinear)) continue;
+      candidates.push_back({lead, expand(-rest / beta)});
+    }
+    // GiNaC's term order (and ex_is_less on symbols) changes from process to process: the rules are put in
+    // the order of their monomials' text, so that the same variants come in the same order everywhere.
+    auto key = [](const Rule& r) {
+      std::vector<std::string> parts;
+      for (const auto& [v, e] : r.lead) parts.push_back(ex_to<symbol>(v).get_name() + "^" + std::to_string(e));
+      std::sort(parts.begin(), parts.end());
+      std::string k;
+      for (const auto& p : parts) k += p + "*";
+      return k;
+    };
+    for (auto& r : candidates)
+      std::sort(r.lead.begin(), r.lead.end(), [](const auto& a, const auto& b) {
+        return ex_to<symbol>(a.first).get_name() < ex_to<symbol>(b.first).get_name();
+      });
+    std::sort(candidates.begin(), candidates.end(), [&](const Rule& a, const Rule& b) { return key(a) < key(b); });
+    if (!candidates.empty()) out.push_back(std::move(candidates));
+  }
+  return out;
+}
+
+// p (expanded) with every occurrence of the rule's monomial replaced, as often as it divides a term.
+ex apply_rule(const ex& p, const Rule& r) {
+  auto one = [&](const ex& term) -> ex {
+    int k = -1;
+    for (const auto& [v, e] : r.lead) {
+      if (!term.is_polynomial(v)) return term;
+      const int d = term.degree(v) / e;
+      k = k < 0 ? d : std::min(k, d);
+    }
+    if (k <= 0) return term;
+    ex divisor = 1;
+    for (const auto& [v, e] : r.lead) divisor *= pow(v, e * k);
+    return expand(term / divisor * pow(r.rhs, k));
+  };
+  if (!is_a<add>(p)) return expand(one(p));
+  exvector terms;
+  for (size_t i = 0; i < p.nops(); ++i) terms.push_back(one(p.op(i)));
+  return expand(dynallocate<add>(terms));
+}
+
+// p rewritten with the rules until none applies (at most a few rounds; the rules' right sides do not
+// contain their own monomials).
+ex reduce_with(ex p, const std::vector<Rule>& rules) {
+  for (int round = 0; round < 8; ++round) {
+    ex before = p;
+    for (const auto& r : rules) p = apply_rule(p, r);
+    if (p.is_equal(before)) break;
+  }
+  return p;
+}
+
+// Every choice of one rule per identity of every normalized input (at most kMaxRuleSets, the first ones).
+constexpr size_t kMaxRuleSets = 64;
+std::vector<std::vector<Rule>> rule_sets(const Kernel& k) {
+  std::vector<std::vector<Rule>> identities;
+  for (const auto& name : k.normalized)
+    for (const auto& in : k.inputs)
+      if (in.name == name.name)
+        for (auto& id : normalization_rules(in)) identities.push_back(std::move(id));
+  if (identities.empty()) return {};
+  std::vector<std::vector<Rule>> sets{{}};
+  for (const auto& id : identities) {
+    std::vector<std::vector<Rule>> next;
+    for (const auto& set : sets)
+      for (const auto& r : id)
+        if (next.size() < kMaxRuleSets) {
+          next.push_back(set);
+          next.back().push_back(r);
+        }
+    sets = std::move(next);
+  }
+  return sets;
+}
+
+// `#pragma normalized` must name multivector inputs.
+void check_normalized(const Kernel& k) {
+  for (const auto& n : k.normalized) {
+    auto in = std::find_if(k.inputs.begin(), k.inputs.end(), [&](const KernelInput& i) { return i.name == n.name; });
+    if (in == k.inputs.end() || !in->is_multivector)
+      throw front::CompileError(n.loc, "'#pragma normalized' names '" + n.name + "', which is not a multivector input " +
+                                           "(declare it with '#pragma input " + n.name + " BLADE...')");
+  }
+}
+
+Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans_in) {
   std::vector<Program> variants;
+  const std::vector<std::vector<SlotPlan>>* current = &plans_in;
   auto roots_with = [&](auto&& f) {
     std::vector<ex> roots;
-    for (const auto& slots : plans)
+    for (const auto& slots : *current)
       for (const auto& sp : slots) roots.push_back(f(sp));
     return roots;
   };
+  const auto& plans = plans_in;
   // 1. The expanded -O1 forms, and 2. the same collected in the inputs, unless the -O1 form is too large
   //    for the CSE passes to finish in time; on such scripts the statement form (3) has always been far
   //    cheaper anyway (paper A.1: 328 against 1516, circle3: 165 against 1402 weighted ops).
   const std::vector<Temp> kept = materialized_temps(k, s);
-  const size_t size = expanded_size(kept, plans);
+  const size_t size = s.over_count ? 0 : expanded_size(kept, plans);
   std::vector<std::string> notes;
-  if (size > kMaxExpandedNodes) {
-    notes.push_back(over_budget_note("-O2", size));
+  if (s.over_count || size > kMaxExpandedNodes) {
+    notes.push_back(over_budget_note("-O2", size, s.over_count));
   } else {
-    {
-      PhaseTimer t("variant expanded");
-      variants.push_back(
-          finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
-    }
     std::vector<std::vector<ex>> groups;
     std::vector<ex> scalars;
     for (const auto& in : k.inputs)
@@ -295,14 +515,31 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
     if (!scalars.empty()) groups.push_back(scalars);
     for (const auto& in : k.inputs)
       if (in.is_multivector) groups.emplace_back(in.symbols.begin(), in.symbols.end());
-    for (const auto& g : groups) {
-      std::vector<ex> roots;
-      PhaseTimer t("variant collected");
-      roots = roots_with([&](const SlotPlan& sp) {
-        ex n = collect_in(sp.value.num, g);
-        return sp.value.den.is_equal(1) ? n : n / collect_in(sp.value.den, g);
-      });
-      variants.push_back(finish_o2(k, kept, roots, plans));
+    auto add_forms = [&] {
+      {
+        PhaseTimer t("variant expanded");
+        variants.push_back(
+            finish_o2(k, kept, roots_with([](const SlotPlan& sp) { return sp.value.value(); }), plans));
+      }
+      for (const auto& g : groups) {
+        std::vector<ex> roots;
+        PhaseTimer t("variant collected");
+        roots = roots_with([&](const SlotPlan& sp) {
+          ex n = collect_in(sp.value.num, g);
+          return sp.value.den.is_equal(1) ? n : n / collect_in(sp.value.den, g);
+        });
+        variants.push_back(finish_o2(k, kept, roots, plans));
+      }
+    };
+    add_forms();
+    // The same forms of the outputs rewritten with each choice of normalization rules.
+    for (const auto& rules : rule_sets(k)) {
+      std::vector<std::vector<SlotPlan>> reduced = plans;
+      for (auto& slots : reduced)
+        for (auto& sp : slots) sp.value = {reduce_with(sp.value.num, rules), reduce_with(sp.value.den, rules)};
+      current = &reduced;
+      add_forms();
+      current = &plans_in;
     }
   }
   // 3. The script's own statements (each value expanded over earlier values), which keeps products like
@@ -314,7 +551,7 @@ Program optimize_o2(const Kernel& k, const Substituted& s, const std::vector<std
   }
   PhaseTimer tc("costs");
   size_t best = 0;
-  long best_cost = program_cost(variants[0]);
+  long best_cost = variants.size() > 1 ? program_cost(variants[0]) : 0;  // one form: nothing to compare
   for (size_t i = 1; i < variants.size(); ++i) {
     long c = program_cost(variants[i]);
     if (c < best_cost) best = i, best_cost = c;
@@ -347,6 +584,7 @@ Program optimize(const Kernel& kernel, Level level) {
 namespace {
 
 Program optimize_level(const Kernel& kernel, Level level) {
+  check_normalized(kernel);
   if (level == Level::O0) return optimize_o0(kernel);
   PhaseTimer all("optimize");
   Substituted s = [&] { PhaseTimer t("substitute"); return substitute(kernel); }();

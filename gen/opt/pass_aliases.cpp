@@ -10,7 +10,7 @@ void drop_aliases(CseState& st, std::vector<ex>& roots) {
   exmap alias;
   std::vector<Temp> kept;
   for (auto t : st.temps) {
-    if (!alias.empty()) t.value = t.value.subs(alias, subs_options::no_pattern);
+    if (!alias.empty()) t.value = t.value.subs(alias, kSymbolSubs);
     if (is_atomic(t.value))
       alias[t.sym] = t.value;
     else
@@ -18,7 +18,7 @@ void drop_aliases(CseState& st, std::vector<ex>& roots) {
   }
   st.temps = std::move(kept);
   if (!alias.empty())
-    for (auto& r : roots) r = orient_sums(r.subs(alias, subs_options::no_pattern), st.keys);
+    for (auto& r : roots) r = orient_sums(r.subs(alias, kSymbolSubs), st.keys);
 }
 
 }  // namespace cgagen::opt::detail

@@ -33,7 +33,7 @@ void inline_single_use(CseState& st, std::vector<ex>& roots) {
     if (uses == 1) {
       const size_t user = occ[i].begin()->first;
       ex& target = value_of(user);
-      ex v = target.subs(exmap{{t.sym, t.value}}, subs_options::no_pattern);
+      ex v = target.subs(exmap{{t.sym, t.value}}, kSymbolSubs);
       // GiNaC may re-simplify on substitution; keep the temporary when that would cost more.
       if (user < nt && count_ops(v, st.keys).weighted() >
                            count_ops(target, st.keys).weighted() + count_ops(t.value, st.keys).weighted())

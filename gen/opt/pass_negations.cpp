@@ -10,14 +10,14 @@ using namespace GiNaC;
 void fold_negations(CseState& st, std::vector<ex>& roots) {
   exmap flip;
   for (auto& t : st.temps) {
-    if (!flip.empty()) t.value = orient_sums(t.value.subs(flip, subs_options::no_pattern), st.keys);
+    if (!flip.empty()) t.value = orient_sums(t.value.subs(flip, kSymbolSubs), st.keys);
     if (st.keys.sign(t.value) < 0) {
       t.value = -t.value;
       flip[t.sym] = -t.sym;
     }
   }
   if (!flip.empty())
-    for (auto& r : roots) r = orient_sums(r.subs(flip, subs_options::no_pattern), st.keys);
+    for (auto& r : roots) r = orient_sums(r.subs(flip, kSymbolSubs), st.keys);
 }
 
 }  // namespace cgagen::opt::detail

@@ -6,6 +6,8 @@
 #include <ginac/ginac.h>
 
 #include <cstddef>
+#include <optional>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -15,6 +17,20 @@ namespace cgagen::symbolic {
 
 // The node's identity: the shared object ex points to.
 inline const GiNaC::basic* node_of(const GiNaC::ex& e) { return &GiNaC::ex_to<GiNaC::basic>(e); }
+
+// The terms of a sum / factors of a product as GiNaC stores them: (rest, coeff) pairs, coeff a number (a
+// term's coefficient, a factor's exponent; the sum's or product's numeric overall coefficient is not among
+// them). op(i) rebuilds coeff*rest or rest^coeff as a fresh object at each call, so a walk through op()
+// allocates at every node and never meets a shared node twice; the stored rests are the shared nodes.
+namespace detail {
+struct SeqAccess : GiNaC::expairseq {
+  static const GiNaC::epvector& seq_of(const GiNaC::expairseq& e) { return e.*(&SeqAccess::seq); }
+};
+}  // namespace detail
+// e must be a sum or a product (is_a<expairseq>).
+inline const GiNaC::epvector& pairs_of(const GiNaC::ex& e) {
+  return detail::SeqAccess::seq_of(GiNaC::ex_to<GiNaC::expairseq>(e));
+}
 
 // Calls f(node) once per distinct node of e reachable through op() (the nodes the preorder iterator
 // visits, each shared one once); stops and returns true as soon as f returns true.
@@ -34,9 +50,21 @@ bool visit_nodes_once(const GiNaC::ex& e, F&& f) {
   return false;
 }
 
+// Adds the symbols of e to `symbols`, each shared node visited once.
+void collect_symbols_into(const GiNaC::ex& e, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols);
+
+// Does e have a power with a negative numeric exponent (a denominator)? Each shared node once.
+bool has_negative_power(const GiNaC::ex& e);
+
 // The number of symbol occurrences of e counted as a tree (what a preorder walk counts), in time linear in
 // the DAG.
 std::size_t tree_symbol_count(const GiNaC::ex& e);
+
+// evalf(e.subs(at)) for a map from symbols to numbers, computed on the stored nodes (each shared node
+// once, no expression built): a number, possibly complex, or nullopt where some node does not evaluate to
+// a number (a symbol without a value, a function GiNaC leaves unevaluated); callers then ask GiNaC. Throws
+// at a pole, as subs/evalf would.
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at);
 
 // e.subs(at, subs_options::no_pattern) for a map from symbols to values, computing each shared node once.
 // Throws what subs would throw (a division by zero at a pole).

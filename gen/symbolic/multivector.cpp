@@ -10,7 +10,10 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <sstream>
 #include <vector>
 
@@ -18,12 +21,7 @@ namespace cgagen::symbolic {
 namespace {
 
 // Does e contain a power with a negative exponent (a denominator)? Only then is normal() worth calling.
-bool has_denominator(const GiNaC::ex& e) {
-  return visit_nodes_once(e, [](const GiNaC::ex& x) {
-    return GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
-           GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_negative();
-  });
-}
+bool has_denominator(const GiNaC::ex& e) { return has_negative_power(e); }
 
 // Terms of an expanded coefficient (a sum's terms; anything else is one).
 std::size_t term_count(const GiNaC::ex& e) { return GiNaC::is_a<GiNaC::add>(e) ? e.nops() : 1; }
@@ -41,37 +39,89 @@ GiNaC::ex canonical(const GiNaC::ex& c) {
 
 namespace {
 
-// Two fixed irregular points for the symbols of x, by symbol name (the same in every process). Evenly spaced
-// values would put e.g. three points on one line (a pole of circle3).
+// A symbol's value at probe point k: irregular in [0.3, 1.7), from its name alone (the same in every
+// process, and the same for every expression, so values of shared nodes can be kept). Evenly spaced values
+// would put e.g. three points on one line (a pole of circle3).
+GiNaC::numeric probe_value(const std::string& name, int k) {
+  std::uint64_t h = 0xcbf29ce484222325ull ^ static_cast<std::uint64_t>(k + 1);
+  for (unsigned char c : name) h = (h ^ c) * 0x100000001b3ull;
+  h = h * 6364136223846793005ull + 1442695040888963407ull;
+  return GiNaC::numeric(static_cast<long>(300 + (h >> 33) % 1400), 1000);
+}
+
+std::set<GiNaC::ex, GiNaC::ex_is_less> symbols_of(const GiNaC::ex& x) {
+  std::set<GiNaC::ex, GiNaC::ex_is_less> symbols;
+  collect_symbols_into(x, symbols);
+  return symbols;
+}
+
+// Two fixed irregular points for the symbols of x.
 std::vector<GiNaC::exmap> probe_points(const GiNaC::ex& x) {
-  using namespace GiNaC;
-  std::set<ex, ex_is_less> symbols;
-  visit_nodes_once(x, [&](const ex& e) {
-    if (is_a<symbol>(e)) symbols.insert(e);
-    return false;
-  });
-  std::map<std::string, ex> by_name;
-  for (const ex& s : symbols) by_name.emplace(ex_to<symbol>(s).get_name(), s);
-  std::uint64_t state = 0x9E3779B97F4A7C15ull;
-  std::vector<exmap> points(2);
-  for (exmap& at : points)
-    for (const auto& [name, s] : by_name) {
-      state = state * 6364136223846793005ull + 1442695040888963407ull;
-      at[s] = numeric(static_cast<long>(300 + (state >> 33) % 1400), 1000);  // in [0.3, 1.7)
-    }
+  std::vector<GiNaC::exmap> points(2);
+  for (const GiNaC::ex& sym : symbols_of(x))
+    for (int k = 0; k < 2; ++k) points[static_cast<size_t>(k)][sym] = probe_value(GiNaC::ex_to<GiNaC::symbol>(sym).get_name(), k);
   return points;
+}
+
+// x in floats at probe point k, each shared node once; the values of large nodes are kept for the process
+// (a root of a large sum under every coefficient of a normalized value). Throws at a pole.
+GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
+  using namespace GiNaC;
+  struct Entry {
+    ex node;  // kept alive: the address is never reused
+    numeric value;
+  };
+  static std::array<std::unordered_map<const basic*, Entry>, 2> cache;
+  std::unordered_map<const basic*, numeric> memo;
+  auto eval = [&](auto&& self, const ex& e) -> numeric {
+    if (is_a<numeric>(e)) return ex_to<numeric>(ex_to<numeric>(e).evalf());
+    if (is_a<symbol>(e)) return ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
+    if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;
+    if (auto it = cache[static_cast<size_t>(k)].find(node_of(e)); it != cache[static_cast<size_t>(k)].end())
+      return it->second.value;
+    numeric v;
+    if (is_a<add>(e) || is_a<mul>(e)) {
+      const bool product = is_a<mul>(e);
+      const auto& pairs = pairs_of(e);
+      v = product ? numeric(1) : numeric(0);
+      for (const auto& p : pairs) {
+        const numeric r = self(self, p.rest), c = ex_to<numeric>(p.coeff);
+        v = product ? v * (c.is_equal(numeric(1)) ? r : ex_to<numeric>(evalf(pow(r, c)))) : v + c * r;
+      }
+      if (e.nops() > pairs.size()) {  // the numeric overall coefficient
+        const numeric oc = ex_to<numeric>(ex_to<numeric>(e.op(e.nops() - 1)).evalf());
+        v = product ? v * oc : v + oc;
+      }
+    } else if (is_a<power>(e)) {
+      const ex f = evalf(pow(self(self, e.op(0)), self(self, e.op(1))));
+      if (!is_a<numeric>(f)) throw std::runtime_error("not a number at the probe");
+      v = ex_to<numeric>(f);
+    } else {
+      // Function calls and anything else: GiNaC on the node with its operands' values.
+      exmap at;
+      for (const ex& sym : symbols_of(e)) at[sym] = probe_value(ex_to<symbol>(sym).get_name(), k).evalf();
+      const ex f = DagSubs(at)(e).evalf();
+      if (!is_a<numeric>(f)) throw std::runtime_error("not a number at the probe");
+      v = ex_to<numeric>(f);
+    }
+    memo.emplace(node_of(e), v);
+    if (!is_a<mul>(e) || e.nops() > 8) {
+      auto& c = cache[static_cast<size_t>(k)];
+      if (c.size() >= 20000) c.clear();  // bounded in a long-lived process (the fuzzer)
+      c.emplace(node_of(e), Entry{e, v});
+    }
+    return v;
+  };
+  return eval(eval, x);
 }
 
 // True when x evaluates in floats far from 0 at a probe point: then it is not identically zero (values of a
 // few units cannot cancel to that). Cheap on an unexpanded x, which is where it pays.
-bool clearly_nonzero(const GiNaC::ex& x, const std::vector<GiNaC::exmap>& points) {
+bool clearly_nonzero(const GiNaC::ex& x) {
   using namespace GiNaC;
-  for (const exmap& at : points) {
-    exmap approx;
-    for (const auto& [s, v] : at) approx[s] = ex_to<numeric>(v).evalf();
+  for (int k = 0; k < 2; ++k) {
     try {
-      const ex f = DagSubs(approx)(x).evalf();
-      if (is_a<numeric>(f) && abs(ex_to<numeric>(f)) > numeric(1, 1000)) return true;
+      if (abs(float_value(x, k)) > numeric(1, 1000)) return true;
     } catch (const std::exception&) {
       // a pole at the probe
     }
@@ -101,15 +151,14 @@ bool zero_after_float_probes(const GiNaC::ex& x, const std::vector<GiNaC::exmap>
 }  // namespace
 
 bool is_zero_rational(const GiNaC::ex& x) {
-  const std::vector<GiNaC::exmap> points = probe_points(x);
-  return !clearly_nonzero(x, points) && zero_after_float_probes(x, points);
+  return !clearly_nonzero(x) && zero_after_float_probes(x, probe_points(x));
 }
 
 bool is_identically_zero(const GiNaC::ex& e) {
   // The float probes run on the unexpanded form: that spares expanding large inlined values that are
   // plainly not zero. Expanding cannot bring in symbols, so the same points serve the exact checks.
+  if (clearly_nonzero(e)) return false;
   const std::vector<GiNaC::exmap> points = probe_points(e);
-  if (clearly_nonzero(e, points)) return false;
   const GiNaC::ex x = e.expand();
   if (x.is_zero()) return true;
   return has_denominator(x) && zero_after_float_probes(x, points);
@@ -272,19 +321,133 @@ std::string Multivector::str() const {
 
 bool operator==(const Multivector& a, const Multivector& b) { return (a - b).is_zero(); }
 
+namespace {
+bool is_negative_number(const GiNaC::ex& x) {
+  return GiNaC::is_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_negative();
+}
+
+bool has_negative_power(const GiNaC::ex& e, std::unordered_set<const GiNaC::basic*>& seen) {
+  using namespace GiNaC;
+  if (e.nops() == 0 || !seen.insert(node_of(e)).second) return false;
+  if (is_a<expairseq>(e)) {
+    const bool product = is_a<mul>(e);  // a product's factor x^k is the pair (x, k)
+    for (const auto& p : pairs_of(e))
+      if ((product && is_negative_number(p.coeff)) || has_negative_power(p.rest, seen)) return true;
+    return false;
+  }
+  if (is_a<power>(e) && is_negative_number(e.op(1))) return true;
+  for (size_t i = 0; i < e.nops(); ++i)
+    if (has_negative_power(e.op(i), seen)) return true;
+  return false;
+}
+}  // namespace
+
+bool has_negative_power(const GiNaC::ex& e) {
+  std::unordered_set<const GiNaC::basic*> seen;
+  return has_negative_power(e, seen);
+}
+
+void collect_symbols_into(const GiNaC::ex& x, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols) {
+  using namespace GiNaC;
+  std::unordered_set<const basic*> seen;
+  auto walk = [&](auto&& self, const ex& e) -> void {
+    if (is_a<symbol>(e)) {
+      symbols.insert(e);
+      return;
+    }
+    if (e.nops() == 0 || !seen.insert(node_of(e)).second) return;
+    if (is_a<expairseq>(e)) {
+      for (const auto& p : pairs_of(e)) self(self, p.rest);
+    } else {
+      for (size_t i = 0; i < e.nops(); ++i) self(self, e.op(i));
+    }
+  };
+  walk(walk, x);
+}
+
 std::size_t tree_symbol_count(const GiNaC::ex& e) {
-  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> memo;
+  // Large shared nodes (a root's argument under every coefficient of a normalized value) are counted once
+  // per process: the cache keeps them alive, so an address is never reused for another node.
+  constexpr std::size_t kCachedFrom = 256, kMaxCached = 20000;
+  static std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> cache;
+  std::unordered_map<const GiNaC::basic*, std::size_t> memo;  // nodes of e, alive while e is
   auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
     if (GiNaC::is_a<GiNaC::symbol>(x)) return 1;
     if (x.nops() == 0) return 0;
     auto it = memo.find(node_of(x));
-    if (it != memo.end()) return it->second.second;
+    if (it != memo.end()) return it->second;
+    if (auto c = cache.find(node_of(x)); c != cache.end()) return c->second.second;
     std::size_t n = 0;
-    for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
-    memo.emplace(node_of(x), std::make_pair(x, n));
+    if (GiNaC::is_a<GiNaC::expairseq>(x)) {
+      // Sums and products: the coefficients, exponents and overall coefficient are numbers (no symbols).
+      for (const auto& pair : pairs_of(x)) n += self(self, pair.rest);
+    } else {
+      for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
+    }
+    memo.emplace(node_of(x), n);
+    if (n >= kCachedFrom) {
+      if (cache.size() >= kMaxCached) cache.clear();  // bounded in a long-lived process (the fuzzer)
+      cache.emplace(node_of(x), std::make_pair(x, n));
+    }
     return n;
   };
   return count(count, e);
+}
+
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at) {
+  using namespace GiNaC;
+  std::unordered_map<const basic*, std::optional<numeric>> memo;  // nodes of e, alive while e is
+  auto as_number = [](const ex& f) -> std::optional<numeric> {
+    if (!is_a<numeric>(f)) return std::nullopt;
+    return ex_to<numeric>(f);
+  };
+  auto eval = [&](auto&& self, const ex& x) -> std::optional<numeric> {
+    if (is_a<numeric>(x)) return as_number(evalf(x));
+    if (auto it = memo.find(node_of(x)); it != memo.end()) return it->second;  // symbols too: a map lookup
+    if (is_a<symbol>(x)) {
+      auto it = at.find(x);
+      std::optional<numeric> v;
+      if (it != at.end()) v = as_number(evalf(it->second));
+      memo.emplace(node_of(x), v);
+      return v;
+    }
+    if (x.nops() == 0) return as_number(evalf(x));  // a constant
+    std::optional<numeric> v;
+    if (is_a<add>(x) || is_a<mul>(x)) {
+      const bool product = is_a<mul>(x);
+      const auto& pairs = pairs_of(x);
+      // Numbers only: no expression objects built (a product's exponents are numbers, a sum's coefficients too).
+      numeric acc = product ? numeric(1) : numeric(0);
+      bool ok = true;
+      for (const auto& p : pairs) {
+        auto r = self(self, p.rest);
+        if (!r) { ok = false; break; }
+        const numeric& c = ex_to<numeric>(p.coeff);
+        if (product) acc = acc * (c.is_equal(numeric(1)) ? *r : r->power(c));
+        else acc = acc + *r * c;
+      }
+      if (ok && x.nops() > pairs.size()) {  // the numeric overall coefficient
+        const numeric& oc = ex_to<numeric>(x.op(x.nops() - 1));
+        acc = product ? acc * oc : acc + oc;
+      }
+      if (ok) v = as_number(evalf(acc));
+    } else if (is_a<power>(x)) {
+      auto b = self(self, x.op(0)), k = self(self, x.op(1));
+      if (b && k) v = as_number(evalf(pow(*b, *k)));
+    } else if (is_a<function>(x)) {
+      exvector args;
+      bool ok = true;
+      for (size_t i = 0; i < x.nops() && ok; ++i) {
+        auto a = self(self, x.op(i));
+        if (a) args.push_back(*a);
+        else ok = false;
+      }
+      if (ok) v = as_number(evalf(function(ex_to<function>(x).get_serial(), args)));
+    }
+    memo.emplace(node_of(x), v);
+    return v;
+  };
+  return eval(eval, e);
 }
 
 GiNaC::ex DagSubs::operator()(const GiNaC::ex& e) {

@@ -3,6 +3,9 @@
 
 #include <exception>
 #include <optional>
+#include <unordered_map>
+
+#include "symbolic/dag.hpp"
 
 namespace cgagen::symbolic {
 namespace {
@@ -25,53 +28,97 @@ std::uint64_t reduce(const GiNaC::numeric& integer) {  // integer mod p, in [0, 
   return static_cast<std::uint64_t>(m.to_long());
 }
 
-// Sums, products, integer powers, symbols and rational numbers only.
-bool is_rational_function(const GiNaC::ex& e) {
-  if (GiNaC::is_a<GiNaC::symbol>(e)) return true;
-  if (GiNaC::is_a<GiNaC::numeric>(e)) return GiNaC::ex_to<GiNaC::numeric>(e).is_rational();
-  if (GiNaC::is_a<GiNaC::power>(e)) {
-    const GiNaC::ex& k = e.op(1);
-    return GiNaC::is_a<GiNaC::numeric>(k) && GiNaC::ex_to<GiNaC::numeric>(k).is_integer() &&
-           is_rational_function(e.op(0));
-  }
-  if (!GiNaC::is_a<GiNaC::add>(e) && !GiNaC::is_a<GiNaC::mul>(e)) return false;
-  for (size_t i = 0; i < e.nops(); ++i)
-    if (!is_rational_function(e.op(i))) return false;
-  return true;
+std::uint64_t add_mod(std::uint64_t a, std::uint64_t b) {
+  const std::uint64_t r = a + b;  // a, b < p < 2^61: no overflow
+  return r >= kPrime ? r - kPrime : r;
 }
 
-// e at one point, modulo p; nullopt when e is not a rational function of known symbols or has a pole there.
-std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const GiNaC::exmap& at) {
-  if (!is_rational_function(e)) return std::nullopt;
-  try {
-    const GiNaC::ex v = e.subs(at, GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product);
-    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_rational()) return std::nullopt;
-    const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(v);
-    const std::uint64_t den = reduce(n.denom());
-    if (den == 0) return std::nullopt;  // a pole modulo p
-    return mul_mod(reduce(n.numer()), inverse_mod(den));
-  } catch (const std::exception&) {
-    return std::nullopt;  // a pole of the rational expression itself
-  }
+std::uint64_t pow_mod(std::uint64_t a, std::uint64_t e) {
+  std::uint64_t r = 1;
+  for (; e; e >>= 1, a = mul_mod(a, a))
+    if (e & 1) r = mul_mod(r, a);
+  return r;
+}
+
+// A rational number modulo p; nullopt when its denominator is a multiple of p.
+std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
+  if (!n.is_rational()) return std::nullopt;
+  const std::uint64_t den = reduce(n.denom());
+  if (den == 0) return std::nullopt;
+  return mul_mod(reduce(n.numer()), inverse_mod(den));
+}
+
+// e at one point, modulo p, computed directly on GiNaC's stored nodes (each shared node once); nullopt when
+// e is not a rational function of known symbols or has a pole there. Exact: the same value as
+// substituting the point's rationals and reducing, except where an intermediate denominator is a multiple
+// of p (probability ~2^-61 per operation).
+std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const std::map<GiNaC::ex, std::uint64_t, GiNaC::ex_is_less>& at) {
+  std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
+  auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
+    if (GiNaC::is_a<GiNaC::numeric>(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
+    if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
+    std::optional<std::uint64_t> v;
+    if (GiNaC::is_a<GiNaC::symbol>(x)) {
+      if (auto it = at.find(x); it != at.end()) v = it->second;
+    } else if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
+      const bool product = GiNaC::is_a<GiNaC::mul>(x);
+      const auto& pairs = symbolic::pairs_of(x);
+      std::uint64_t acc = product ? 1 : 0;
+      bool ok = true;
+      for (const auto& p : pairs) {
+        auto r = self(self, p.rest);
+        if (!r) { ok = false; break; }
+        const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(p.coeff);
+        if (product) {
+          if (!c.is_integer()) { ok = false; break; }
+          std::uint64_t base = *r;
+          if (c.is_negative()) {
+            if (base == 0) { ok = false; break; }  // a pole
+            base = inverse_mod(base);
+          }
+          acc = mul_mod(acc, pow_mod(base, static_cast<std::uint64_t>(GiNaC::abs(c).to_long())));
+        } else {
+          auto cm = number_mod(c);
+          if (!cm) { ok = false; break; }
+          acc = add_mod(acc, mul_mod(*cm, *r));
+        }
+      }
+      if (ok && x.nops() > pairs.size()) {  // the numeric overall coefficient
+        auto oc = number_mod(GiNaC::ex_to<GiNaC::numeric>(x.op(x.nops() - 1)));
+        if (!oc) ok = false;
+        else acc = product ? mul_mod(acc, *oc) : add_mod(acc, *oc);
+      }
+      if (ok) v = acc;
+    } else if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
+               GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer()) {
+      auto r = self(self, x.op(0));
+      const GiNaC::numeric& k = GiNaC::ex_to<GiNaC::numeric>(x.op(1));
+      if (r && !(k.is_negative() && *r == 0))
+        v = pow_mod(k.is_negative() ? inverse_mod(*r) : *r, static_cast<std::uint64_t>(GiNaC::abs(k).to_long()));
+    }
+    memo.emplace(symbolic::node_of(x), v);
+    return v;
+  };
+  return eval(eval, e);
 }
 
 }  // namespace
 
 void ProbePoints::add_input(const GiNaC::symbol& s) {
-  for (GiNaC::exmap& at : at_) {
+  for (auto& at : at_) {
     state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
-    at[s] = GiNaC::numeric(static_cast<long>(1 + (state_ >> 3) % (kPrime - 1)));
+    at[s] = 1 + (state_ >> 3) % (kPrime - 1);
   }
 }
 
 void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) {
-  for (GiNaC::exmap& at : at_)
-    if (auto v = value_at(definition, at)) at[s] = GiNaC::numeric(static_cast<long>(*v));
+  for (auto& at : at_)
+    if (auto v = value_at(definition, at)) at[s] = *v;
 }
 
 ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) const {
   int zeros = 0;
-  for (const GiNaC::exmap& at : at_) {
+  for (const auto& at : at_) {
     auto v = value_at(e, at);
     if (!v) continue;
     if (*v != 0) return Verdict::Nonzero;

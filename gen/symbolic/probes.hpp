@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 
 namespace cgagen::symbolic {
 
@@ -42,7 +43,7 @@ class ProbePoints {
   Verdict test(const GiNaC::ex& e) const;
 
  private:
-  std::array<GiNaC::exmap, kPoints> at_;  // symbol -> value in [0, p)
+  std::array<std::map<GiNaC::ex, std::uint64_t, GiNaC::ex_is_less>, kPoints> at_;  // symbol -> value in [0, p)
   std::uint64_t state_ = 0x243F6A8885A308D3ull;  // fixed: the same points in every run
 };
 

@@ -327,6 +327,79 @@ TEST_CASE("a G3 script gives the oracle's values through cgagen --algebra 3d --e
   expect_matches(got, "d", alg, og::dual(alg, v));
 }
 
+TEST_CASE("#pragma normalized: sandwiches of normalized versors give the oracle's values at -O2") {
+  // The rewritten outputs are right for inputs with X ~X = 1 (random unit G3 rotors, random PGA motors T R)
+  // and, as promised, only for those: a rotor scaled by 2 gives a different value than the oracle's.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto g3 = oracle_algebra("3d"), pga = oracle_algebra("3dpga");
+  const std::string g3_script =
+      "#pragma input R 1 e1^e2 e1^e3 e2^e3\n#pragma normalized R\nv = createPoint(x, y, z);\n?w = R * v * ~R;\n";
+  const std::string pga_script =
+      "#pragma input M 1 e0^e1 e0^e2 e0^e3 e1^e2 e1^e3 e2^e3 e0^e1^e2^e3\n#pragma normalized M\n"
+      "P = createPoint(x, y, z);\n?Q = M * P * ~M;\n";
+  const std::vector<std::string> motor_blades = {"1", "e0^e1", "e0^e2", "e0^e3", "e1^e2", "e1^e3", "e2^e3", "e0^e1^e2^e3"};
+  auto fmt = [](double v) {
+    char b[40];
+    std::snprintf(b, sizeof b, "%.17g", v);
+    return std::string(b);
+  };
+  for (int trial = 0; trial < 8; ++trial) {
+    INFO("trial " << trial);
+    const double x = 2 * u(rng), y = 2 * u(rng), z = 2 * u(rng);
+    const std::string point_args = " x=" + fmt(x) + " y=" + fmt(y) + " z=" + fmt(z);
+    // G3: a unit rotor.
+    std::vector<double> q(4);
+    double n2 = 0;
+    for (auto& c : q) {
+      c = u(rng);
+      n2 += c * c;
+    }
+    for (auto& c : q) c /= std::sqrt(n2);
+    const og::MV R = user_mv(g3, {{"1", q[0]}, {"e1^e2", q[1]}, {"e1^e3", q[2]}, {"e2^e3", q[3]}});
+    const og::MV v = user_mv(g3, {{"e1", x}, {"e2", y}, {"e3", z}});
+    auto got = eval("3d", "g3_normalized.clu", g3_script,
+                    "R=" + fmt(q[0]) + "," + fmt(q[1]) + "," + fmt(q[2]) + "," + fmt(q[3]) + point_args);
+    expect_matches(got, "w", g3, og::product(g3, og::product(g3, R, v, og::Op::Geometric), og::reverse(R), og::Op::Geometric));
+    // PGA: M = T R, a rotor about a random axis through the origin, then a random translation.
+    double b2 = 0;
+    std::vector<double> b(3), t(3);
+    for (auto& c : b) {
+      c = u(rng);
+      b2 += c * c;
+    }
+    for (auto& c : t) c = 2 * u(rng);
+    const double angle = 3 * u(rng), cs = std::cos(angle / 2), sn = std::sin(angle / 2) / std::sqrt(b2);
+    const og::MV Rm = user_mv(pga, {{"1", cs}, {"e1^e2", sn * b[0]}, {"e1^e3", sn * b[1]}, {"e2^e3", sn * b[2]}});
+    const og::MV T = user_mv(pga, {{"1", 1}, {"e0^e1", t[0] / 2}, {"e0^e2", t[1] / 2}, {"e0^e3", t[2] / 2}});
+    const og::MV M = og::product(pga, T, Rm, og::Op::Geometric);
+    const Named m = from_oracle(pga, M);
+    std::string margs = "M=";
+    for (size_t i = 0; i < motor_blades.size(); ++i)
+      margs += (i ? "," : "") + fmt(m.count(motor_blades[i]) ? m.at(motor_blades[i]) : 0.0);
+    const og::MV P = user_mv(pga, {{"e1^e2^e3", 1}, {"e0^e2^e3", -x}, {"e0^e1^e3", y}, {"e0^e1^e2", -z}});
+    got = eval("3dpga", "pga_normalized.clu", pga_script, margs + point_args);
+    expect_matches(got, "Q", pga, og::product(pga, og::product(pga, M, P, og::Op::Geometric), og::reverse(M), og::Op::Geometric));
+  }
+  // A rotor that is not normalized (R = 2): the sandwich is 4 v, which the plain kernel gives and the
+  // rewritten one does not (it has used R ~R = 1).
+  auto got = eval("3d", "g3_normalized.clu", g3_script, "R=2,0,0,0 x=1 y=0 z=0");
+  CHECK(std::abs(got.at("w e1") - 4.0) > 1);
+  got = eval("3d", "g3_plain.clu", "#pragma input R 1 e1^e2 e1^e3 e2^e3\nv = createPoint(x, y, z);\n?w = R * v * ~R;\n",
+             "R=2,0,0,0 x=1 y=0 z=0");
+  CHECK(std::abs(got.at("w e1") - 4.0) < 1e-12);
+}
+
+TEST_CASE("#pragma normalized names must be multivector inputs (located errors)") {
+  Cli scalar = run_cli("--algebra 3d " + write("normalized_scalar.clu", "#pragma normalized s\n?w = s * e1;\n"));
+  CHECK(scalar.code == 1);
+  CHECK(scalar.out.find("normalized_scalar.clu:1:20: error: '#pragma normalized' names 's', which is not a multivector "
+                        "input (declare it with '#pragma input s BLADE...')") != std::string::npos);
+  Cli none = run_cli("--algebra 3d " + write("normalized_none.clu", "#pragma normalized\n?w = e1;\n"));
+  CHECK(none.code == 1);
+  CHECK(none.out.find("'#pragma normalized' needs at least one input name") != std::string::npos);
+}
+
 TEST_CASE("an STA script gives the oracle's values through cgagen --algebra sta --eval") {
   const auto alg = oracle_algebra("sta");
   const std::string script =
@@ -448,11 +521,22 @@ TEST_CASE("op counts: PGA motor and G3 rotor sandwiches at -O2 (the numbers docs
                                                                      "v = createPoint(x, y, z);\n?w = R * v * ~R;\n"));
   REQUIRE(g3.code == 0);
   CHECK(total_ops(g3.out) == std::pair{21, 22});  // the quaternion form for a unit q: 12, 18
+  // The same with `#pragma normalized`: -O2 may use X ~X = 1 (docs/generator.md, "Normalized inputs").
+  Cli pga_n = run_cli("--algebra 3dpga --stats " +
+                      write("pga_sandwich_n.clu", "#pragma input M 1 e0^e1 e0^e2 e0^e3 e1^e2 e1^e3 e2^e3 e0^e1^e2^e3\n"
+                                                  "#pragma normalized M\nP = createPoint(x, y, z);\n?Q = M * P * ~M;\n"));
+  REQUIRE(pga_n.code == 0);
+  CHECK(total_ops(pga_n.out) == std::pair{18, 21});  // the hand form: 18 add, 25 mul
+  Cli g3_n = run_cli("--algebra 3d --stats " + write("g3_sandwich_n.clu", "#pragma input R 1 e1^e2 e1^e3 e2^e3\n#pragma normalized R\n"
+                                                                         "v = createPoint(x, y, z);\n?w = R * v * ~R;\n"));
+  REQUIRE(g3_n.code == 0);
+  CHECK(total_ops(g3_n.out) == std::pair{12, 18});  // the quaternion form: 12 add, 18 mul
 }
 
 TEST_CASE("a 200-line script in every built-in algebra compiles at -O2") {
   // Times are benchmark figures (bench/bench_generator.cpp, docs/generator.md), not verdicts. dcga's joins of
-  // points are 4-vectors of up to 210 quartic coefficients that -O2 works through for ~12 s of CPU; the test
+  // points are 4-vectors of up to 210 quartic coefficients (~3.5 s of CPU at -O2, 9 s before the work of
+  // docs/generator.md "Generator time"; more under the sanitizers); the test
   // compiles the same script with inner-product joins, and the benchmark keeps the heavy one.
   for (const auto& [name, arity] : kArity) {
     INFO("algebra " << name);
@@ -505,4 +589,11 @@ TEST_CASE("output is byte-identical across processes in other algebras too") {
     REQUIRE(first.code == 0);
     for (int k = 0; k < 3; ++k) CHECK(run_cli("--algebra " + name + " " + path).out == first.out);
   }
+  // `#pragma normalized`: its rules come from GiNaC sums, whose term order changes from process to process.
+  const std::string motor = write("det_pga_normalized.clu",
+                                  "#pragma input M 1 e0^e1 e0^e2 e0^e3 e1^e2 e1^e3 e2^e3 e0^e1^e2^e3\n#pragma normalized M\n"
+                                  "P = createPoint(x, y, z);\n?Q = M * P * ~M;\n");
+  const Cli first = run_cli("--algebra 3dpga " + motor);
+  REQUIRE(first.code == 0);
+  for (int k = 0; k < 5; ++k) CHECK(run_cli("--algebra 3dpga " + motor).out == first.out);
 }
