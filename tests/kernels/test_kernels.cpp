@@ -36,6 +36,7 @@
 #include "plane_distance.hpp"
 #include "rotor_n3.hpp"
 #include "transform_point.hpp"
+#include "transform_point_staged.hpp"
 #include "translator_inverse.hpp"
 
 // The CUDA kernels as host C++: the same functions in namespace cuh::cga::kernels (their standard headers
@@ -51,6 +52,7 @@ namespace cuh {
 #include "motor_reverse.cuh"
 #include "motor_to_matrix.cuh"
 #include "transform_point.cuh"
+#include "transform_point_staged.cuh"
 #undef __host__
 #undef __device__
 #undef __forceinline__
@@ -592,6 +594,53 @@ TEMPLATE_TEST_CASE("staged transform_point: prepare(M) then body = the unstaged 
     const MV M = from_coeffs(m.data(), kMotorBlades);
     const MV X = oracle::up(double(p[0]), double(p[1]), double(p[2]));
     check_against(P, s::transform_point_P_blades, M * X * oracle::reverse(M), tol, {"einf", "e1^e2^e3^einf^e0"});
+  }
+}
+
+TEMPLATE_TEST_CASE("the runtime's motor -> 3x4 (generated transform_point_staged's prepare, over its weight) = the "
+                   "hand-derived motor_to_matrix", "[kernels][stage]", double, float) {
+  // cga::motor_matrix reads these 13 prepared values (the 3x4 rows and the weight) and divides them by the
+  // weight; motor_to_matrix.clu (tests/kernels/scripts) is the hand split it replaced.
+  using T = TestType;
+  const double tol = std::is_same_v<T, double> ? 1e-12 : 2e-5;
+  REQUIRE(k::transform_point_staged_prepare_prepared_blades.size() == 13);
+  CHECK(k::transform_point_staged_prepare_prepared_blades[12] == "P.e0");
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    const bool exact = n % 2;
+    std::array<T, 12> m;
+    if (exact) {
+      do m = random_exact_motor<T>(rng);
+      while (std::abs(static_cast<double>(m[0])) < 0.3);
+    } else {
+      m = rng.template array_of<T, 12>();
+      m[0] += 3;  // keep the weight away from 0
+    }
+    T prepared[13], cpu[13], c[4][3];
+    k::transform_point_staged_prepare(m.data(), prepared);
+    cuh::cga::kernels::transform_point_staged_prepare(m.data(), cpu);
+    k::motor_to_matrix(m.data(), c[0], c[1], c[2], c[3]);
+    INFO((exact ? "exact motor" : "any 12 coefficients") << ", trial " << n);
+    for (int i = 0; i < 13; ++i) REQUIRE(prepared[i] == cpu[i]);  // the CUDA form is the same code
+    // Row r of the prepared matrix: P.e<r>[1] (translation), P.e<r>[x], P.e<r>[y], P.e<r>[z].
+    T got[12], want[12];
+    for (int r = 0; r < 3; ++r) {
+      for (int col = 0; col < 3; ++col) got[4 * r + col] = prepared[4 * r + 1 + col] / prepared[12];
+      got[4 * r + 3] = prepared[4 * r] / prepared[12];
+      for (int col = 0; col < 4; ++col) want[4 * r + col] = c[col][r];
+    }
+    check_same(got, want, tol);
+    // And the body on the normalized values is the matrix times the point, w = 1.
+    T normalized[13], P[4];
+    for (int i = 0; i < 13; ++i) normalized[i] = prepared[i] / prepared[12];
+    auto p = rng.template array_of<T, 3>();
+    k::transform_point_staged(normalized, p[0], p[1], p[2], P);
+    for (int r = 0; r < 3; ++r) {
+      const double want_r = double(want[4 * r]) * p[0] + double(want[4 * r + 1]) * p[1] +
+                            double(want[4 * r + 2]) * p[2] + double(want[4 * r + 3]);
+      REQUIRE(std::abs(double(P[r]) - want_r) <= 8 * tol * std::max(1.0, std::abs(want_r)));
+    }
+    REQUIRE(std::abs(double(P[3]) - 1.0) <= tol);
   }
 }
 
