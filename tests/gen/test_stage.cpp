@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "a1_hand.hpp"
 #include "cli_run.hpp"
 #include "emit/emit.hpp"
 #include "expand/expand.hpp"
@@ -77,6 +78,29 @@ TEST_CASE("staged transform_point (M uniform): 9 mul + 9 add per point, prepare 
   CHECK(s.prepare.outputs.at(0).slots.size() == 13);
 }
 
+TEST_CASE("staged transform_point_split (G, H, U uniform): skinning's matrix, against the hand "
+          "motor_split_to_matrix", "[stage]") {
+  // The runtime script's own pragma stages it (no --uniform): point and normal per element.
+  const Kernel k = load(kRuntime / "transform_point_split.clu");
+  const auto s = opt::stage(opt::optimize(k, Level::O2), opt::uniform_inputs(k, {}));
+  CHECK(s.uniforms == std::vector<std::string>{"G", "H", "U"});
+  const auto body = opt::program_stats(s.body).total, prepare = opt::program_stats(s.prepare).total;
+  INFO("per element " << opt::format_counts(body) << "; prepare " << opt::format_counts(prepare));
+  CHECK(body.mul <= 18);  // 9 for the point, 9 for the normal
+  CHECK(body.add <= 15);  // 9 + 6 (no translation for the normal)
+  CHECK(body.div == 0);
+  CHECK(s.prepare.outputs.at(0).slots.size() == 12);  // the normalized 3x4: point and normal share it
+  const auto hand =
+      opt::program_stats(opt::optimize(load(kHandScripts / "motor_split_to_matrix.clu"), Level::O2)).total;
+  INFO("hand motor_split_to_matrix " << opt::format_counts(hand));
+  CHECK(prepare.add <= hand.add);
+  CHECK(prepare.div <= hand.div);
+  CHECK(prepare.call <= hand.call);
+  // A known gap (docs/generator.md): with the normal's output the -O2 reciprocal sharing scales H by 1/w as
+  // well as G, 4 mul more than the hand script's 39; without the normal the prepare equals the hand one.
+  CHECK(prepare.mul <= hand.mul + 4);
+}
+
 TEST_CASE("staged paper A.1 (key parameters uniform): 9 mul + 9 add per vertex", "[stage]") {
   const auto s = staged(kTests / "paper_a1.clu", kPaperUniforms);
   const auto body = opt::program_stats(s.body).total, prepare = opt::program_stats(s.prepare).total;
@@ -90,6 +114,64 @@ TEST_CASE("staged paper A.1 (key parameters uniform): 9 mul + 9 add per vertex",
   CHECK(prepare.add <= 125);
   CHECK(prepare.div <= 2);
   CHECK(s.prepare.outputs.at(0).slots.size() <= 13);
+}
+
+namespace {
+// A scalar that counts the operations done on it (unary minus is free, as in the generator's counts).
+struct CountedOps {
+  long add = 0, mul = 0, div = 0;
+};
+CountedOps g_ops;
+struct Counted {
+  double v;
+  Counted(double x = 0) : v(x) {}
+};
+Counted operator+(Counted a, Counted b) { return ++g_ops.add, Counted(a.v + b.v); }
+Counted operator-(Counted a, Counted b) { return ++g_ops.add, Counted(a.v - b.v); }
+Counted operator*(Counted a, Counted b) { return ++g_ops.mul, Counted(a.v * b.v); }
+Counted operator/(Counted a, Counted b) { return ++g_ops.div, Counted(a.v / b.v); }
+Counted operator-(Counted a) { return Counted(-a.v); }
+}  // namespace
+
+TEST_CASE("staged paper A.1: the prepare against the best hand-written per-bone code (a measurement)", "[stage]") {
+  // tests/gen/a1_hand.hpp computes the same 13 prepared values by hand; its operations are counted here.
+  const auto s = staged(kTests / "paper_a1.clu", kPaperUniforms);
+  const auto prepare = opt::program_stats(s.prepare).total;
+  g_ops = {};
+  Counted cin[17], cout[13];
+  cga_test::a1_hand(cin, cout);
+  const CountedOps hand = g_ops;
+  const double ratio_mul = double(prepare.mul) / hand.mul, ratio_add = double(prepare.add) / hand.add;
+  INFO("staged prepare " << opt::format_counts(prepare) << "; hand " << hand.add << " add, " << hand.mul << " mul, "
+                         << hand.div << " div; ratio mul " << ratio_mul << ", add " << ratio_add);
+  // The figures docs/generator.md gives: hand 96 mul + 81 add + 2 div, staged 135 + 125 + 2 (1.41x, 1.54x:
+  // the issue's 1.2x is not met). A change to either side shows here.
+  CHECK(hand.mul == 96);
+  CHECK(hand.add == 81);
+  CHECK(hand.div == 2);
+  CHECK(prepare.div <= hand.div);
+  CHECK(ratio_mul <= 1.41);
+  CHECK(ratio_add <= 1.55);
+  // The hand code computes the staged prepare's values (same slot order) on 1000 random key poses.
+  REQUIRE(s.prepare.outputs.at(0).slots.size() == 13);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 1000; ++trial) {
+    double in[17], out[13];
+    opt::InputValues v;
+    for (int i = 0; i < 17; ++i) {
+      in[i] = u(rng);
+      if (i == 7 || i == 15) in[i] = 0.5 + std::abs(in[i]);  // the scale factors d1, d2 > 0
+      v[kPaperUniforms[i]] = {in[i]};
+    }
+    cga_test::a1_hand(in, out);
+    const auto want = opt::evaluate(s.prepare, v);
+    REQUIRE(want.size() == 13);
+    for (int i = 0; i < 13; ++i) {
+      INFO("trial " << trial << ", prepared value " << i);
+      REQUIRE(std::abs(out[i] - want[i].value) <= 1e-12 * std::max(1.0, std::abs(want[i].value)));
+    }
+  }
 }
 
 TEST_CASE("a uniform 1/w folds into the prepared matrix", "[stage]") {
