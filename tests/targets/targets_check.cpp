@@ -64,6 +64,8 @@ struct Case {
   std::vector<std::string> uniforms;  // staged: the uniform inputs (else empty)
   std::vector<bool> is_uniform;       // per input
   size_t prepared = 0;                // staged: K, the number of prepared values (else 0)
+  size_t graph_nodes = 0;             // the dot graph's nodes: input blades + temporaries + output blades
+                                      // (staged: both programs', the prepared values once)
   opt::Program prog;  // -O2: the interface the targets print
   opt::Program ref;   // -O0: the reference
   std::vector<size_t> in_sizes;   // 0: scalar
@@ -130,7 +132,15 @@ Case load(const std::string& arg, bool numeric) {
   c.uniforms = opt::uniform_inputs(k, cli_uniforms);
   for (const auto& in : c.prog.inputs)
     c.is_uniform.push_back(std::find(c.uniforms.begin(), c.uniforms.end(), in.name) != c.uniforms.end());
-  if (!c.uniforms.empty()) c.prepared = opt::stage(c.prog, c.uniforms).prepare.outputs.at(0).slots.size();
+  if (!c.uniforms.empty()) {
+    const opt::StagedProgram st = opt::stage(c.prog, c.uniforms);
+    c.prepared = st.prepare.outputs.at(0).slots.size();
+    for (const opt::Program* p : {&st.prepare, &st.body}) {
+      for (const auto& in : p->inputs)
+        if (p == &st.prepare || in.name != "prepared") c.graph_nodes += in.is_multivector ? in.symbols.size() : 1;
+      c.graph_nodes += p->temps.size();
+    }
+  }
   for (const auto& in : c.prog.inputs) {
     c.in_sizes.push_back(in.is_multivector ? in.symbols.size() : 0);
     c.nin += in.is_multivector ? in.symbols.size() : 1;
@@ -861,7 +871,7 @@ void run_dot(const std::vector<Case>& cases, const std::string& gendir, const st
       nodes += line.rfind("node ", 0) == 0;
       edges += line.rfind("edge ", 0) == 0;
     }
-    size_t expected = c.nin + c.prog.temps.size() + c.nout;
+    size_t expected = c.prepared ? c.graph_nodes + c.prepared + c.nout : c.nin + c.prog.temps.size() + c.nout;
     ok &= nodes == expected && slurp(base + ".svg").find("<svg") != std::string::npos && slurp(base + ".err").empty();
     std::printf("%s %-20s dot: %zu nodes (expected %zu: inputs + temporaries + output blades), %zu edges\n",
                 ok ? "ok  " : "FAIL", c.name.c_str(), nodes, expected, edges);
