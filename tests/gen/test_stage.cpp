@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -329,4 +331,66 @@ TEST_CASE("a kernel without uniforms is emitted exactly as before staging existe
   auto r = cga_test::run(cga_test::script("transform_point.clu"));
   CHECK(r.code == 0);
   CHECK(r.out.find("prepare") == std::string::npos);
+}
+
+TEST_CASE("GLSL: the prepared values as an array, a mat3x4, a uniform block or a storage buffer (glslang)",
+          "[stage][targets]") {
+  // transform_point_split: 12 prepared values (G H U uniform by its pragma). Each packing is emitted, wrapped
+  // in a #version 450 vertex shader that calls the prepare and the body, and compiled by glslangValidator.
+  const std::string tps = cga_test::script("transform_point_split.clu");
+  const std::string prepare_call =
+      "  float g[4] = float[4](1.0, 0.1, 0.2, 0.3), h[4] = float[4](0.9, 0.1, 0.2, 0.3), u[4] = float[4](0.1, 0.2, "
+      "0.3, 0.4);\n";
+  struct Case {
+    std::string kind, expect, call;
+  };
+  const Case cases[] = {
+      {"array", "void transform_point_split(in float prepared[12], float x,",
+       "  float prep[12];\n  transform_point_split_prepare(g, h, u, prep);\n"
+       "  transform_point_split(prep, pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+      {"mat3x4", "void transform_point_split(in mat3x4 prepared, float x,",
+       "  mat3x4 prep;\n  transform_point_split_prepare(g, h, u, prep);\n"
+       "  transform_point_split(prep, pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+      {"block",
+       "layout(std140) uniform transform_point_split_prepared_block {\n  vec4 transform_point_split_prepared[3];",
+       "  float prep[12];\n  transform_point_split_prepare(g, h, u, prep);  // what the host uploads\n"
+       "  transform_point_split(pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+      {"buffer",
+       "layout(std430) readonly buffer transform_point_split_prepared_buffer {\n  float "
+       "transform_point_split_prepared[];",
+       "  float prep[12];\n  transform_point_split_prepare(g, h, u, prep);\n"
+       "  transform_point_split(gl_InstanceID, pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+  };
+  for (const Case& c : cases) {
+    INFO("--pack prepared=" << c.kind);
+    auto r = cga_test::run("--target glsl " + (c.kind == "array" ? "" : "--pack prepared=" + c.kind + " ") + tps);
+    REQUIRE(r.code == 0);
+    CHECK(r.out.find(c.expect) != std::string::npos);
+    if (c.kind == "block") CHECK(r.out.find("transform_point_split_prepared[2][3]") != std::string::npos);
+    if (c.kind == "buffer") {
+      CHECK(r.out.find("void transform_point_split(int prepared_index, float x,") != std::string::npos);
+      CHECK(r.out.find("transform_point_split_prepared[prepared_index * 12 + 11]") != std::string::npos);
+    }
+    // The prepare function still writes its values (an array, or the mat3x4).
+    CHECK(r.out.find(c.kind == "mat3x4" ? "out mat3x4 prepared)" : "out float prepared[12])") != std::string::npos);
+    const std::string path = std::string(CGA_BINARY_DIR) + "/stage_pack_" + c.kind + ".vert";
+    std::ofstream(path) << "#version 450\n" << r.out
+                        << "\nlayout(location = 0) in vec3 pos;\nlayout(location = 0) out vec3 o;\nvoid main() {\n"
+                        << prepare_call << "  float p[3], n[3];\n" << c.call
+                        << "  o = vec3(p[0], p[1], p[2]) + vec3(n[0], n[1], n[2]);\n  gl_Position = vec4(o, 1.0);\n}\n";
+    const int status = std::system((std::string(GLSLANG_VALIDATOR) + " " + path + " > " + path + ".log 2>&1").c_str());
+    INFO(std::ifstream(path + ".log").rdbuf());
+    CHECK(status == 0);
+  }
+  // Block and buffer apply to the prepared values only; mat3x4 holds at most 12 (transform_point has 13).
+  auto r = cga_test::run("--target glsl --pack G=block " + tps);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("--pack G=block: block and buffer apply to a staged kernel's prepared values only") !=
+        std::string::npos);
+  r = cga_test::run("--target glsl --uniform M --pack prepared=mat3x4 " + cga_test::script("transform_point.clu"));
+  CHECK(r.code == 1);
+  CHECK(r.out.find("cannot pack 'prepared' (13 blades) as mat3x4") != std::string::npos);
+  r = cga_test::run("--target glsl --uniform M --pack prepared=block " + cga_test::script("transform_point.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out.find("vec4 transform_point_prepared[4];") != std::string::npos);
 }
