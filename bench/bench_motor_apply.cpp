@@ -1,6 +1,8 @@
 // Applying one motor to 1 M points (SoA floats), in ns/point:
 //   transform_point  the generated sandwich kernel M X ~M per point, then the division by the point weight
-//   motor_to_matrix  the generated motor -> 3x4 kernel once (hoisted), then a 3x4 affine map per point
+//   transform_point_staged  the same script staged (issue 19, M uniform): the generated prepare once per
+//                    motor (cga::motor_prepare_points: 13 values over the weight), then the generated
+//                    per-point body (9 mul + 9 add) per point
 //   glm mat3x4       the baseline: the same transform as a GLM 3x4 matrix built from TRS, dot products per point
 // All three loops are compiled alike (this file at -O3 without errno/trapping math, see CMakeLists.txt, and
 // built twice: x86-64-v3 and the portable default, picked at run time), so only the per-point work differs.
@@ -87,18 +89,19 @@ inline __attribute__((always_inline)) void transform_point_loop(const Motor& mot
   }
 }
 
-// The row-major 3x4 map p' = R p + t applied to every point (the per-point work of the hoisted variant
-// after its per-motor setup).
-inline __attribute__((always_inline)) void rows_loop(const float* rows, const Io& io) {
+// The generated per-element body of the staged transform_point on every point (the prepared values are
+// normalized by the weight, so its output is the Euclidean point; its w slot is 1 and unused).
+inline __attribute__((always_inline)) void staged_loop(const PreparedPointTransform& prepared, const Io& io) {
   CGA_BENCH_UNPACK(io);
-  float m[12];
-  for (int e = 0; e < 12; ++e) m[e] = rows[e];
+  float m[13];
+  for (int e = 0; e < 13; ++e) m[e] = prepared[e];
 #pragma GCC ivdep
   for (std::size_t i = 0; i < n; ++i) {
-    const float x = px[i], y = py[i], z = pz[i];
-    ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
-    oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
-    oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
+    float p[4];
+    kernels::transform_point_staged(m, px[i], py[i], pz[i], p);
+    ox[i] = p[0];
+    oy[i] = p[1];
+    oz[i] = p[2];
   }
 }
 
@@ -119,14 +122,14 @@ inline __attribute__((always_inline)) void glm_loop(const glm::mat3x4& matrix, c
 CGA_BENCH_CLONES __attribute__((flatten)) void apply_transform_point(const Motor& motor, const Io& io) {
   transform_point_loop(motor, io);
 }
-CGA_BENCH_CLONES __attribute__((flatten)) void apply_rows(const float* rows, const Io& io) {
-  rows_loop(rows, io);
+CGA_BENCH_CLONES __attribute__((flatten)) void apply_staged(const PreparedPointTransform& prepared, const Io& io) {
+  staged_loop(prepared, io);
 }
 CGA_BENCH_CLONES __attribute__((flatten)) void apply_glm(const glm::mat3x4& matrix, const Io& io) {
   glm_loop(matrix, io);
 }
 
-enum class Variant { transform_point, motor_to_matrix, glm };
+enum class Variant { transform_point, staged, glm };
 
 void bm_apply(benchmark::State& state, Variant variant) {
   static const Points in(kPoints, 99);
@@ -138,9 +141,9 @@ void bm_apply(benchmark::State& state, Variant variant) {
   for (auto _ : state) {
     switch (variant) {
       case Variant::transform_point: apply_transform_point(m, io); break;
-      case Variant::motor_to_matrix: {
-        const glm::mat3x4 rows = motor_matrix(m);  // once per motor, inside the timed loop
-        apply_rows(&rows[0][0], io);
+      case Variant::staged: {
+        const PreparedPointTransform prepared = motor_prepare_points(m);  // once per motor, inside the timed loop
+        apply_staged(prepared, io);
         break;
       }
       case Variant::glm: {
@@ -168,8 +171,8 @@ void register_motor_apply_benchmarks() {
   };
   const V variants[] = {
       {Variant::transform_point, "motor_apply/transform_point", "generated transform_point per point", std::nullopt},
-      {Variant::motor_to_matrix, "motor_apply/motor_to_matrix_hoisted",
-       "generated motor_to_matrix once + 3x4 per point", Target{2.0, "<= 2 ns/point"}},
+      {Variant::staged, "motor_apply/transform_point_staged",
+       "generated staged transform_point: prepare once + body per point", Target{2.0, "<= 2 ns/point"}},
       {Variant::glm, "motor_apply/glm_mat3x4", "GLM mat3x4 per point (baseline)", std::nullopt},
   };
   for (const V& v : variants) {

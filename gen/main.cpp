@@ -39,7 +39,9 @@ options:
   --name NAME             function name (default: the script's file stem)
   --templates DIR         emitter templates (default: ../share/cgagen/templates next to the cgagen
                           executable when installed, else the source tree's templates/)
-  --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float
+  --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float; a staged
+                          kernel's prepared values also as block (a uniform block) or buffer (a
+                          storage buffer of many sets, selected by an int prepared_index)
   --return OUT            glsl: return output OUT instead of an out parameter
   --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
                           `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values

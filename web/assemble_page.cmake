@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.20)  # new policies: "@NAME@" in the placeholders stays literal
 # Assembles the page template at build time (cmake -P): page.html with the WebGL 2 shaders (cgagen's
-# generated GLSL ES motor_split_to_matrix + skin.vert.glsl, and skin.frag.glsl), the WebGPU module (cgagen's
-# generated WGSL motor_split_to_matrix + skin.wgsl) and app.js put in its placeholders; the data placeholder
+# generated GLSL ES transform_point_split + skin.vert.glsl, and skin.frag.glsl), the WebGPU module (cgagen's
+# generated WGSL transform_point_split + skin.wgsl) and app.js put in its placeholders; the data placeholder
 # /*@CGA_DATA@*/ stays for cga-demo --web. Writes OUT_HTML (to look at) and OUT_CPP (cga::web::page_template(),
 # which cga-demo compiles in, so the executable needs no files at run time).
 #   -DWEB_DIR=<web/> -DESSL=<generated .essl> -DWGSL=<generated .wgsl> -DOUT_HTML=<file> -DOUT_CPP=<file>

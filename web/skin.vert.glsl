@@ -1,5 +1,5 @@
 // The page's WebGL 2 vertex shader (GLSL ES 3.00), after "#version 300 es" and cgagen's generated
-// motor_split_to_matrix (GLSL ES target, array interface), which assemble_page.cmake put in front of it.
+// transform_point_split_prepare (GLSL ES target, array interface), which assemble_page.cmake put in front of it.
 // One palette entry = 5 texels of u_palette (RGBA32F, 1024 wide): the motor's 12 blades (Gaalop order,
 // the paper's mat3x4) and the dual quaternion of its rigid part (real xyzw, dual xyzw). The skin() functions
 // follow runtime/gpu/shaders/skin_*.glsl: lbs blends the per-bone matrices (from the generated kernel),
@@ -29,7 +29,7 @@ out vec3 v_color;
 
 vec4 texel(int i) { return texelFetch(u_palette, ivec2(i & 1023, i >> 10), 0); }
 
-// The split form of entry e's motor (see motor_split_to_matrix.clu): a = (1 e12 e13 e23) = blades 0 1 2 4,
+// The split form of entry e's motor (see transform_point_split.clu): a = (1 e12 e13 e23) = blades 0 1 2 4,
 // b = the same times einf^e0 = blades 7 9 10 11, U = blades 3 5 6 8; G = a + b, H = a - b.
 void motor_split(int e, out vec4 G, out vec4 H, out vec4 U) {
   vec4 m0 = texel(5 * e), m1 = texel(5 * e + 1), m2 = texel(5 * e + 2);
@@ -40,17 +40,19 @@ void motor_split(int e, out vec4 G, out vec4 H, out vec4 U) {
   U = vec4(m0.w, m1.yz, m2.x);
 }
 
-// The generated kernel takes and returns float arrays.
+// The generated prepare of the staged point transform (transform_point_split.clu, G H U uniform) takes and
+// returns float arrays; its 12 prepared values are the weight-normalized 3x4 matrix, row r as (translation,
+// x, y, z) (slots p.e<r>[1] p.e<r>[x] p.e<r>[y] p.e<r>[z]), read here as the columns c1 c2 c3 and t.
 void split_to_matrix(vec4 G, vec4 H, vec4 U, out vec3 c1, out vec3 c2, out vec3 c3, out vec3 t) {
   float g[4] = float[4](G.x, G.y, G.z, G.w);
   float h[4] = float[4](H.x, H.y, H.z, H.w);
   float u[4] = float[4](U.x, U.y, U.z, U.w);
-  float o1[3], o2[3], o3[3], ot[3];
-  motor_split_to_matrix(g, h, u, o1, o2, o3, ot);
-  c1 = vec3(o1[0], o1[1], o1[2]);
-  c2 = vec3(o2[0], o2[1], o2[2]);
-  c3 = vec3(o3[0], o3[1], o3[2]);
-  t = vec3(ot[0], ot[1], ot[2]);
+  float m[12];
+  transform_point_split_prepare(g, h, u, m);
+  c1 = vec3(m[1], m[5], m[9]);
+  c2 = vec3(m[2], m[6], m[10]);
+  c3 = vec3(m[3], m[7], m[11]);
+  t = vec3(m[0], m[4], m[8]);
 }
 
 void bone_matrix(int e, out vec3 c1, out vec3 c2, out vec3 c3, out vec3 t) {

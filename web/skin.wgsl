@@ -1,4 +1,4 @@
-// The page's WebGPU shaders (WGSL), after cgagen's generated motor_split_to_matrix (WGSL target: array
+// The page's WebGPU shaders (WGSL), after cgagen's generated transform_point_split (WGSL target: array
 // values in, pointers to arrays out), which assemble_page.cmake put in front of this file. The same maths
 // as skin.vert.glsl (see there and runtime/gpu/shaders/skin_*.glsl); the palette is a storage buffer of
 // vec4s, 5 per entry (motor blades 0-11 in Gaalop order, then the rigid part's dual quaternion), and the
@@ -46,16 +46,15 @@ fn motor_split(e: i32) -> Split {
   return Split(a + b, a - b, vec4<f32>(m0.w, m1.yz, m2.x));
 }
 
-// The generated kernel takes and returns f32 arrays.
+// The generated prepare of the staged point transform (transform_point_split.clu, G H U uniform) takes and
+// returns f32 arrays; its 12 prepared values are the weight-normalized 3x4 matrix, row r as (translation,
+// x, y, z) (slots p.e<r>[1] p.e<r>[x] p.e<r>[y] p.e<r>[z]).
 fn split_to_matrix(s: Split) -> Affine {
-  var o1: array<f32, 3>;
-  var o2: array<f32, 3>;
-  var o3: array<f32, 3>;
-  var ot: array<f32, 3>;
-  motor_split_to_matrix(array<f32, 4>(s.G.x, s.G.y, s.G.z, s.G.w), array<f32, 4>(s.H.x, s.H.y, s.H.z, s.H.w),
-                        array<f32, 4>(s.U.x, s.U.y, s.U.z, s.U.w), &o1, &o2, &o3, &ot);
-  return Affine(vec3<f32>(o1[0], o1[1], o1[2]), vec3<f32>(o2[0], o2[1], o2[2]), vec3<f32>(o3[0], o3[1], o3[2]),
-                vec3<f32>(ot[0], ot[1], ot[2]));
+  var m: array<f32, 12>;
+  transform_point_split_prepare(array<f32, 4>(s.G.x, s.G.y, s.G.z, s.G.w), array<f32, 4>(s.H.x, s.H.y, s.H.z, s.H.w),
+                                array<f32, 4>(s.U.x, s.U.y, s.U.z, s.U.w), &m);
+  return Affine(vec3<f32>(m[1], m[5], m[9]), vec3<f32>(m[2], m[6], m[10]), vec3<f32>(m[3], m[7], m[11]),
+                vec3<f32>(m[0], m[4], m[8]));
 }
 
 struct Skinned {

@@ -29,7 +29,7 @@ namespace {
 using namespace cga;
 
 // Floats per palette entry in the page: the motor's 12 blades (Gaalop order = the paper's mat3x4, which
-// lbs, cga-points and cga-motors read through the generated motor_split_to_matrix) + the dual quaternion of
+// lbs, cga-points and cga-motors read through the generated transform_point_split_prepare) + the dual quaternion of
 // its rigid part (real xyzw, dual xyzw: cga::append_packed_palette's dqs layout) for dqs.
 constexpr int kEntryFloats = 20;
 // Floats per vertex: position 3, normal 3, 4 palette indices (as floats: exact below 2^24), 4 weights.

@@ -52,7 +52,9 @@ Pack parse_pack(const std::string& t) {
   if (t == "vec4") return Pack::Vec4;
   if (t == "vec3") return Pack::Vec3;
   if (t == "float") return Pack::Float;
-  throw std::invalid_argument("unknown packing '" + t + "' (expected mat3x4, vec4, vec3 or float)");
+  if (t == "block") return Pack::Block;
+  if (t == "buffer") return Pack::Buffer;
+  throw std::invalid_argument("unknown packing '" + t + "' (expected mat3x4, vec4, vec3, float, block or buffer)");
 }
 
 // An installed cgagen (BINDIR/cgagen) finds its templates in BINDIR/../share/cgagen/templates, wherever the
@@ -258,6 +260,8 @@ const char* pack_type(Pack p) {
     case Pack::Vec4: return "vec4";
     case Pack::Vec3: return "vec3";
     case Pack::Float: return "float";
+    case Pack::Block: return "block";
+    case Pack::Buffer: return "buffer";
     case Pack::Array: return "float";
   }
   return "float";
@@ -269,6 +273,8 @@ size_t pack_capacity(Pack p) {
     case Pack::Vec4: return 4;
     case Pack::Vec3: return 3;
     case Pack::Float: return 1;
+    case Pack::Block:
+    case Pack::Buffer:
     case Pack::Array: return SIZE_MAX;
   }
   return 0;
@@ -343,10 +349,18 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   if (!sx.glsl_pack && (!options.pack.empty() || !options.return_output.empty()))
     throw std::runtime_error("--pack and --return apply to the glsl target only");
 
-  // Packing per parameter.
-  auto pack_of = [&](const std::string& name, size_t size) {
+  // Packing per parameter. Block and buffer are the body's way of reading a staged kernel's prepared values;
+  // the prepare function's output of the same name stays an array (output = true).
+  auto pack_of = [&](const std::string& name, size_t size, bool output = false) {
     auto it = options.pack.find(name);
     Pack p = it == options.pack.end() ? Pack::Array : it->second;
+    if (p == Pack::Block || p == Pack::Buffer) {
+      if (name != "prepared")
+        throw std::runtime_error("--pack " + name + "=" + pack_type(p) +
+                                 ": block and buffer apply to a staged kernel's prepared values only (--pack "
+                                 "prepared=" + pack_type(p) + " with --uniform or #pragma uniform)");
+      if (output) return Pack::Array;
+    }
     if (p != Pack::Array && size > pack_capacity(p))
       throw std::runtime_error("cannot pack '" + name + "' (" + std::to_string(size) + " blades) as " +
                                pack_type(p));
@@ -359,6 +373,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       for (const auto& o : pr->outputs) found |= o.name == name;
     }
     if (!found) throw std::runtime_error("--pack names '" + name + "', which is neither an input nor an output");
+    pack_of(name, 0);  // block / buffer on anything but the prepared values is an error
   }
   if (!options.return_output.empty()) {
     bool found = false;
@@ -380,8 +395,16 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   opt::SymbolNames canon = opt::symbol_names(program);
   CanonicalKeys keys(canon);
 
+  // The block / buffer that holds the prepared values (Pack::Block, Pack::Buffer), named after the body.
+  const std::string prepared_store = program.name + "_prepared";
+  size_t prepared_k = 0;
+  for (const auto& in : program.inputs)
+    if (in.name == "prepared") prepared_k = in.symbols.size();
   // Blade k of a parameter or output, in the target's syntax (GLSL packing included).
   auto elem = [&](const std::string& name, size_t k, Pack p, bool output = false) {
+    if (p == Pack::Block) return prepared_store + "[" + std::to_string(k / 4) + "][" + std::to_string(k % 4) + "]";
+    if (p == Pack::Buffer)
+      return prepared_store + "[prepared_index * " + std::to_string(prepared_k) + " + " + std::to_string(k) + "]";
     if (p != Pack::Array) return element(name, k, p);
     const std::string& pattern = output && !sx.out_element.empty() ? sx.out_element : sx.element;
     return fill_pattern(pattern, {{"name", as_ident(sx, name)}, {"k", std::to_string(k)}});
@@ -415,6 +438,11 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
         continue;
       }
       Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
+      if (p == Pack::Block) continue;  // read from the uniform block
+      if (p == Pack::Buffer) {
+        add_param("int prepared_index");
+        continue;
+      }
       add_param(p == Pack::Array ? fill_pattern(sx.mv_param, v) : std::string("in ") + pack_type(p) + " " + in.name);
     }
     std::string return_type = "void";
@@ -424,7 +452,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     std::string items;
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
-      Pack p = sx.glsl_pack ? pack_of(o.name, n) : Pack::Array;
+      Pack p = sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array;
       std::map<std::string, std::string> v{{"T", T}, {"name", as_ident(sx, o.name)}, {"n", std::to_string(n)}};
       if (sx.out_param.empty()) {
         body += line(fill_pattern(sx.out_decl, v));
@@ -446,7 +474,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       body += line(fill_pattern(sx.temp, {{"T", T}, {"name", as_ident(sx, t.name)}, {"value", pr.print(t.value)}}));
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
-      Pack p = sx.glsl_pack ? pack_of(o.name, n) : Pack::Array;
+      Pack p = sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array;
       for (size_t k = 0; k < n; ++k)
         body += line(fill_pattern(sx.assign, {{"elem", elem(o.name, k, p, true)},
                                               {"value", pr.print(o.slots[k].value)},
@@ -457,7 +485,19 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     }
     body += ret_line;
     if (!body.empty() && body.back() == '\n') body.pop_back();
-    return prec.before + fill_template(fn_tmpl,
+    // The declaration of the block / buffer the body reads its prepared values from.
+    std::string store;
+    if (sx.glsl_pack && prepared_k) {
+      const Pack p = pack_of("prepared", prepared_k);
+      if (p == Pack::Block)
+        store = "layout(std140) uniform " + prepared_store + "_block {\n  vec4 " + prepared_store + "[" +
+                std::to_string((prepared_k + 3) / 4) + "];  // value k at [k / 4][k % 4]\n};\n\n";
+      else if (p == Pack::Buffer)
+        store = "layout(std430) readonly buffer " + prepared_store + "_buffer {\n  float " + prepared_store +
+                "[];  // set i: values i * " + std::to_string(prepared_k) + " ... i * " +
+                std::to_string(prepared_k) + " + " + std::to_string(prepared_k - 1) + "\n};\n\n";
+    }
+    return prec.before + store + fill_template(fn_tmpl,
                                        {{"return_type", return_type},
                                         {"name", as_text(sx, program.name + prec.fn_suffix)},
                                         {"params", params},

@@ -82,9 +82,14 @@ struct Target {
 Target parse_target(const std::string& text);  // a name from targets(); throws std::invalid_argument
 std::string file_extension(Target t);          // ".hpp" | ".glsl" | ".cuh" | ...
 
-// How a GLSL parameter is passed: as a float array (default) or packed in a vector/matrix type.
-enum class Pack { Array, Mat3x4, Vec4, Vec3, Float };
-Pack parse_pack(const std::string& text);  // "mat3x4" | "vec4" | "vec3" | "float"
+// How a GLSL parameter is passed: as a float array (default) or packed in a vector/matrix type. A staged
+// kernel's prepared values (the body's input `prepared`) can also come from a uniform block (Block: no
+// parameter; `layout(std140) uniform NAME_prepared_block { vec4 NAME_prepared[(K+3)/4]; };` declared before
+// the body) or a storage buffer of many prepared sets (Buffer: an `int prepared_index` parameter selects
+// set i of `layout(std430) readonly buffer NAME_prepared_buffer { float NAME_prepared[]; };`, values
+// i*K ... i*K+K-1; GLSL 4.30). The prepare function still writes a float[K] the host uploads.
+enum class Pack { Array, Mat3x4, Vec4, Vec3, Float, Block, Buffer };
+Pack parse_pack(const std::string& text);  // "mat3x4" | "vec4" | "vec3" | "float" | "block" | "buffer"
 
 struct EmitOptions {
   Target target = Target::Cpp;

@@ -262,6 +262,10 @@ Program finish(const Program& shape, std::string name, std::vector<KernelInput> 
 
 }  // namespace
 
+namespace {
+bool shape_o2(const Program& p) { return p.level == Level::O2; }
+}  // namespace
+
 StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) {
   const std::set<std::string> uniform_set(uniforms.begin(), uniforms.end());
   StagedProgram sp;
@@ -375,6 +379,26 @@ StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) 
     ProgramOutput prep{prepared_name, {}};
     for (size_t i = 0; i < split.values.size(); ++i) prep.slots.push_back({0, split.values[i]});
     c.prepare = finish(p, p.name + "_prepare", uniform_inputs_, uniform_temps, split.values, {prep}, "u");
+    // The prepare also from scratch: the unstaged program's uniform temporaries were shared for the whole
+    // kernel (per-element outputs included), which can favour other products than the prepared values
+    // alone need (transform_point_split: H/w as well as G/w). So the values with those temporaries
+    // substituted go through the pipeline too (not expanded: paper A.1's expansion takes minutes); the cheapest prepare is kept
+    // (the first on a tie, so nothing changes where the inherited sharing is as good).
+    if (shape_o2(p) && !uniform_temps.empty()) {
+      exmap usubs;
+      for (const auto& t : uniform_temps)
+        usubs[t.sym] = usubs.empty() ? t.value : t.value.subs(usubs, subs_options::no_pattern);
+      std::vector<ex> flat;
+      double flat_size = 0;
+      for (const auto& v : split.values) {
+        flat.push_back(v.subs(usubs, subs_options::no_pattern));
+        flat_size += static_cast<double>(tree_size(flat.back()));
+      }
+      if (flat_size <= kMaxInlinedSize) {
+        Program alt = finish(p, p.name + "_prepare", uniform_inputs_, {}, flat, {prep}, "u");
+        if (program_stats(alt).total.weighted() < program_stats(c.prepare).total.weighted()) c.prepare = alt;
+      }
+    }
     c.prepare.labels[prepared_name] = split.labels;
     c.body_cost = program_stats(c.body).total.weighted();
     c.prepare_cost = program_stats(c.prepare).total.weighted();

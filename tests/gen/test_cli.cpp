@@ -63,7 +63,8 @@ TEST_CASE("bad --pack and --return are reported, not crashed on", "[cli]") {
 TEST_CASE("two processes emit byte-identical code", "[cli]") {
   for (const char* level : {"-O0", "-O1", "-O2"}) {
     for (const char* target : {"cpp", "glsl", "cuda"}) {
-      std::string args = std::string("--target ") + target + " " + level + " " + script("motor_to_matrix.clu");
+      std::string args = std::string("--target ") + target + " " + level + " " + CGA_SOURCE_DIR +
+                         "/tests/kernels/scripts/motor_to_matrix.clu";
       auto a = run(args), b = run(args);
       REQUIRE(a.code == 0);
       CHECK(a.out == b.out);

@@ -6,11 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "a1_hand.hpp"
 #include "cli_run.hpp"
 #include "emit/emit.hpp"
 #include "expand/expand.hpp"
@@ -26,6 +29,8 @@ namespace {
 
 const std::filesystem::path kRuntime = std::filesystem::path(CGA_SOURCE_DIR) / "runtime" / "scripts";
 const std::filesystem::path kTests = std::filesystem::path(CGA_TEST_SCRIPTS);
+// The hand-derived splits that staging replaced in the runtime, kept as tests (motor_to_matrix.clu).
+const std::filesystem::path kHandScripts = std::filesystem::path(CGA_SOURCE_DIR) / "tests" / "kernels" / "scripts";
 
 // The paper's A.1 script: every key parameter uniform, the vertex X, Y, Z per element.
 const std::vector<std::string> kPaperUniforms = {"transX", "transY", "transZ", "axis1X", "axis1Y", "axis1Z",
@@ -61,7 +66,7 @@ TEST_CASE("staged transform_point (M uniform): 9 mul + 9 add per point, prepare 
   CHECK(body.div == 0);
   CHECK(body.call == 0);
   // The hand split this replaces: runtime/scripts/motor_to_matrix.clu at -O2 (62 mul + 63 add + 1 div).
-  const auto hand = opt::program_stats(opt::optimize(load(kRuntime / "motor_to_matrix.clu"), Level::O2)).total;
+  const auto hand = opt::program_stats(opt::optimize(load(kHandScripts / "motor_to_matrix.clu"), Level::O2)).total;
   INFO("hand motor_to_matrix " << opt::format_counts(hand));
   CHECK(prepare.mul <= hand.mul);
   CHECK(prepare.add <= hand.add);
@@ -73,6 +78,29 @@ TEST_CASE("staged transform_point (M uniform): 9 mul + 9 add per point, prepare 
   CHECK(prepare.div == 0);
   // The 3x4 matrix and the weight: 12 + 1 prepared values.
   CHECK(s.prepare.outputs.at(0).slots.size() == 13);
+}
+
+TEST_CASE("staged transform_point_split (G, H, U uniform): skinning's matrix, against the hand "
+          "motor_split_to_matrix", "[stage]") {
+  // The runtime script's own pragma stages it (no --uniform): point and normal per element.
+  const Kernel k = load(kRuntime / "transform_point_split.clu");
+  const auto s = opt::stage(opt::optimize(k, Level::O2), opt::uniform_inputs(k, {}));
+  CHECK(s.uniforms == std::vector<std::string>{"G", "H", "U"});
+  const auto body = opt::program_stats(s.body).total, prepare = opt::program_stats(s.prepare).total;
+  INFO("per element " << opt::format_counts(body) << "; prepare " << opt::format_counts(prepare));
+  CHECK(body.mul <= 18);  // 9 for the point, 9 for the normal
+  CHECK(body.add <= 15);  // 9 + 6 (no translation for the normal)
+  CHECK(body.div == 0);
+  CHECK(s.prepare.outputs.at(0).slots.size() == 12);  // the normalized 3x4: point and normal share it
+  const auto hand =
+      opt::program_stats(opt::optimize(load(kHandScripts / "motor_split_to_matrix.clu"), Level::O2)).total;
+  INFO("hand motor_split_to_matrix " << opt::format_counts(hand));
+  CHECK(prepare.add <= hand.add);
+  CHECK(prepare.div <= hand.div);
+  CHECK(prepare.call <= hand.call);
+  // No dearer than the hand split (39 mul + 39 add + 1 div). The prepare inherited the unstaged program's
+  // sharing (1/w times H as well as G: 43 mul) until stage.cpp also optimizes the prepared values afresh.
+  CHECK(prepare.mul <= hand.mul);
 }
 
 TEST_CASE("staged paper A.1 (key parameters uniform): 9 mul + 9 add per vertex", "[stage]") {
@@ -88,6 +116,64 @@ TEST_CASE("staged paper A.1 (key parameters uniform): 9 mul + 9 add per vertex",
   CHECK(prepare.add <= 125);
   CHECK(prepare.div <= 2);
   CHECK(s.prepare.outputs.at(0).slots.size() <= 13);
+}
+
+namespace {
+// A scalar that counts the operations done on it (unary minus is free, as in the generator's counts).
+struct CountedOps {
+  long add = 0, mul = 0, div = 0;
+};
+CountedOps g_ops;
+struct Counted {
+  double v;
+  Counted(double x = 0) : v(x) {}
+};
+Counted operator+(Counted a, Counted b) { return ++g_ops.add, Counted(a.v + b.v); }
+Counted operator-(Counted a, Counted b) { return ++g_ops.add, Counted(a.v - b.v); }
+Counted operator*(Counted a, Counted b) { return ++g_ops.mul, Counted(a.v * b.v); }
+Counted operator/(Counted a, Counted b) { return ++g_ops.div, Counted(a.v / b.v); }
+Counted operator-(Counted a) { return Counted(-a.v); }
+}  // namespace
+
+TEST_CASE("staged paper A.1: the prepare against the best hand-written per-bone code (a measurement)", "[stage]") {
+  // tests/gen/a1_hand.hpp computes the same 13 prepared values by hand; its operations are counted here.
+  const auto s = staged(kTests / "paper_a1.clu", kPaperUniforms);
+  const auto prepare = opt::program_stats(s.prepare).total;
+  g_ops = {};
+  Counted cin[17], cout[13];
+  cga_test::a1_hand(cin, cout);
+  const CountedOps hand = g_ops;
+  const double ratio_mul = double(prepare.mul) / hand.mul, ratio_add = double(prepare.add) / hand.add;
+  INFO("staged prepare " << opt::format_counts(prepare) << "; hand " << hand.add << " add, " << hand.mul << " mul, "
+                         << hand.div << " div; ratio mul " << ratio_mul << ", add " << ratio_add);
+  // The figures docs/generator.md gives: hand 96 mul + 81 add + 2 div, staged 135 + 125 + 2 (1.41x, 1.54x:
+  // the issue's 1.2x is not met). A change to either side shows here.
+  CHECK(hand.mul == 96);
+  CHECK(hand.add == 81);
+  CHECK(hand.div == 2);
+  CHECK(prepare.div <= hand.div);
+  CHECK(ratio_mul <= 1.41);
+  CHECK(ratio_add <= 1.55);
+  // The hand code computes the staged prepare's values (same slot order) on 1000 random key poses.
+  REQUIRE(s.prepare.outputs.at(0).slots.size() == 13);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 1000; ++trial) {
+    double in[17], out[13];
+    opt::InputValues v;
+    for (int i = 0; i < 17; ++i) {
+      in[i] = u(rng);
+      if (i == 7 || i == 15) in[i] = 0.5 + std::abs(in[i]);  // the scale factors d1, d2 > 0
+      v[kPaperUniforms[i]] = {in[i]};
+    }
+    cga_test::a1_hand(in, out);
+    const auto want = opt::evaluate(s.prepare, v);
+    REQUIRE(want.size() == 13);
+    for (int i = 0; i < 13; ++i) {
+      INFO("trial " << trial << ", prepared value " << i);
+      REQUIRE(std::abs(out[i] - want[i].value) <= 1e-12 * std::max(1.0, std::abs(want[i].value)));
+    }
+  }
 }
 
 TEST_CASE("a uniform 1/w folds into the prepared matrix", "[stage]") {
@@ -109,7 +195,7 @@ TEST_CASE("a uniform 1/w folds into the prepared matrix", "[stage]") {
   CHECK(prepare.add <= 63);
   CHECK(s.prepare.outputs.at(0).slots.size() == 12);  // the 3x4 matrix
   // It replaces the hand motor_to_matrix (62 mul + 63 add + 1 div at -O2) at no more cost.
-  const auto hand = opt::program_stats(opt::optimize(load(kRuntime / "motor_to_matrix.clu"), Level::O2)).total;
+  const auto hand = opt::program_stats(opt::optimize(load(kHandScripts / "motor_to_matrix.clu"), Level::O2)).total;
   CHECK(prepare.mul <= hand.mul);
   CHECK(prepare.add <= hand.add);
 }
@@ -245,4 +331,66 @@ TEST_CASE("a kernel without uniforms is emitted exactly as before staging existe
   auto r = cga_test::run(cga_test::script("transform_point.clu"));
   CHECK(r.code == 0);
   CHECK(r.out.find("prepare") == std::string::npos);
+}
+
+TEST_CASE("GLSL: the prepared values as an array, a mat3x4, a uniform block or a storage buffer (glslang)",
+          "[stage][targets]") {
+  // transform_point_split: 12 prepared values (G H U uniform by its pragma). Each packing is emitted, wrapped
+  // in a #version 450 vertex shader that calls the prepare and the body, and compiled by glslangValidator.
+  const std::string tps = cga_test::script("transform_point_split.clu");
+  const std::string prepare_call =
+      "  float g[4] = float[4](1.0, 0.1, 0.2, 0.3), h[4] = float[4](0.9, 0.1, 0.2, 0.3), u[4] = float[4](0.1, 0.2, "
+      "0.3, 0.4);\n";
+  struct Case {
+    std::string kind, expect, call;
+  };
+  const Case cases[] = {
+      {"array", "void transform_point_split(in float prepared[12], float x,",
+       "  float prep[12];\n  transform_point_split_prepare(g, h, u, prep);\n"
+       "  transform_point_split(prep, pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+      {"mat3x4", "void transform_point_split(in mat3x4 prepared, float x,",
+       "  mat3x4 prep;\n  transform_point_split_prepare(g, h, u, prep);\n"
+       "  transform_point_split(prep, pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+      {"block",
+       "layout(std140) uniform transform_point_split_prepared_block {\n  vec4 transform_point_split_prepared[3];",
+       "  float prep[12];\n  transform_point_split_prepare(g, h, u, prep);  // what the host uploads\n"
+       "  transform_point_split(pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+      {"buffer",
+       "layout(std430) readonly buffer transform_point_split_prepared_buffer {\n  float "
+       "transform_point_split_prepared[];",
+       "  float prep[12];\n  transform_point_split_prepare(g, h, u, prep);\n"
+       "  transform_point_split(gl_InstanceID, pos.x, pos.y, pos.z, 0.0, 0.0, 1.0, p, n);\n"},
+  };
+  for (const Case& c : cases) {
+    INFO("--pack prepared=" << c.kind);
+    auto r = cga_test::run("--target glsl " + (c.kind == "array" ? "" : "--pack prepared=" + c.kind + " ") + tps);
+    REQUIRE(r.code == 0);
+    CHECK(r.out.find(c.expect) != std::string::npos);
+    if (c.kind == "block") CHECK(r.out.find("transform_point_split_prepared[2][3]") != std::string::npos);
+    if (c.kind == "buffer") {
+      CHECK(r.out.find("void transform_point_split(int prepared_index, float x,") != std::string::npos);
+      CHECK(r.out.find("transform_point_split_prepared[prepared_index * 12 + 11]") != std::string::npos);
+    }
+    // The prepare function still writes its values (an array, or the mat3x4).
+    CHECK(r.out.find(c.kind == "mat3x4" ? "out mat3x4 prepared)" : "out float prepared[12])") != std::string::npos);
+    const std::string path = std::string(CGA_BINARY_DIR) + "/stage_pack_" + c.kind + ".vert";
+    std::ofstream(path) << "#version 450\n" << r.out
+                        << "\nlayout(location = 0) in vec3 pos;\nlayout(location = 0) out vec3 o;\nvoid main() {\n"
+                        << prepare_call << "  float p[3], n[3];\n" << c.call
+                        << "  o = vec3(p[0], p[1], p[2]) + vec3(n[0], n[1], n[2]);\n  gl_Position = vec4(o, 1.0);\n}\n";
+    const int status = std::system((std::string(GLSLANG_VALIDATOR) + " " + path + " > " + path + ".log 2>&1").c_str());
+    INFO(std::ifstream(path + ".log").rdbuf());
+    CHECK(status == 0);
+  }
+  // Block and buffer apply to the prepared values only; mat3x4 holds at most 12 (transform_point has 13).
+  auto r = cga_test::run("--target glsl --pack G=block " + tps);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("--pack G=block: block and buffer apply to a staged kernel's prepared values only") !=
+        std::string::npos);
+  r = cga_test::run("--target glsl --uniform M --pack prepared=mat3x4 " + cga_test::script("transform_point.clu"));
+  CHECK(r.code == 1);
+  CHECK(r.out.find("cannot pack 'prepared' (13 blades) as mat3x4") != std::string::npos);
+  r = cga_test::run("--target glsl --uniform M --pack prepared=block " + cga_test::script("transform_point.clu"));
+  CHECK(r.code == 0);
+  CHECK(r.out.find("vec4 transform_point_prepared[4];") != std::string::npos);
 }

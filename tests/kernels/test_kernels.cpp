@@ -36,6 +36,8 @@
 #include "plane_distance.hpp"
 #include "rotor_n3.hpp"
 #include "transform_point.hpp"
+#include "transform_point_split.hpp"
+#include "transform_point_staged.hpp"
 #include "translator_inverse.hpp"
 
 // The CUDA kernels as host C++: the same functions in namespace cuh::cga::kernels (their standard headers
@@ -51,6 +53,7 @@ namespace cuh {
 #include "motor_reverse.cuh"
 #include "motor_to_matrix.cuh"
 #include "transform_point.cuh"
+#include "transform_point_staged.cuh"
 #undef __host__
 #undef __device__
 #undef __forceinline__
@@ -84,6 +87,17 @@ MV from_coeffs(const T* c, const std::vector<std::string>& blades) {
 // The kernel's outputs `got` over `blades` against the oracle's `want`: each listed blade within
 // tol * max(1, largest coefficient of want), and every other blade of want zero within the same bound,
 // except the blades in `dropped` (what the script leaves out on purpose).
+// got (the staged kernel) against want (the unstaged one): each value within tol * max(1, largest |want|).
+template <class T, size_t N>
+void check_same(const T (&got)[N], const T (&want)[N], double tol) {
+  double scale = 1;
+  for (T v : want) scale = std::max(scale, std::abs(static_cast<double>(v)));
+  for (size_t i = 0; i < N; ++i) {
+    INFO("value " << i << ": staged " << got[i] << ", unstaged " << want[i]);
+    REQUIRE(std::abs(static_cast<double>(got[i]) - static_cast<double>(want[i])) <= tol * scale);
+  }
+}
+
 template <class T, size_t N>
 void check_against(const T* got, const std::array<std::string_view, N>& blades, const MV& want, double tol = 1e-12,
                    const std::vector<std::string_view>& dropped = {}) {
@@ -315,7 +329,7 @@ TEMPLATE_TEST_CASE("motor_to_matrix columns = E(M e_i ~M)/w", "[kernels]", KERNE
   }
 }
 
-// Split form (runtime/scripts/motor_split_to_matrix.clu): G = a + b, H = a - b of the blades 1 e12 e13 e23 and
+// Split form (tests/kernels/scripts/motor_split_to_matrix.clu, runtime/scripts/transform_point_split.clu): G = a + b, H = a - b of the blades 1 e12 e13 e23 and
 // their einf^e0 multiples, U the einf blades e1inf e2inf e3inf e123inf.
 namespace {
 void split(const double* m, double* g, double* h, double* u) {
@@ -342,6 +356,49 @@ TEST_CASE("motor_split_to_matrix on the split form = motor_to_matrix's E(M e_i ~
     check_against(c2, k::motor_split_to_matrix_c2_blades, (M * oracle::e2<double>() * Mr) / w, 1e-12, column_drop);
     check_against(c3, k::motor_split_to_matrix_c3_blades, (M * oracle::e3<double>() * Mr) / w, 1e-12, column_drop);
     check_against(t, k::motor_split_to_matrix_t_blades, P0 / w, 1e-12, t_drop);
+  }
+}
+
+TEMPLATE_TEST_CASE("staged transform_point_split: prepare(G, H, U) = the hand motor_split_to_matrix, body = the "
+                   "matrix on the point and the normal = the oracle", "[kernels][stage]", double, float) {
+  // Skinning's motor -> 3x4 (CPU, GL, CUDA, web) is this prepare; motor_split_to_matrix.clu is the hand split
+  // it replaced (tests/kernels/scripts).
+  using T = TestType;
+  const double tol = std::is_same_v<T, double> ? 1e-12 : 2e-5;
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    auto md = rng.array<12>();
+    md[0] += 3;  // keep the weight away from 0
+    double gd[4], hd[4], ud[4];
+    split(md.data(), gd, hd, ud);
+    T g[4], h[4], u[4];
+    for (int i = 0; i < 4; ++i) g[i] = T(gd[i]), h[i] = T(hd[i]), u[i] = T(ud[i]);
+    T prepared[k::transform_point_split_prepare_prepared_blades.size()], c[4][3];
+    static_assert(sizeof prepared / sizeof prepared[0] == 12);
+    k::transform_point_split_prepare(g, h, u, prepared);
+    k::motor_split_to_matrix(g, h, u, c[0], c[1], c[2], c[3]);
+    INFO("trial " << n);
+    // Row r of the prepared matrix: p.e<r>[1] (translation), p.e<r>[x], p.e<r>[y], p.e<r>[z].
+    T got[12], want[12];
+    for (int r = 0; r < 3; ++r) {
+      REQUIRE(k::transform_point_split_prepare_prepared_blades[4 * r] == "p.e" + std::to_string(r + 1) + "[1]");
+      for (int col = 0; col < 3; ++col) got[4 * r + col] = prepared[4 * r + 1 + col];
+      got[4 * r + 3] = prepared[4 * r];
+      for (int col = 0; col < 4; ++col) want[4 * r + col] = c[col][r];
+    }
+    check_same(got, want, tol);
+    // The body: the point through the whole matrix, the normal through its linear part; against the oracle.
+    auto p = rng.template array_of<T, 3>(), nv = rng.template array_of<T, 3>();
+    T P[3], N[3];
+    k::transform_point_split(prepared, p[0], p[1], p[2], nv[0], nv[1], nv[2], P, N);
+    MV M = from_coeffs(md.data(), kMotorBlades), Mr = oracle::reverse(M);
+    double w = oracle::scalar_part(oracle::inner(einf ^ (M * e0 * Mr), einf ^ e0));
+    const MV X = oracle::up(double(p[0]), double(p[1]), double(p[2]));
+    const MV V = double(nv[0]) * oracle::e1<double>() + double(nv[1]) * oracle::e2<double>() +
+                 double(nv[2]) * oracle::e3<double>();
+    check_against(P, k::transform_point_split_p_blades, (M * X * Mr) / w, 8 * tol,
+                  {"einf", "e0", "e1^e2^e3^einf^e0"});
+    check_against(N, k::transform_point_split_n_blades, (M * V * Mr) / w, 8 * tol, {"einf", "e1^e2^e3^einf^e0"});
   }
 }
 
@@ -557,20 +614,6 @@ TEST_CASE("cgagen --eval agrees with the compiled kernel", "[kernels][cli]") {
 
 // ---- staged kernels (issue 19): prepare once, then the per-element body --------------------------------
 
-namespace {
-
-// got (the staged kernel) against want (the unstaged one): each value within tol * max(1, largest |want|).
-template <class T, size_t N>
-void check_same(const T (&got)[N], const T (&want)[N], double tol) {
-  double scale = 1;
-  for (T v : want) scale = std::max(scale, std::abs(static_cast<double>(v)));
-  for (size_t i = 0; i < N; ++i) {
-    INFO("value " << i << ": staged " << got[i] << ", unstaged " << want[i]);
-    REQUIRE(std::abs(static_cast<double>(got[i]) - static_cast<double>(want[i])) <= tol * scale);
-  }
-}
-
-}  // namespace
 
 TEMPLATE_TEST_CASE("staged transform_point: prepare(M) then body = the unstaged kernel = the oracle",
                    "[kernels][stage]", double, float) {
@@ -592,6 +635,53 @@ TEMPLATE_TEST_CASE("staged transform_point: prepare(M) then body = the unstaged 
     const MV M = from_coeffs(m.data(), kMotorBlades);
     const MV X = oracle::up(double(p[0]), double(p[1]), double(p[2]));
     check_against(P, s::transform_point_P_blades, M * X * oracle::reverse(M), tol, {"einf", "e1^e2^e3^einf^e0"});
+  }
+}
+
+TEMPLATE_TEST_CASE("the runtime's motor -> 3x4 (generated transform_point_staged's prepare, over its weight) = the "
+                   "hand-derived motor_to_matrix", "[kernels][stage]", double, float) {
+  // cga::motor_matrix reads these 13 prepared values (the 3x4 rows and the weight) and divides them by the
+  // weight; motor_to_matrix.clu (tests/kernels/scripts) is the hand split it replaced.
+  using T = TestType;
+  const double tol = std::is_same_v<T, double> ? 1e-12 : 2e-5;
+  REQUIRE(k::transform_point_staged_prepare_prepared_blades.size() == 13);
+  CHECK(k::transform_point_staged_prepare_prepared_blades[12] == "P.e0");
+  Rng rng;
+  for (int n = 0; n < kTrials; ++n) {
+    const bool exact = n % 2;
+    std::array<T, 12> m;
+    if (exact) {
+      do m = random_exact_motor<T>(rng);
+      while (std::abs(static_cast<double>(m[0])) < 0.3);
+    } else {
+      m = rng.template array_of<T, 12>();
+      m[0] += 3;  // keep the weight away from 0
+    }
+    T prepared[13], cpu[13], c[4][3];
+    k::transform_point_staged_prepare(m.data(), prepared);
+    cuh::cga::kernels::transform_point_staged_prepare(m.data(), cpu);
+    k::motor_to_matrix(m.data(), c[0], c[1], c[2], c[3]);
+    INFO((exact ? "exact motor" : "any 12 coefficients") << ", trial " << n);
+    for (int i = 0; i < 13; ++i) REQUIRE(prepared[i] == cpu[i]);  // the CUDA form is the same code
+    // Row r of the prepared matrix: P.e<r>[1] (translation), P.e<r>[x], P.e<r>[y], P.e<r>[z].
+    T got[12], want[12];
+    for (int r = 0; r < 3; ++r) {
+      for (int col = 0; col < 3; ++col) got[4 * r + col] = prepared[4 * r + 1 + col] / prepared[12];
+      got[4 * r + 3] = prepared[4 * r] / prepared[12];
+      for (int col = 0; col < 4; ++col) want[4 * r + col] = c[col][r];
+    }
+    check_same(got, want, tol);
+    // And the body on the normalized values is the matrix times the point, w = 1.
+    T normalized[13], P[4];
+    for (int i = 0; i < 13; ++i) normalized[i] = prepared[i] / prepared[12];
+    auto p = rng.template array_of<T, 3>();
+    k::transform_point_staged(normalized, p[0], p[1], p[2], P);
+    for (int r = 0; r < 3; ++r) {
+      const double want_r = double(want[4 * r]) * p[0] + double(want[4 * r + 1]) * p[1] +
+                            double(want[4 * r + 2]) * p[2] + double(want[4 * r + 3]);
+      REQUIRE(std::abs(double(P[r]) - want_r) <= 8 * tol * std::max(1.0, std::abs(want_r)));
+    }
+    REQUIRE(std::abs(double(P[3]) - 1.0) <= tol);
   }
 }
 

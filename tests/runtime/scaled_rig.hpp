@@ -18,7 +18,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <motor_from_trs.hpp>
-#include <motor_to_matrix.hpp>
+#include <transform_point_staged.hpp>
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
@@ -191,10 +191,12 @@ inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSim
         const double w = dot < 0.0 ? -double(ws[k]) : double(ws[k]);
         for (int c = 0; c < 12; ++c) sum[c] += w * m[c];
       }
-      double c1[3], c2[3], c3[3], t[3];
-      kernels::motor_to_matrix(sum, c1, c2, c3, t);  // in double the blade form's cancellation is harmless
-      return glm::dvec3(c1[0], c1[1], c1[2]) * p.x + glm::dvec3(c2[0], c2[1], c2[2]) * p.y +
-             glm::dvec3(c3[0], c3[1], c3[2]) * p.z + glm::dvec3(t[0], t[1], t[2]);
+      // The staged point transform (prepare on the blended motor, then the per-point body) over its weight;
+      // in double the blade form's cancellation is harmless.
+      double prepared[13], P[4];
+      kernels::transform_point_staged_prepare(sum, prepared);
+      kernels::transform_point_staged(prepared, p.x, p.y, p.z, P);
+      return glm::dvec3(P[0], P[1], P[2]) / P[3];
     }
     case SkinningMethod::dqs: {
       const glm::dquat r0 = pal[js[0]].rotation;

@@ -1,4 +1,5 @@
 // Runs a cgagen javascript kernel: node drive.mjs META MODULE IN OUT. Calls NAME(...inputs) per input row
+// (a staged kernel: NAME_prepare on the uniform inputs, then NAME)
 // (a multivector input as an array of its blades) and writes the flat outputs one row per line; checks the
 // interface (an array of outputs, each an array of the declared number of numbers).
 import { readFileSync, writeFileSync } from "node:fs";
@@ -7,8 +8,17 @@ import { pathToFileURL } from "node:url";
 const [meta_path, module_path, in_path, out_path] = process.argv.slice(2);
 const meta = JSON.parse(readFileSync(meta_path, "utf8"));
 const mod = await import(pathToFileURL(module_path).href);
-const fn = mod[meta.name];
-if (typeof fn !== "function") throw new Error(`no function ${meta.name}`);
+const body = mod[meta.name];
+if (typeof body !== "function") throw new Error(`no function ${meta.name}`);
+// A staged kernel (meta.prepared = K > 0): NAME_prepare(uniform inputs) -> [prepared (K values)], then
+// NAME(prepared, other inputs).
+const prepare = meta.prepared ? mod[`${meta.name}_prepare`] : null;
+if (meta.prepared && typeof prepare !== "function") throw new Error(`no function ${meta.name}_prepare`);
+const fn = !meta.prepared ? body : (...args) => {
+  const p = prepare(...args.filter((_, i) => meta.uniform[i]));
+  if (!Array.isArray(p) || p.length !== 1 || p[0].length !== meta.prepared) throw new Error("bad prepare output");
+  return body(p[0], ...args.filter((_, i) => !meta.uniform[i]));
+};
 const lines = readFileSync(in_path, "utf8").split("\n").filter((l) => l.length > 0);
 const out = [];
 for (const line of lines) {

@@ -1,6 +1,8 @@
 """Runs a cgagen python kernel: drive.py META MODULE IN OUT64 OUT32 OUTSCALAR, or --bench N META MODULE.
 
-META: {"name", "inputs": [0 for a scalar, else the blade count], "outputs": [blade counts]}. IN has one
+META: {"name", "inputs": [0 for a scalar, else the blade count], "uniform": [0/1 per input], "prepared": K,
+"outputs": [blade counts]}; K > 0: a staged kernel, called as NAME(NAME_prepare(uniform inputs)[0], the
+other inputs), NAME_prepare checked to return a tuple of one output of K values. IN has one
 flat input row per line. The kernel is called once on whole arrays (float64, then float32: one call each, no
 Python loop over samples) and on Python floats for the first 50 rows; results are written one flat row per
 line. Checks the interface on the way: a tuple of outputs, each a tuple of the declared number of blades,
@@ -19,7 +21,19 @@ def load(meta_path, module_path):
     spec = importlib.util.spec_from_file_location(meta["name"], module_path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    return meta, getattr(mod, meta["name"])
+    fn = getattr(mod, meta["name"])
+    if not meta.get("prepared"):
+        return meta, fn
+    prepare = getattr(mod, meta["name"] + "_prepare")
+
+    def staged(*args):
+        uniform = [a for a, u in zip(args, meta["uniform"]) if u]
+        element = [a for a, u in zip(args, meta["uniform"]) if not u]
+        res = prepare(*uniform)
+        assert isinstance(res, tuple) and len(res) == 1 and len(res[0]) == meta["prepared"], "prepare: %r" % (res,)
+        return fn(list(res[0]), *element)
+
+    return meta, staged
 
 
 def split(meta, cols):

@@ -18,6 +18,12 @@
 //
 // wgsl and glsl-es run in headless Chromium (WebGPU, WebGL 2): one page per language with every script,
 // written here, run by browser_run.py, the page's half in browser_harness.js.
+//
+// Staged kernels (issue 19): a script with `#pragma uniform`, or an argument PATH@NAME@U1,U2 (the script
+// generated as NAME with --uniform U1,U2, see CMakeLists.txt), is emitted as NAME_prepare(uniforms) ->
+// prepared[K] and NAME(prepared, per-element inputs). Every driver then calls the two in a row in the
+// language itself (the prepared values stay in the language's precision) and the outputs are held to the
+// same unstaged -O0 reference and tolerances as any kernel.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -41,6 +47,7 @@
 #include "front/parser.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
+#include "opt/stage.hpp"
 #include "interpreter.hpp"  // tests/diff: CluScript over the oracle
 
 using namespace cgagen;
@@ -54,6 +61,11 @@ std::string g_refdir;  // WORKDIR/../reference
 
 struct Case {
   std::string name, path;
+  std::vector<std::string> uniforms;  // staged: the uniform inputs (else empty)
+  std::vector<bool> is_uniform;       // per input
+  size_t prepared = 0;                // staged: K, the number of prepared values (else 0)
+  size_t graph_nodes = 0;             // the dot graph's nodes: input blades + temporaries + output blades
+                                      // (staged: both programs', the prepared values once)
   opt::Program prog;  // -O2: the interface the targets print
   opt::Program ref;   // -O0: the reference
   std::vector<size_t> in_sizes;   // 0: scalar
@@ -99,14 +111,36 @@ double max_error(const Case& c, const std::vector<double>& got, const std::vecto
   return worst;
 }
 
-Case load(const std::string& path, bool numeric) {
+// PATH, or PATH@NAME@U1,U2,... for a script generated under another name with --uniform U1,U2,...
+Case load(const std::string& arg, bool numeric) {
   Case c;
-  c.path = path;
-  c.name = fs::path(path).stem().string();
-  front::SourceFile file = front::SourceFile::load(path);
+  std::vector<std::string> cli_uniforms;
+  const size_t at = arg.find('@');
+  c.path = arg.substr(0, at);
+  c.name = fs::path(c.path).stem().string();
+  if (at != std::string::npos) {
+    const size_t at2 = arg.find('@', at + 1);
+    if (at2 == std::string::npos) throw std::runtime_error("bad script argument " + arg + " (PATH@NAME@U1,U2)");
+    c.name = arg.substr(at + 1, at2 - at - 1);
+    std::istringstream list(arg.substr(at2 + 1));
+    for (std::string u; std::getline(list, u, ',');) cli_uniforms.push_back(u);
+  }
+  front::SourceFile file = front::SourceFile::load(c.path);
   Kernel k = expand(front::parse(file), c.name);
   c.prog = opt::optimize(k, opt::Level::O2);
   c.ref = opt::optimize(k, opt::Level::O0);
+  c.uniforms = opt::uniform_inputs(k, cli_uniforms);
+  for (const auto& in : c.prog.inputs)
+    c.is_uniform.push_back(std::find(c.uniforms.begin(), c.uniforms.end(), in.name) != c.uniforms.end());
+  if (!c.uniforms.empty()) {
+    const opt::StagedProgram st = opt::stage(c.prog, c.uniforms);
+    c.prepared = st.prepare.outputs.at(0).slots.size();
+    for (const opt::Program* p : {&st.prepare, &st.body}) {
+      for (const auto& in : p->inputs)
+        if (p == &st.prepare || in.name != "prepared") c.graph_nodes += in.is_multivector ? in.symbols.size() : 1;
+      c.graph_nodes += p->temps.size();
+    }
+  }
   for (const auto& in : c.prog.inputs) {
     c.in_sizes.push_back(in.is_multivector ? in.symbols.size() : 0);
     c.nin += in.is_multivector ? in.symbols.size() : 1;
@@ -116,6 +150,7 @@ Case load(const std::string& path, bool numeric) {
     c.nout += o.slots.size();
   }
   // The reference is computed once per build (ctest fixture targets/reference) and read by every language.
+  // It is the unstaged kernel's: a staged case is held to the same values.
   const std::string cache = g_refdir + "/" + c.name + ".ref";
   if (numeric && fs::exists(cache)) {
     std::ifstream in(cache);
@@ -292,7 +327,10 @@ void check(const Case& c, const std::string& what, const std::string& path, doub
 std::string meta_json(const Case& c) {
   std::string s = "{\"name\": \"" + c.name + "\", \"inputs\": [";
   for (size_t i = 0; i < c.in_sizes.size(); ++i) s += (i ? ", " : "") + std::to_string(c.in_sizes[i]);
-  s += "], \"outputs\": [";
+  // Staged: which inputs go to NAME_prepare, and K (the drivers call NAME_prepare, then NAME).
+  s += "], \"uniform\": [";
+  for (size_t i = 0; i < c.is_uniform.size(); ++i) s += std::string(i ? ", " : "") + (c.is_uniform[i] ? "1" : "0");
+  s += "], \"prepared\": " + std::to_string(c.prepared) + ", \"outputs\": [";
   for (size_t i = 0; i < c.out_sizes.size(); ++i) s += (i ? ", " : "") + std::to_string(c.out_sizes[i]);
   return s + "]}\n";
 }
@@ -302,11 +340,18 @@ std::string meta_json(const Case& c) {
 struct CCall {
   std::string decls, call, copy_out;
 };
+// The name of a staged case's prepare function for the body's name fn (NAME_prepare inside any prefix/suffix).
+std::string prepare_name(const Case& c, const std::string& fn) {
+  std::string p = fn;
+  return p.insert(fn.rfind(c.name) + c.name.size(), "_prepare");
+}
+
+// A staged case's call: NAME_prepare(uniform args, prepared) then NAME(prepared, per-element args, outputs).
 CCall c_call(const Case& c, const std::string& T, const std::string& fn, const std::string& src,
              const std::string& dst, bool arrays_by_ref = false) {
   CCall r;
   size_t off = 0;
-  std::string args;
+  std::string args, uargs;
   for (size_t i = 0; i < c.in_sizes.size(); ++i) {
     std::string a;
     if (c.in_sizes[i] == 0) {
@@ -319,7 +364,14 @@ CCall c_call(const Case& c, const std::string& T, const std::string& fn, const s
       off += c.in_sizes[i];
       a = (arrays_by_ref ? "&" : "") + v;
     }
-    args += (args.empty() ? "" : ", ") + a;
+    std::string& list = c.prepared && c.is_uniform[i] ? uargs : args;
+    list += (list.empty() ? "" : ", ") + a;
+  }
+  std::string prepare;
+  if (c.prepared) {
+    r.decls += "  " + T + " prep[" + std::to_string(c.prepared) + "];\n";
+    prepare = "  " + prepare_name(c, fn) + "(" + uargs + ", prep);\n";
+    args = std::string(arrays_by_ref ? "&" : "") + "prep" + (args.empty() ? "" : ", ") + args;
   }
   off = 0;
   for (size_t i = 0; i < c.out_sizes.size(); ++i) {
@@ -330,7 +382,7 @@ CCall c_call(const Case& c, const std::string& T, const std::string& fn, const s
     off += c.out_sizes[i];
     args += ", " + v;
   }
-  r.call = "  " + fn + "(" + args + ");\n";
+  r.call = prepare + "  " + fn + "(" + args + ");\n";
   return r;
 }
 
@@ -662,18 +714,24 @@ std::string webgl_vertex_shader(const Case& c, const std::string& defs, const st
   const size_t vec4s = (c.nout + 3) / 4;
   for (size_t i = 0; i < vec4s; ++i) vs += "out vec4 cgagen_r" + std::to_string(i) + ";\n";
   vs += "float cgagen_x(int k) { return texelFetch(cgagen_in, ivec2(k, gl_VertexID), 0).r; }\nvoid main() {\n";
-  std::string args;
+  std::string args, uargs;
   size_t off = 0;
   for (size_t i = 0; i < c.in_sizes.size(); ++i) {
     const std::string n = std::to_string(c.in_sizes[i]), v = "cgagen_i" + std::to_string(i);
+    std::string& list = c.prepared && c.is_uniform[i] ? uargs : args;
     if (c.in_sizes[i] == 0) {
-      args += (args.empty() ? "" : ", ") + std::string("cgagen_x(") + std::to_string(off++) + ")";
+      list += (list.empty() ? "" : ", ") + std::string("cgagen_x(") + std::to_string(off++) + ")";
       continue;
     }
     vs += "  float " + v + "[" + n + "];\n  for (int k = 0; k < " + n + "; ++k) " + v + "[k] = cgagen_x(" +
           std::to_string(off) + " + k);\n";
     off += c.in_sizes[i];
-    args += (args.empty() ? "" : ", ") + v;
+    list += (list.empty() ? "" : ", ") + v;
+  }
+  if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
+    vs += "  float cgagen_prep[" + std::to_string(c.prepared) + "];\n  " + c.name + "_prepare(" + uargs +
+          ", cgagen_prep);\n";
+    args = "cgagen_prep" + (args.empty() ? "" : ", " + args);
   }
   for (size_t i = 0; i < c.out_sizes.size(); ++i) {
     vs += "  float cgagen_o" + std::to_string(i) + "[" + std::to_string(c.out_sizes[i]) + "];\n";
@@ -745,18 +803,24 @@ void run_wgsl(const std::vector<Case>& cases, const std::string& gendir, const s
                        "  let cgagen_row = cgagen_id.x;\n  if (cgagen_row >= " + std::to_string(c.inputs.size()) +
                        "u) { return; }\n  let cgagen_a = cgagen_row * " + std::to_string(c.nin) +
                        "u;\n  let cgagen_b = cgagen_row * " + std::to_string(c.nout) + "u;\n";
-    std::string args;
+    std::string args, uargs;
     size_t off = 0;
     for (size_t i = 0; i < c.in_sizes.size(); ++i) {
       const std::string n = std::to_string(c.in_sizes[i]), v = "cgagen_i" + std::to_string(i);
+      std::string& list = c.prepared && c.is_uniform[i] ? uargs : args;
       if (c.in_sizes[i] == 0) {
-        args += (args.empty() ? "" : ", ") + std::string("cgagen_in[cgagen_a + ") + std::to_string(off++) + "u]";
+        list += (list.empty() ? "" : ", ") + std::string("cgagen_in[cgagen_a + ") + std::to_string(off++) + "u]";
         continue;
       }
       main += "  var " + v + ": array<f32, " + n + ">;\n  for (var k = 0u; k < " + n + "u; k++) { " + v +
               "[k] = cgagen_in[cgagen_a + " + std::to_string(off) + "u + k]; }\n";
       off += c.in_sizes[i];
-      args += (args.empty() ? "" : ", ") + v;
+      list += (list.empty() ? "" : ", ") + v;
+    }
+    if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
+      main += "  var cgagen_prep: array<f32, " + std::to_string(c.prepared) + ">;\n  " +
+              emit::syntax("wgsl").text(c.name + "_prepare") + "(" + uargs + ", &cgagen_prep);\n";
+      args = "cgagen_prep" + (args.empty() ? "" : ", " + args);
     }
     std::string copy_out;
     off = 0;
@@ -807,7 +871,7 @@ void run_dot(const std::vector<Case>& cases, const std::string& gendir, const st
       nodes += line.rfind("node ", 0) == 0;
       edges += line.rfind("edge ", 0) == 0;
     }
-    size_t expected = c.nin + c.prog.temps.size() + c.nout;
+    size_t expected = c.prepared ? c.graph_nodes + c.prepared + c.nout : c.nin + c.prog.temps.size() + c.nout;
     ok &= nodes == expected && slurp(base + ".svg").find("<svg") != std::string::npos && slurp(base + ".err").empty();
     std::printf("%s %-20s dot: %zu nodes (expected %zu: inputs + temporaries + output blades), %zu edges\n",
                 ok ? "ok  " : "FAIL", c.name.c_str(), nodes, expected, edges);
@@ -823,19 +887,25 @@ void run_rust(const std::vector<Case>& cases, const std::string& gendir, const s
     src += "\nfn run_" + c.name + "(single: bool, a: &[f64]) -> Vec<f64> {\n  let mut r = Vec::new();\n";
     for (std::string T : {"f32", "f64"}) {
       src += std::string(T == "f32" ? "  if single {\n" : "  } else {\n");
-      std::string args;
+      std::string args, uargs;
       size_t off = 0;
       for (size_t i = 0; i < c.in_sizes.size(); ++i) {
         size_t n = c.in_sizes[i];
+        std::string& list = c.prepared && c.is_uniform[i] ? uargs : args;
         if (n == 0) {
-          args += (args.empty() ? "" : ", ") + std::string("a[") + std::to_string(off++) + "] as " + T;
+          list += (list.empty() ? "" : ", ") + std::string("a[") + std::to_string(off++) + "] as " + T;
           continue;
         }
         std::string v = "i" + std::to_string(i);
         src += "    let mut " + v + " = [0.0 as " + T + "; " + std::to_string(n) + "];\n    for k in 0.." +
                std::to_string(n) + " { " + v + "[k] = a[" + std::to_string(off) + " + k] as " + T + "; }\n";
         off += n;
-        args += (args.empty() ? "" : ", ") + std::string("&") + v;
+        list += (list.empty() ? "" : ", ") + std::string("&") + v;
+      }
+      if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
+        src += "    let mut prep = [0.0 as " + T + "; " + std::to_string(c.prepared) + "];\n    k_" + c.name +
+               "::" + c.name + "_prepare_" + T + "(" + uargs + ", &mut prep);\n";
+        args = "&prep" + (args.empty() ? "" : ", " + args);
       }
       std::string outs;
       for (size_t i = 0; i < c.out_sizes.size(); ++i) {

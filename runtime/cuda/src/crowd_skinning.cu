@@ -1,10 +1,10 @@
 // Crowd-skinning kernels: one thread per vertex (grid-stride), blockIdx.y = instance. Each block stages its
-// instance's palette in shared memory; cga_points converts every motor there once into its weight-
-// normalized point-transform matrix with the generated motor_split_to_matrix (the point transform of a motor
-// is affine, so the per-bone transform_point + divide + average the paper does per vertex equals blending
+// instance's palette in shared memory; cga_points converts every motor there once (a per-bone prepass)
+// into its weight-normalized point-transform matrix with the generated transform_point_split_prepare (the
+// prepare of the staged point transform; the point transform of a motor is affine, so the per-bone transform_point + divide + average the paper does per vertex equals blending
 // these matrices), and cga_motors stages its motors in split form (G = a + b, H = a - b, U; see
-// runtime/scripts/motor_split_to_matrix.clu: no cancellation for scaled motors), blends those 12 coefficients
-// per vertex (sign fix on G) and moves the point by motor_split_to_matrix's matrix. Methods and input formats
+// runtime/scripts/transform_point_split.clu: no cancellation for scaled motors), blends those 12 coefficients
+// per vertex (sign fix on G) and moves the point by that prepare's matrix. Methods and input formats
 // are template parameters.
 #include <cuda_runtime.h>
 
@@ -12,7 +12,7 @@
 
 #include "cga/runtime/rotor_sign.hpp"
 #include "kernels.hpp"
-#include "motor_split_to_matrix.cuh"
+#include "transform_point_split.cuh"
 
 namespace cga::cuda::detail {
 namespace {
@@ -62,11 +62,15 @@ __device__ __forceinline__ void load_weights(const void* p, std::size_t i, float
 // (rotor_sign.hpp, the one definition the CPU loops and the GLSL share.)
 __device__ __forceinline__ void motor_split(const float c[12], float s[12]) { rotor_sign::split(c, s, s + 4, s + 8); }
 
-// Row-major 3x4 from the generated motor_split_to_matrix's columns, for a motor in split form.
+// Row-major 3x4 (x, y, z, translation per row) for a motor in split form: the generated prepare of the
+// staged transform_point_split (its prepared values are the rows as (translation, x, y, z); the host
+// header skinning_palettes.hpp checks that layout at compile time).
 __device__ __forceinline__ void split_rows(const float s[12], float m[12]) {
-  float c1[3], c2[3], c3[3], t[3];
-  cga::kernels::motor_split_to_matrix(s, s + 4, s + 8, c1, c2, c3, t);
-  for (int r = 0; r < 3; ++r) m[4 * r] = c1[r], m[4 * r + 1] = c2[r], m[4 * r + 2] = c3[r], m[4 * r + 3] = t[r];
+  float prepared[12];
+  cga::kernels::transform_point_split_prepare(s, s + 4, s + 8, prepared);
+  for (int r = 0; r < 3; ++r)
+    m[4 * r] = prepared[4 * r + 1], m[4 * r + 1] = prepared[4 * r + 2], m[4 * r + 2] = prepared[4 * r + 3],
+    m[4 * r + 3] = prepared[4 * r];
 }
 
 // The rotation (times |r|^2) and translation of an unnormalized dual-quaternion blend, as a 3x4 matrix

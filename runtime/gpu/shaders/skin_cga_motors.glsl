@@ -1,9 +1,9 @@
 // cga_motors: blend the motors, transform once. An entry is a motor as the paper's mat3x4 (blade k at
 // column k/4, row k%4). The motors are blended with the sign fix on the rotor parts (blades 1, e12, e13,
 // e23, times 1 + k) against the first influence, in split form (G = a + b, H = a - b, U: see
-// motor_split_to_matrix.clu; the blade form's weight cancels for scaled motors); the blend moves the point by
-// the weight-normalized matrix of the generated motor_split_to_matrix, so it needs no normalization. Normals
-// use the same matrix's linear part.
+// transform_point_split.clu; the blade form's weight cancels for scaled motors). The blend goes through the
+// generated staged point transform: transform_point_split_prepare (the blend's weight-normalized 3x4 as a
+// mat3x4, so the blend needs no normalization), then its per-element body on the point and the normal.
 const int PALETTE_STRIDE = 3;
 
 mat3x4 palette_motor(int e) {
@@ -26,8 +26,9 @@ void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, 
     H += wk * Hk;
     U += wk * Uk;
   }
-  vec3 c1, c2, c3, t;
-  motor_split_to_matrix(G, H, U, c1, c2, c3, t);
-  op = c1 * p.x + c2 * p.y + c3 * p.z + t;
-  on = normals ? normalize(c1 * n.x + c2 * n.y + c3 * n.z) : vec3(0.0);
+  mat3x4 prepared;
+  transform_point_split_prepare(G, H, U, prepared);
+  vec3 tn;
+  transform_point_split(prepared, p.x, p.y, p.z, n.x, n.y, n.z, op, tn);
+  on = normals ? normalize(tn) : vec3(0.0);
 }

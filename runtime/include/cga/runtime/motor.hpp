@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <string_view>
 
 #include "cga/runtime/rotor_sign.hpp"
 #include "cga/runtime/types.hpp"
@@ -25,8 +26,8 @@
 #include <motor_lerp_paper.hpp>
 #include <motor_mul.hpp>
 #include <motor_reverse.hpp>
-#include <motor_to_matrix.hpp>
 #include <transform_point.hpp>
+#include <transform_point_staged.hpp>
 
 namespace cga {
 
@@ -82,12 +83,50 @@ inline glm::vec3 motor_transform_point(const Motor& m, const glm::vec3& p) {
   return glm::vec3(out[0], out[1], out[2]) / out[3];
 }
 
-// The weight-normalized point transform of a motor as a row-major 3x4 matrix (generated motor_to_matrix).
+// The staged point transform (issue 19): runtime/scripts/transform_point.clu generated once more with M
+// uniform (generated/CMakeLists.txt, NAME transform_point_staged), so cgagen splits M X ~M into
+// transform_point_staged_prepare(M) -> 13 values (the 3x4 matrix of P = (x', y', z') and the weight w, which
+// does not depend on the point) and the per-point body (9 mul + 9 add). P is homogeneous and the body is
+// linear in the prepared values, so dividing all 13 by the weight once per motor makes the body's output the
+// Euclidean point (its w slot becomes 1): that is the whole normalization, 1 div + 12 mul per motor.
+using PreparedPointTransform = std::array<float, kernels::transform_point_staged_prepare_prepared_blades.size()>;
+namespace detail {
+// The prepared slots' layout that motor_matrix and motor_prepare_points read, checked against the names the
+// generator emits: a change in the split fails the build here rather than moving points silently.
+constexpr bool prepared_point_layout() {
+  constexpr std::string_view want[13] = {"P.e1[1]", "P.e1[x]", "P.e1[y]", "P.e1[z]", "P.e2[1]", "P.e2[x]", "P.e2[y]",
+                                         "P.e2[z]", "P.e3[1]", "P.e3[x]", "P.e3[y]", "P.e3[z]", "P.e0"};
+  const auto& got = kernels::transform_point_staged_prepare_prepared_blades;
+  if (got.size() != 13) return false;
+  for (std::size_t i = 0; i < 13; ++i)
+    if (got[i] != want[i]) return false;
+  return true;
+}
+static_assert(prepared_point_layout(), "transform_point_staged's prepared values are no longer the 3x4 rows + w");
+}  // namespace detail
+
+inline PreparedPointTransform motor_prepare_points(const Motor& m) {
+  PreparedPointTransform p;
+  kernels::transform_point_staged_prepare(m.c.data(), p.data());
+  const float inv_w = 1.0f / p[12];
+  for (float& v : p) v *= inv_w;
+  p[12] = 1.0f;
+  return p;
+}
+
+// One point through the prepared values (the generated per-element body).
+inline glm::vec3 prepared_transform_point(const PreparedPointTransform& p, const glm::vec3& x) {
+  float out[4];
+  kernels::transform_point_staged(p.data(), x.x, x.y, x.z, out);
+  return glm::vec3(out[0], out[1], out[2]);
+}
+
+// The weight-normalized point transform of a motor as a row-major 3x4 matrix: the generated prepare's
+// values (slots P.e<r>[1], P.e<r>[x], P.e<r>[y], P.e<r>[z] for row r, detail::prepared_point_layout) as rows (x, y, z, translation).
 inline glm::mat3x4 motor_matrix(const Motor& m) {
-  float c1[3], c2[3], c3[3], t[3];
-  kernels::motor_to_matrix(m.c.data(), c1, c2, c3, t);
+  const PreparedPointTransform p = motor_prepare_points(m);
   glm::mat3x4 out;
-  for (int r = 0; r < 3; ++r) out[r] = glm::vec4(c1[r], c2[r], c3[r], t[r]);
+  for (int r = 0; r < 3; ++r) out[r] = glm::vec4(p[4 * r + 1], p[4 * r + 2], p[4 * r + 3], p[4 * r]);
   return out;
 }
 

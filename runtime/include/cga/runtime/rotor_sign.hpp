@@ -6,7 +6,7 @@
 // A motor M and -M are the same similarity, but a blend of coefficients is not sign-blind: before adding a
 // motor into a blend it is negated when its rotor part points away from the first (reference) motor's. The
 // rotor part is read in split form, G = a + b (a: blades 1 e12 e13 e23; b: the E-times blades e0inf e12e0inf
-// e13e0inf e23e0inf, see motor_split_to_matrix.clu): G is the rotor scaled by 1 + k > 0 for a dilation
+// e13e0inf e23e0inf, see transform_point_split.clu): G is the rotor scaled by 1 + k > 0 for a dilation
 // 1 + kE, so its sign is the rotor's and a scaled motor needs no normalization first.
 //
 //   G_k = a_k + b_k over the blade pairs (kRotorBlades[i], kEBlades[i]), i < 4

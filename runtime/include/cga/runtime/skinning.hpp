@@ -10,10 +10,11 @@
 //               Mathematically this IS linear blend skinning (the point transform of a motor is affine in x),
 //               so it shares LBS's candy-wrapper collapse. It runs as LBS does: each palette motor is turned
 //               into its weight-normalized 3x4 point-transform matrix once per Run by the generated
-//               motor_to_matrix kernel, then the per-vertex work is the matrix blend.
+//               transform_point_split_prepare kernel (the staged point transform's prepare), then the
+//               per-vertex work is the matrix blend.
 //   cga_motors  blend the 12 motor coefficients per vertex (sign fix: M_k is negated when the dot product of the
 //               rotor parts <M_0, M_k> < 0), then transform once with the blended motor and divide by the weight
-//               (the generated motor_to_matrix does both). For rigid bones this equals DQS; unlike dual
+//               (the generated transform_point_split_prepare does both). For rigid bones this equals DQS; unlike dual
 //               quaternions it also carries uniform scale (dilation). See docs/skinning.md.
 //
 // Normals: lbs/cga_points use the blended linear part, cga_motors the linear part of the blended motor, dqs the

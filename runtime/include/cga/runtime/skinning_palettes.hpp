@@ -6,13 +6,14 @@
 
 #include <span>
 #include <stdexcept>
+#include <string_view>
 
 #include "cga/runtime/rotor_sign.hpp"
 #include "cga/runtime/types.hpp"
 
 // A hard dependency: the CGA methods run on this generated kernel (cga::kernels, generated/CMakeLists.txt), so
 // a build without it fails here rather than at run time.
-#include <motor_split_to_matrix.hpp>
+#include <transform_point_split.hpp>
 
 namespace cga {
 
@@ -49,21 +50,37 @@ inline void pack_dual_quats(std::span<const glm::dualquat> in, std::span<float> 
 
 namespace detail {
 
-// A motor in split form (runtime/scripts/motor_split_to_matrix.clu): G = a + b and H = a - b (blades 1 e12
+// A motor in split form (runtime/scripts/transform_point_split.clu): G = a + b and H = a - b (blades 1 e12
 // e13 e23 of a and of the E-times group b), U the einf blades (e1inf e2inf e3inf e123inf). Linear in the
 // coefficients, so blending split motors is the split form of the blend.
 inline void motor_split(const float m[12], float g[4], float h[4], float u[4]) { rotor_sign::split(m, g, h, u); }
 
+// The layout of transform_point_split's prepared values that motor_split_matrix reads, checked against the
+// slot names the generator emits: row r of the normalized 3x4 as (translation, x, y, z).
+constexpr bool prepared_split_layout() {
+  const auto& got = cga::kernels::transform_point_split_prepare_prepared_blades;
+  if (got.size() != 12) return false;
+  const char* col[4] = {"[1]", "[x]", "[y]", "[z]"};
+  for (std::size_t k = 0; k < 12; ++k) {
+    const std::string_view want_row[3] = {"p.e1", "p.e2", "p.e3"};
+    const std::string_view s = got[k];
+    if (s.substr(0, 4) != want_row[k / 4] || s.substr(4) != col[k % 4]) return false;
+  }
+  return true;
+}
+static_assert(prepared_split_layout(), "transform_point_split's prepared values are no longer the 3x4 rows");
+
 // The weight-normalized point transform of a (possibly blended, unnormalized) motor in split form as a
-// row-major 3x4 matrix, computed by the generated motor_split_to_matrix kernel.
+// row-major 3x4 matrix (x, y, z, translation per row): the generated prepare of the staged
+// transform_point_split (issue 19), its rows rotated from (translation, x, y, z).
 inline void motor_split_matrix(const float g[4], const float h[4], const float u[4], float out[12]) {
-  float c1[3], c2[3], c3[3], t[3];
-  cga::kernels::motor_split_to_matrix(g, h, u, c1, c2, c3, t);
+  float prepared[12];
+  cga::kernels::transform_point_split_prepare(g, h, u, prepared);
   for (int r = 0; r < 3; ++r) {
-    out[4 * r + 0] = c1[r];
-    out[4 * r + 1] = c2[r];
-    out[4 * r + 2] = c3[r];
-    out[4 * r + 3] = t[r];
+    out[4 * r + 0] = prepared[4 * r + 1];
+    out[4 * r + 1] = prepared[4 * r + 2];
+    out[4 * r + 2] = prepared[4 * r + 3];
+    out[4 * r + 3] = prepared[4 * r + 0];
   }
 }
 

@@ -1,6 +1,6 @@
 // CUDA crowd skinning: many instances, one palette each, positions and optionally normals, for the four
 // methods of cga::SkinningMethod. The cga methods run on the kernels cgagen emits with --target cuda
-// (motor_split_to_matrix.cuh). Plain C++ header (no CUDA types) so host code built by the
+// (transform_point_split.cuh). Plain C++ header (no CUDA types) so host code built by the
 // C++ compiler can call it; the kernels live in crowd_skinning.cu.
 //
 // Layouts (issue 5 "Targets"): positions 3 floats packed, joints 4 x uint16 (or 4 x uint8 in the compact
