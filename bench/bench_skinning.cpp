@@ -56,36 +56,24 @@ void add_palettes(SkinScene& scene, std::size_t palette_size, std::uint32_t seed
   scene.motors.push_back(std::move(mo));
 }
 
+SkinScene make_random_scene(std::size_t vertices) {
+  SkinScene s;
+  s.meshes.push_back(make_random_skinned_mesh(vertices, kRandomBones, kMeshSeed));
+  s.vertices = vertices;
+  add_palettes(s, kRandomBones, kPoseSeed);
+  return s;
+}
+
 const SkinScene& random_scene() {
-  static const SkinScene scene = [] {
-    SkinScene s;
-    s.meshes.push_back(make_random_skinned_mesh(kRandomVertices, kRandomBones, kMeshSeed));
-    s.vertices = kRandomVertices;
-    add_palettes(s, kRandomBones, kPoseSeed);
-    return s;
-  }();
+  static const SkinScene scene = make_random_scene(kRandomVertices);
   return scene;
 }
 
 // The same random mesh at 64 K vertices: inputs and outputs (2.6-4.5 MB) stay in this host's caches.
 const SkinScene& random64k_scene() {
-  static const SkinScene scene = [] {
-    SkinScene s;
-    s.meshes.push_back(make_random_skinned_mesh(kCacheVertices, kRandomBones, kMeshSeed));
-    s.vertices = kCacheVertices;
-    add_palettes(s, kRandomBones, kPoseSeed);
-    return s;
-  }();
+  static const SkinScene scene = make_random_scene(kCacheVertices);
   return scene;
 }
-
-// A vertex as engines store it: position, normal and skin data in one 48-byte stride.
-struct EngineVertex {
-  float p[3], n[3];
-  std::array<float, 4> w;
-  std::array<std::uint16_t, 4> j;
-};
-static_assert(sizeof(EngineVertex) == 48);
 
 // random1M's mesh as one interleaved buffer of EngineVertex; outputs x y z nx ny nz interleaved (24 bytes).
 struct InterleavedScene {
@@ -95,12 +83,8 @@ struct InterleavedScene {
 
 const InterleavedScene& interleaved_scene() {
   static const InterleavedScene scene = [] {
-    const SkinnedMesh& mesh = random_scene().meshes.front();
     InterleavedScene s;
-    s.in.resize(mesh.vertex_count());
-    for (std::size_t i = 0; i < s.in.size(); ++i)
-      s.in[i] = {{mesh.px[i], mesh.py[i], mesh.pz[i]}, {mesh.nx[i], mesh.ny[i], mesh.nz[i]}, mesh.weights[i],
-                 mesh.joints[i]};
+    s.in = make_engine_vertices(random_scene().meshes.front());
     s.out.assign(6 * s.in.size(), 0.0f);
     return s;
   }();
@@ -111,23 +95,7 @@ void bm_skinning_interleaved(benchmark::State& state, SkinningMethod method, boo
   const SkinScene& scene = random_scene();
   InterleavedScene& il = const_cast<InterleavedScene&>(interleaved_scene());  // outputs only are written
   const std::size_t n = il.in.size();
-  constexpr std::size_t kFloats = sizeof(EngineVertex) / sizeof(float);
-  const std::span<const float> in(il.in.front().p, kFloats * n);
-  const std::span<float> out(il.out);
-  SkinningJob job;
-  job.method = method;
-  job.in_px = in, job.in_py = in.subspan(1), job.in_pz = in.subspan(2);
-  job.out_px = out, job.out_py = out.subspan(1), job.out_pz = out.subspan(2);
-  if (normals) {
-    job.in_nx = in.subspan(3), job.in_ny = in.subspan(4), job.in_nz = in.subspan(5);
-    job.out_nx = out.subspan(3), job.out_ny = out.subspan(4), job.out_nz = out.subspan(5);
-  }
-  job.in_positions_stride = job.in_normals_stride = kFloats;
-  job.out_positions_stride = job.out_normals_stride = 6;
-  job.weights = {&il.in.front().w, (n - 1) * 3 + 1};
-  job.weights_stride = sizeof(EngineVertex) / sizeof(std::array<float, 4>);
-  job.joints = {&il.in.front().j, (n - 1) * 6 + 1};
-  job.joints_stride = sizeof(EngineVertex) / sizeof(std::array<std::uint16_t, 4>);
+  SkinningJob job = make_engine_vertex_job(method, il.in, il.out, normals);
   job.matrices = scene.matrices.front();
   job.dual_quats = scene.dual_quats.front();
   job.motors = scene.motors.front();

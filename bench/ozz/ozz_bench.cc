@@ -38,12 +38,10 @@ static const char* simd_name() {
 #endif
 }
 
-// ---------------------------------------------------------------- skinning
-static void bench_skinning(int n, const char* tag) {
-  const int kJoints = 64;
-  auto js = make_joints(kJoints);
-  std::vector<math::Float4x4> mats(kJoints);
-  for (int j = 0; j < kJoints; ++j) {
+// ozz's column-major joint matrices of the rigid joints.
+static std::vector<math::Float4x4> ozz_matrices(const std::vector<Rigid>& js) {
+  std::vector<math::Float4x4> mats(js.size());
+  for (std::size_t j = 0; j < js.size(); ++j) {
     float m[12];
     rigid_to_3x4(js[j], m);
     mats[j].cols[0] = math::simd_float4::Load(m[0], m[4], m[8], 0.f);
@@ -51,6 +49,14 @@ static void bench_skinning(int n, const char* tag) {
     mats[j].cols[2] = math::simd_float4::Load(m[2], m[6], m[10], 0.f);
     mats[j].cols[3] = math::simd_float4::Load(m[3], m[7], m[11], 1.f);
   }
+  return mats;
+}
+
+// ---------------------------------------------------------------- skinning
+static void bench_skinning(int n, const char* tag) {
+  const int kJoints = 64;
+  auto js = make_joints(kJoints);
+  const std::vector<math::Float4x4> mats = ozz_matrices(js);
   MeshData md = make_mesh(n, kJoints);
   std::vector<float> outp(3 * n), outn(3 * n);
 
@@ -112,15 +118,7 @@ static_assert(sizeof(EngineVertex) == 48, "48-byte vertex");
 static void bench_skinning_interleaved(int n, const char* tag) {
   const int kJoints = 64;
   auto js = make_joints(kJoints);
-  std::vector<math::Float4x4> mats(kJoints);
-  for (int j = 0; j < kJoints; ++j) {
-    float m[12];
-    rigid_to_3x4(js[j], m);
-    mats[j].cols[0] = math::simd_float4::Load(m[0], m[4], m[8], 0.f);
-    mats[j].cols[1] = math::simd_float4::Load(m[1], m[5], m[9], 0.f);
-    mats[j].cols[2] = math::simd_float4::Load(m[2], m[6], m[10], 0.f);
-    mats[j].cols[3] = math::simd_float4::Load(m[3], m[7], m[11], 1.f);
-  }
+  const std::vector<math::Float4x4> mats = ozz_matrices(js);
   MeshData md = make_mesh(n, kJoints);
   std::vector<EngineVertex> in(n);
   for (int i = 0; i < n; ++i)

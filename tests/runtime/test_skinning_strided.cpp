@@ -141,30 +141,12 @@ TEST_CASE("strided spans must cover the vertex count at their stride", "[skinnin
   }
 }
 
-namespace {
-
-// A vertex as engines store it, skin data included: 48 bytes.
-struct EngineVertex {
-  float p[3], n[3];
-  std::array<float, 4> w;
-  std::array<std::uint16_t, 4> j;
-};
-static_assert(sizeof(EngineVertex) == 48);
-
-}  // namespace
-
 TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the packed streams do",
           "[skinning][strided]") {
   const SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 78u);
   const RandomPalettes pal = make_random_palettes(24, 1, 6u);
   const std::size_t n = mesh.vertex_count();
-  std::vector<EngineVertex> in(n);
-  for (std::size_t i = 0; i < n; ++i)
-    in[i] = {{mesh.px[i], mesh.py[i], mesh.pz[i]}, {mesh.nx[i], mesh.ny[i], mesh.nz[i]}, mesh.weights[i],
-             mesh.joints[i]};
-  constexpr std::size_t kFloats = sizeof(EngineVertex) / sizeof(float);  // 12
-  const float* base = in.front().p;
-  const std::span<const float> floats(base, kFloats * n);
+  const std::vector<EngineVertex> in = make_engine_vertices(mesh);
   for (SkinningMethod method : kAllSkinningMethods)
     for (int isa = 0; isa < 3; ++isa) {
       CAPTURE(to_string(method), isa);
@@ -175,20 +157,9 @@ TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the
       REQUIRE(a.Run());
 
       std::vector<float> out(6 * n, -7.0f);
-      SkinningJob b;
-      b.method = method;
-      b.in_px = floats, b.in_py = floats.subspan(1), b.in_pz = floats.subspan(2);
-      b.in_nx = floats.subspan(3), b.in_ny = floats.subspan(4), b.in_nz = floats.subspan(5);
-      b.in_positions_stride = b.in_normals_stride = kFloats;
-      // The shortest spans the size rules allow: (n - 1) * stride + 1 quadruples.
-      b.weights = {&in.front().w, (n - 1) * 3 + 1};
-      b.weights_stride = sizeof(EngineVertex) / sizeof(std::array<float, 4>);
-      b.joints = {&in.front().j, (n - 1) * 6 + 1};
-      b.joints_stride = sizeof(EngineVertex) / sizeof(std::array<std::uint16_t, 4>);
-      const std::span<float> o(out);
-      b.out_px = o, b.out_py = o.subspan(1), b.out_pz = o.subspan(2);
-      b.out_nx = o.subspan(3), b.out_ny = o.subspan(4), b.out_nz = o.subspan(5);
-      b.out_positions_stride = b.out_normals_stride = 6;
+      SkinningJob b = make_engine_vertex_job(method, in, out, true);
+      REQUIRE(b.weights.size() == (n - 1) * 3 + 1);  // the shortest spans the size rules allow
+      REQUIRE(b.joints.size() == (n - 1) * 6 + 1);
       set_palette(b, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
       b.use_simd = a.use_simd, b.use_avx512 = a.use_avx512;
       REQUIRE(b.vertex_count() == n);

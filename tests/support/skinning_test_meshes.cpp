@@ -161,4 +161,36 @@ RandomPalettes make_random_palettes(int bones, std::size_t count, std::uint32_t 
   return out;
 }
 
+std::vector<EngineVertex> make_engine_vertices(const SkinnedMesh& mesh) {
+  if (!mesh.has_normals()) throw std::invalid_argument("make_engine_vertices: the mesh has no normals");
+  std::vector<EngineVertex> v(mesh.vertex_count());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = {{mesh.px[i], mesh.py[i], mesh.pz[i]}, {mesh.nx[i], mesh.ny[i], mesh.nz[i]}, mesh.weights[i],
+            mesh.joints[i]};
+  return v;
+}
+
+SkinningJob make_engine_vertex_job(SkinningMethod method, std::span<const EngineVertex> in, std::span<float> out,
+                                   bool normals) {
+  const std::size_t n = in.size();
+  if (n == 0 || out.size() < 6 * n) throw std::invalid_argument("make_engine_vertex_job: empty input or short output");
+  constexpr std::size_t kFloats = sizeof(EngineVertex) / sizeof(float);  // 12
+  const std::span<const float> f(in.front().p, kFloats * n);
+  SkinningJob job;
+  job.method = method;
+  job.in_px = f, job.in_py = f.subspan(1), job.in_pz = f.subspan(2);
+  job.out_px = out, job.out_py = out.subspan(1), job.out_pz = out.subspan(2);
+  if (normals) {
+    job.in_nx = f.subspan(3), job.in_ny = f.subspan(4), job.in_nz = f.subspan(5);
+    job.out_nx = out.subspan(3), job.out_ny = out.subspan(4), job.out_nz = out.subspan(5);
+  }
+  job.in_positions_stride = job.in_normals_stride = kFloats;
+  job.out_positions_stride = job.out_normals_stride = 6;
+  job.weights_stride = sizeof(EngineVertex) / sizeof(std::array<float, 4>);   // 3
+  job.joints_stride = sizeof(EngineVertex) / sizeof(std::array<std::uint16_t, 4>);  // 6
+  job.weights = {&in.front().w, (n - 1) * job.weights_stride + 1};
+  job.joints = {&in.front().j, (n - 1) * job.joints_stride + 1};
+  return job;
+}
+
 }  // namespace cga

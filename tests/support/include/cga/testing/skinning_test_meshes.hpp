@@ -3,9 +3,12 @@
 // does not, and deterministic random meshes and poses.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "cga/runtime/skinning.hpp"
 #include "cga/runtime/types.hpp"
 
 namespace cga {
@@ -60,5 +63,22 @@ struct RandomPalettes {
   std::vector<MotorPalette> motors;
 };
 RandomPalettes make_random_palettes(int bones, std::size_t count, std::uint32_t seed);
+
+// A vertex as engines store it, skin data included: position, normal, 4 weights, 4 joints in 48 bytes.
+struct EngineVertex {
+  float p[3], n[3];
+  std::array<float, 4> w;
+  std::array<std::uint16_t, 4> j;
+};
+static_assert(sizeof(EngineVertex) == 48);
+
+// The mesh's vertices (normals required) in that layout.
+std::vector<EngineVertex> make_engine_vertices(const SkinnedMesh& mesh);
+
+// A job reading `in` through strides (weights and joints spans as short as the size rules allow) and
+// writing x y z nx ny nz interleaved into `out` (6 floats per vertex; normals only when `normals`). The
+// palette spans are left for the caller.
+SkinningJob make_engine_vertex_job(SkinningMethod method, std::span<const EngineVertex> in, std::span<float> out,
+                                   bool normals);
 
 }  // namespace cga
