@@ -52,6 +52,32 @@ static std::vector<math::Float4x4> ozz_matrices(const std::vector<Rigid>& js) {
   return mats;
 }
 
+// Largest difference of the outputs (vertex i at out_p + i * stride_p, normals likewise when out_n is given)
+// from the scalar blend of 3x4 matrices, over the first 20000 vertices.
+static double max_error(const std::vector<Rigid>& js, const MeshData& md, const float* out_p, int stride_p,
+                        const float* out_n, int stride_n) {
+  double maxerr = 0;
+  for (int i = 0; i < std::min(md.n, 20000); ++i) {
+    float acc[12] = {0};
+    for (int k = 0; k < 4; ++k) {
+      float m[12];
+      rigid_to_3x4(js[md.idx[4 * i + k]], m);
+      for (int e = 0; e < 12; ++e) acc[e] += md.wgt[4 * i + k] * m[e];
+    }
+    const float* p = &md.pos[3 * i];
+    const float* nn = &md.nrm[3 * i];
+    for (int r = 0; r < 3; ++r) {
+      const float o = acc[4 * r] * p[0] + acc[4 * r + 1] * p[1] + acc[4 * r + 2] * p[2] + acc[4 * r + 3];
+      maxerr = std::max(maxerr, (double)std::fabs(o - out_p[stride_p * i + r]));
+      if (out_n) {
+        const float on = acc[4 * r] * nn[0] + acc[4 * r + 1] * nn[1] + acc[4 * r + 2] * nn[2];
+        maxerr = std::max(maxerr, (double)std::fabs(on - out_n[stride_n * i + r]));
+      }
+    }
+  }
+  return maxerr;
+}
+
 // ---------------------------------------------------------------- skinning
 static void bench_skinning(int n, const char* tag) {
   const int kJoints = 64;
@@ -81,25 +107,7 @@ static void bench_skinning(int n, const char* tag) {
     }
     if (!job.Run()) { std::printf("skinning job failed\n"); std::exit(1); }
     // correctness vs scalar reference on a subset
-    double maxerr = 0;
-    for (int i = 0; i < std::min(n, 20000); ++i) {
-      float acc[12] = {0};
-      for (int k = 0; k < 4; ++k) {
-        float m[12];
-        rigid_to_3x4(js[md.idx[4 * i + k]], m);
-        for (int e = 0; e < 12; ++e) acc[e] += md.wgt[4 * i + k] * m[e];
-      }
-      const float* p = &md.pos[3 * i];
-      const float* nn = &md.nrm[3 * i];
-      for (int r = 0; r < 3; ++r) {
-        float o = acc[4 * r] * p[0] + acc[4 * r + 1] * p[1] + acc[4 * r + 2] * p[2] + acc[4 * r + 3];
-        maxerr = std::max(maxerr, (double)std::fabs(o - outp[3 * i + r]));
-        if (pn) {
-          float on = acc[4 * r] * nn[0] + acc[4 * r + 1] * nn[1] + acc[4 * r + 2] * nn[2];
-          maxerr = std::max(maxerr, (double)std::fabs(on - outn[3 * i + r]));
-        }
-      }
-    }
+    const double maxerr = max_error(js, md, outp.data(), 3, pn ? outn.data() : nullptr, 3);
     Stats s = time_it([&] { job.Run(); clobber(); });
     std::printf("ozz SkinningJob %-2s %s n=%d inf=4: %.1f Mvert/s (median; min-max %.1f-%.1f) %.2f ns/vert maxerr=%.2g\n",
                 pn ? "PN" : "P", tag, n, n / s.med / 1e6, n / s.mx / 1e6, n / s.mn / 1e6,
@@ -153,20 +161,7 @@ static void bench_skinning_interleaved(int n, const char* tag) {
       job.out_normals_stride = 6 * sizeof(float);
     }
     if (!job.Run()) { std::printf("interleaved skinning job failed\n"); std::exit(1); }
-    double maxerr = 0;
-    for (int i = 0; i < std::min(n, 20000); ++i) {
-      float acc[12] = {0};
-      for (int k = 0; k < 4; ++k) {
-        float m[12];
-        rigid_to_3x4(js[md.idx[4 * i + k]], m);
-        for (int e = 0; e < 12; ++e) acc[e] += md.wgt[4 * i + k] * m[e];
-      }
-      const float* p = &md.pos[3 * i];
-      for (int r = 0; r < 3; ++r) {
-        float o = acc[4 * r] * p[0] + acc[4 * r + 1] * p[1] + acc[4 * r + 2] * p[2] + acc[4 * r + 3];
-        maxerr = std::max(maxerr, (double)std::fabs(o - out[6 * i + r]));
-      }
-    }
+    const double maxerr = max_error(js, md, out.data(), 6, pn ? out.data() + 3 : nullptr, 6);
     Stats s = time_it([&] { job.Run(); clobber(); });
     std::printf("ozz SkinningJob %-2s %s n=%d inf=4: %.1f Mvert/s (median; min-max %.1f-%.1f) %.2f ns/vert maxerr=%.2g\n",
                 pn ? "PN" : "P", tag, n, n / s.med / 1e6, n / s.mx / 1e6, n / s.mn / 1e6,
