@@ -19,6 +19,7 @@
 #include "opt/program.hpp"
 #include "opt/report.hpp"
 #include "opt/stage.hpp"
+#include "symbolic/node_cache.hpp"
 
 namespace {
 
@@ -337,6 +338,7 @@ int run(const Options& o) {
   front::SourceFile file = load_script(o.script);
   const bool from_stdin = o.script == "-";
   try {
+    symbolic::NodeCacheScope caches;  // shared by the expander and every optimization of this script
     front::Script script = front::parse(file);
     if (o.dump_ast) {
       std::string out;

@@ -20,6 +20,7 @@
 #include "expand/algebra_builtins.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
+#include "symbolic/node_cache.hpp"
 #include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
 #include "symbolic/probes.hpp"
@@ -210,6 +211,7 @@ class Expander {
 
   Kernel run(const front::Script& script) {
     symbolic::WorkBudget budget;
+    symbolic::NodeCacheScope caches;
     define_algebra_builtins();
     for (const auto& [loc, message] : script.warnings) kernel_.warnings.push_back({loc, message});
     collect_script_names(script.statements);

@@ -10,6 +10,7 @@
 #include "opt/program.hpp"
 #include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
+#include "symbolic/node_cache.hpp"
 
 namespace cgagen::opt {
 
@@ -569,6 +570,7 @@ Program optimize_level(const Kernel& kernel, Level level);
 Program optimize(const Kernel& kernel, Level level) {
   // A fault of GiNaC's inside the optimizer is a bug of cgagen's, but the user still gets a located error
   // (at the first output), never a library's message without a location.
+  symbolic::NodeCacheScope caches;
   try {
     return optimize_level(kernel, level);
   } catch (const front::CompileError&) {

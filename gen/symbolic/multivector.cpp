@@ -3,6 +3,7 @@
 
 #include "symbolic/budget.hpp"
 #include "symbolic/dag.hpp"
+#include "symbolic/node_cache.hpp"
 
 #include "algebra/algebra.hpp"
 
@@ -63,22 +64,19 @@ std::vector<GiNaC::exmap> probe_points(const GiNaC::ex& x) {
   return points;
 }
 
-// x in floats at probe point k, each shared node once; the values of large nodes are kept for the process
-// (a root of a large sum under every coefficient of a normalized value). Throws at a pole.
+// x in floats at probe point k, each shared node once; the values of large nodes are kept in the open
+// NodeCacheScope (a root of a large sum under every coefficient of a normalized value). Throws at a pole.
 GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
   using namespace GiNaC;
-  struct Entry {
-    ex node;  // kept alive: the address is never reused
-    numeric value;
-  };
-  static std::array<std::unordered_map<const basic*, Entry>, 2> cache;
+  NodeCaches* caches = NodeCaches::current();
+  auto* cache = caches ? &caches->probe_values[static_cast<size_t>(k)] : nullptr;
   std::unordered_map<const basic*, numeric> memo;
   auto eval = [&](auto&& self, const ex& e) -> numeric {
     if (is_a<numeric>(e)) return ex_to<numeric>(ex_to<numeric>(e).evalf());
     if (is_a<symbol>(e)) return ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
     if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;
-    if (auto it = cache[static_cast<size_t>(k)].find(node_of(e)); it != cache[static_cast<size_t>(k)].end())
-      return it->second.value;
+    if (cache)
+      if (auto it = cache->find(node_of(e)); it != cache->end()) return it->second.value;
     numeric v;
     if (is_a<add>(e) || is_a<mul>(e)) {
       const bool product = is_a<mul>(e);
@@ -105,10 +103,9 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
       v = ex_to<numeric>(f);
     }
     memo.emplace(node_of(e), v);
-    if (!is_a<mul>(e) || e.nops() > 8) {
-      auto& c = cache[static_cast<size_t>(k)];
-      if (c.size() >= 20000) c.clear();  // bounded in a long-lived process (the fuzzer)
-      c.emplace(node_of(e), Entry{e, v});
+    if (cache && (!is_a<mul>(e) || e.nops() > 8)) {
+      if (cache->size() >= NodeCaches::kMaxEntries) cache->clear();
+      cache->emplace(node_of(e), NodeCaches::Value{e, v});
     }
     return v;
   };
@@ -367,16 +364,18 @@ void collect_symbols_into(const GiNaC::ex& x, std::set<GiNaC::ex, GiNaC::ex_is_l
 
 std::size_t tree_symbol_count(const GiNaC::ex& e) {
   // Large shared nodes (a root's argument under every coefficient of a normalized value) are counted once
-  // per process: the cache keeps them alive, so an address is never reused for another node.
-  constexpr std::size_t kCachedFrom = 256, kMaxCached = 20000;
-  static std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> cache;
+  // per open NodeCacheScope.
+  constexpr std::size_t kCachedFrom = 256;
+  NodeCaches* caches = NodeCaches::current();
+  auto* cache = caches ? &caches->symbol_counts : nullptr;
   std::unordered_map<const GiNaC::basic*, std::size_t> memo;  // nodes of e, alive while e is
   auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
     if (GiNaC::is_a<GiNaC::symbol>(x)) return 1;
     if (x.nops() == 0) return 0;
     auto it = memo.find(node_of(x));
     if (it != memo.end()) return it->second;
-    if (auto c = cache.find(node_of(x)); c != cache.end()) return c->second.second;
+    if (cache)
+      if (auto c = cache->find(node_of(x)); c != cache->end()) return c->second.count;
     std::size_t n = 0;
     if (GiNaC::is_a<GiNaC::expairseq>(x)) {
       // Sums and products: the coefficients, exponents and overall coefficient are numbers (no symbols).
@@ -385,9 +384,9 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
       for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
     }
     memo.emplace(node_of(x), n);
-    if (n >= kCachedFrom) {
-      if (cache.size() >= kMaxCached) cache.clear();  // bounded in a long-lived process (the fuzzer)
-      cache.emplace(node_of(x), std::make_pair(x, n));
+    if (cache && n >= kCachedFrom) {
+      if (cache->size() >= NodeCaches::kMaxEntries) cache->clear();
+      cache->emplace(node_of(x), NodeCaches::Count{x, n});
     }
     return n;
   };

@@ -12,6 +12,7 @@
 #include "expand/expand.hpp"
 #include "front/parser.hpp"
 #include "oracle/multivector.hpp"
+#include "symbolic/node_cache.hpp"
 
 using namespace cgagen;
 using OMV = oracle::MV<double>;
@@ -515,4 +516,25 @@ TEST_CASE("zero tests through the value chain: exact probes, no inlining", "[exp
   k = expand_text(chain);
   REQUIRE(k.values.back().blades.size() == 1);
   CHECK(k.values.back().blades[0] == 2);
+}
+
+TEST_CASE("node caches live only while a scope is open; nested scopes share the outer one", "[expand]") {
+  // A long-lived process (the fuzzer) must get back all that one generation allocated: no cache may
+  // outlive the expander's or the optimizer's own scope.
+  REQUIRE(symbolic::NodeCaches::current() == nullptr);
+  (void)expand_script("paper_motor.clu");
+  CHECK(symbolic::NodeCaches::current() == nullptr);
+  {
+    symbolic::NodeCacheScope outer;
+    symbolic::NodeCaches* shared = symbolic::NodeCaches::current();
+    REQUIRE(shared != nullptr);
+    {
+      symbolic::NodeCacheScope inner;
+      CHECK(symbolic::NodeCaches::current() == shared);
+    }
+    CHECK(symbolic::NodeCaches::current() == shared);
+    (void)expand_script("paper_motor.clu");
+    CHECK(symbolic::NodeCaches::current() == shared);
+  }
+  CHECK(symbolic::NodeCaches::current() == nullptr);
 }
