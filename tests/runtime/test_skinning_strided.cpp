@@ -63,8 +63,8 @@ void set_palette(SkinningJob& job, const MatrixPalette& m, const DualQuatPalette
 }  // namespace
 
 TEST_CASE("an interleaved vertex buffer skins exactly as the packed streams do", "[skinning][strided]") {
-  // 1000 vertices: three whole blocks of 256 and a partial one.
-  const SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 77u);
+  // 1003 vertices: three whole blocks of 256 and a partial one, whose last 3 vertices are not a group of 8.
+  const SkinnedMesh mesh = make_random_skinned_mesh(1003, 24, 77u);
   const RandomPalettes pal = make_random_palettes(24, 1, 5u);
   for (SkinningMethod method : kAllSkinningMethods)
     for (bool normals : {false, true})
@@ -143,7 +143,7 @@ TEST_CASE("strided spans must cover the vertex count at their stride", "[skinnin
 
 TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the packed streams do",
           "[skinning][strided]") {
-  const SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 78u);
+  const SkinnedMesh mesh = make_random_skinned_mesh(1003, 24, 78u);
   const RandomPalettes pal = make_random_palettes(24, 1, 6u);
   const std::size_t n = mesh.vertex_count();
   const std::vector<EngineVertex> in = make_engine_vertices(mesh);
@@ -172,11 +172,11 @@ TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the
       }
       CHECK(mismatches == 0);
 
-      if (method == SkinningMethod::lbs && isa == 0) {
+      if (method == SkinningMethod::lbs) {  // every ISA: the SIMD ones have their own strided loop
         INFO("a weight span one quadruple short, a bad joint and a NaN weight are refused with the vertex");
         SkinningJob c = b;
         c.weights = c.weights.first(c.weights.size() - 1);
-        CHECK_THAT(c.ValidationError(), Catch::Contains("weight quadruples for 1000 vertices at stride 3"));
+        CHECK_THAT(c.ValidationError(), Catch::Contains("weight quadruples for 1003 vertices at stride 3"));
         CHECK_FALSE(c.Run());
         std::vector<EngineVertex> bad = in;
         bad[613].j[2] = 24;

@@ -12,11 +12,10 @@
 namespace cga::skinning_detail {
 namespace {
 
-// Blended 3x4 matrix of vertex i as (c0 | c1), (c2 | t), from the matrix palette layout.
-CGA_AVX2 CGA_ALWAYS_INLINE void blend_matrix_avx2(const float* __restrict pal, const Streams& s, std::size_t i,
-                                                  __m256& lo, __m256& hi) {
-  const std::array<std::uint16_t, 4> j = s.joints[i];
-  const float* w = s.weights[i].data();
+// Blended 3x4 matrix of a vertex with joints j and weights w as (c0 | c1), (c2 | t), from the matrix palette
+// layout.
+CGA_AVX2 CGA_ALWAYS_INLINE void blend_matrix_avx2(const float* __restrict pal, const std::array<std::uint16_t, 4>& j,
+                                                  const float* w, __m256& lo, __m256& hi) {
   const float* a = pal + kEntry * j[0];
   const float* b = pal + kEntry * j[1];
   const float* c = pal + kEntry * j[2];
@@ -56,14 +55,28 @@ CGA_AVX2 CGA_ALWAYS_INLINE void transpose_pairs(const __m256 u[4], __m256& rx, _
 
 
 // The portable renormalization on 8 lanes: n / |n|, or 0 when |n| = 0.
-CGA_AVX2 CGA_ALWAYS_INLINE void store_unit8(__m256 x, __m256 y, __m256 z, float* __restrict ox,
-                                            float* __restrict oy, float* __restrict oz) {
+CGA_AVX2 CGA_ALWAYS_INLINE void unit8(__m256& x, __m256& y, __m256& z) {
   const __m256 len2 = _mm256_fmadd_ps(z, z, _mm256_fmadd_ps(y, y, _mm256_mul_ps(x, x)));
   const __m256 one_if_nonzero = _mm256_and_ps(_mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));
   const __m256 inv = _mm256_div_ps(one_if_nonzero, _mm256_sqrt_ps(_mm256_max_ps(len2, _mm256_set1_ps(1e-30f))));
-  _mm256_storeu_ps(ox, _mm256_mul_ps(x, inv));
-  _mm256_storeu_ps(oy, _mm256_mul_ps(y, inv));
-  _mm256_storeu_ps(oz, _mm256_mul_ps(z, inv));
+  x = _mm256_mul_ps(x, inv);
+  y = _mm256_mul_ps(y, inv);
+  z = _mm256_mul_ps(z, inv);
+}
+
+CGA_AVX2 CGA_ALWAYS_INLINE void store_unit8(__m256 x, __m256 y, __m256 z, float* __restrict ox,
+                                            float* __restrict oy, float* __restrict oz) {
+  unit8(x, y, z);
+  _mm256_storeu_ps(ox, x);
+  _mm256_storeu_ps(oy, y);
+  _mm256_storeu_ps(oz, z);
+}
+
+// Lanes 0-2 of v to *x, *y, *z.
+CGA_AVX2 CGA_ALWAYS_INLINE void store_xyz(__m128 v, float* x, float* y, float* z) {
+  _mm_store_ss(x, v);
+  _mm_store_ss(y, _mm_movehdup_ps(v));
+  _mm_store_ss(z, _mm_movehl_ps(v, v));
 }
 
 template <bool kNormals, bool kPrefetch>
@@ -81,8 +94,8 @@ CGA_AVX2 CGA_ALWAYS_INLINE void matrix_block_avx2(const float* __restrict pal, c
     for (int k = 0; k < 4; ++k) {
       __m256 lo, hi, lo4, hi4;
       const std::size_t a = i + k, b = i + k + 4;
-      blend_matrix_avx2(pal, s, a, lo, hi);
-      blend_matrix_avx2(pal, s, b, lo4, hi4);
+      blend_matrix_avx2(pal, s.joints[a], s.weights[a].data(), lo, hi);
+      blend_matrix_avx2(pal, s.joints[b], s.weights[b].data(), lo4, hi4);
       p[k] = pair_halves(apply_halves(lo, hi, s.px + a, s.py + a, s.pz + a, one),
                          apply_halves(lo4, hi4, s.px + b, s.py + b, s.pz + b, one));
       if constexpr (kNormals)
@@ -107,6 +120,60 @@ CGA_AVX2 bool matrix_block_avx2_fn(const float* pal, const Streams& s, std::size
                                    std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
   matrix_block_avx2<kNormals, kPrefetch>(pal, s, begin, end);
+  return true;
+}
+
+// lbs and cga_points on strided streams (an engine's interleaved vertex buffer): matrix_block_avx2's arithmetic
+// with each vertex's inputs read in place and its outputs written lane by lane, positions straight from the
+// pair registers and normals after the 8-wide renormalization, so nothing goes through a staging buffer and
+// the results are bit-identical to the packed loop's. A block's last (end - begin) % 8 vertices are staged
+// and take the portable loop, as they do in a packed run.
+template <bool kNormals, bool kPrefetch>
+CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& streams, std::size_t begin, std::size_t end,
+                                     std::size_t palette) {
+  const Streams s = streams;
+  if (!block_ok_strided(s, begin, end, palette)) return false;
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) {
+    if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i);
+    __m256 n[4];
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      __m256 lo, hi, lo4, hi4;
+      const std::size_t a = i + k, b = i + k + 4;
+      blend_matrix_avx2(pal, s.joints[a * s.js], s.weights[a * s.ws].data(), lo, hi);
+      blend_matrix_avx2(pal, s.joints[b * s.js], s.weights[b * s.ws].data(), lo4, hi4);
+      const std::size_t pa = a * s.ip, pb = b * s.ip;
+      const __m256 p = pair_halves(apply_halves(lo, hi, s.px + pa, s.py + pa, s.pz + pa, one),
+                                   apply_halves(lo4, hi4, s.px + pb, s.py + pb, s.pz + pb, one));
+      store_xyz(_mm256_castps256_ps128(p), s.ox + a * s.op, s.oy + a * s.op, s.oz + a * s.op);
+      store_xyz(_mm256_extractf128_ps(p, 1), s.ox + b * s.op, s.oy + b * s.op, s.oz + b * s.op);
+      if constexpr (kNormals) {
+        const std::size_t na = a * s.in, nb = b * s.in;
+        n[k] = pair_halves(apply_halves(lo, hi, s.nx + na, s.ny + na, s.nz + na, zero),
+                           apply_halves(lo4, hi4, s.nx + nb, s.ny + nb, s.nz + nb, zero));
+      }
+    }
+    if constexpr (kNormals) {
+      __m256 x, y, z;
+      transpose_pairs(n, x, y, z);
+      unit8(x, y, z);
+      alignas(32) float u[3][8];
+      _mm256_store_ps(u[0], x);
+      _mm256_store_ps(u[1], y);
+      _mm256_store_ps(u[2], z);
+      for (std::size_t v = 0; v < 8; ++v) {
+        const std::size_t o = (i + v) * s.on;
+        s.onx[o] = u[0][v], s.ony[o] = u[1][v], s.onz[o] = u[2][v];
+      }
+    }
+  }
+  if (i < end) {
+    Staged t;
+    matrix_block<kNormals>(pal, stage_in(s, i, end - i, kNormals, t), 0, end - i);
+    stage_out(t, s, i, end - i, kNormals);
+  }
   return true;
 }
 
@@ -205,7 +272,9 @@ const SkinKernels* avx2_kernels() {
        {matrix_block_avx2_fn<true, false>, matrix_block_avx2_fn<true, true>}},
       {portable_kernels().dq[0], portable_kernels().dq[1]},
       {{motor_block_avx2_fn<false, false>, motor_block_avx2_fn<false, true>},
-       {motor_block_avx2_fn<true, false>, motor_block_avx2_fn<true, true>}}};
+       {motor_block_avx2_fn<true, false>, motor_block_avx2_fn<true, true>}},
+      {{matrix_strided_avx2_fn<false, false>, matrix_strided_avx2_fn<false, true>},
+       {matrix_strided_avx2_fn<true, false>, matrix_strided_avx2_fn<true, true>}}};
   return has ? &k : nullptr;
 }
 

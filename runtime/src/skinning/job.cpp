@@ -190,35 +190,16 @@ const SkinKernels& kernels_for(bool use_simd, bool use_avx512) {
   return portable_kernels();
 }
 
-// Strided streams run through one block of packed vertices on the stack: gather the block's inputs, skin them
-// with the packed loops, scatter the outputs. The mesh is never copied; the per-block staging costs two passes
-// over 256 vertices that are in L1 anyway.
-bool run_strided(const SkinningJob& job, BlockFn block, const float* pal, std::size_t palette) {
-  const std::size_t n = job.vertex_count();
-  const bool normals = job.has_normals();
-  const std::size_t ip = job.in_positions_stride, in = job.in_normals_stride;
-  const std::size_t op = job.out_positions_stride, on = job.out_normals_stride;
-  const std::size_t js = job.joints_stride, ws = job.weights_stride;
-  alignas(64) float buf[12][kBlock];
-  alignas(64) std::array<std::uint16_t, 4> joints[kBlock];
-  alignas(64) std::array<float, 4> weights[kBlock];
+// Strided streams without a strided block function run through one block of packed vertices on the stack
+// (stage_in, the packed loop, stage_out). The mesh is never copied; the staging costs two passes over 256
+// vertices that are in L1 anyway.
+bool run_strided(const Streams& s, std::size_t n, bool normals, BlockFn block, const float* pal,
+                 std::size_t palette) {
+  Staged t;
   for (std::size_t begin = 0; begin < n; begin += kBlock) {
     const std::size_t count = std::min(kBlock, n - begin);
-    for (std::size_t v = 0; v < count; ++v) {
-      const std::size_t i = begin + v;
-      buf[0][v] = job.in_px[i * ip], buf[1][v] = job.in_py[i * ip], buf[2][v] = job.in_pz[i * ip];
-      if (normals) buf[3][v] = job.in_nx[i * in], buf[4][v] = job.in_ny[i * in], buf[5][v] = job.in_nz[i * in];
-      if (js != 1) joints[v] = job.joints[i * js];
-      if (ws != 1) weights[v] = job.weights[i * ws];
-    }
-    const Streams s{buf[0], buf[1], buf[2], buf[3], buf[4], buf[5], js == 1 ? job.joints.data() + begin : joints,
-                    ws == 1 ? job.weights.data() + begin : weights, buf[6], buf[7], buf[8], buf[9], buf[10], buf[11]};
-    if (!block(pal, s, 0, count, palette)) return false;
-    for (std::size_t v = 0; v < count; ++v) {
-      const std::size_t i = begin + v;
-      job.out_px[i * op] = buf[6][v], job.out_py[i * op] = buf[7][v], job.out_pz[i * op] = buf[8][v];
-      if (normals) job.out_nx[i * on] = buf[9][v], job.out_ny[i * on] = buf[10][v], job.out_nz[i * on] = buf[11][v];
-    }
+    if (!block(pal, stage_in(s, begin, count, normals, t), 0, count, palette)) return false;
+    stage_out(t, s, begin, count, normals);
   }
   return true;
 }
@@ -236,11 +217,11 @@ bool SkinningJob::Run() const {
   const std::size_t n = vertex_count();
   const bool normals = has_normals();
   // A large mesh (kLargeVertices or more) streams from memory: the SIMD loops prefetch their inputs ahead
-  // (prefetch_ahead). Outputs are written with plain stores. Non-temporal stores were tried: they gained
-  // 10 % on one host and halved the throughput on another (docs/bench.md), and ozz-animation uses plain
-  // stores too.
+  // (prefetch_ahead; the strided matrix loop prefetch_ahead_strided; staged blocks need none). Outputs are
+  // written with plain stores. Non-temporal stores were tried: they gained 10 % on one host and halved the
+  // throughput on another (docs/bench.md), and ozz-animation uses plain stores too.
   const bool packed = is_packed();
-  const bool large = packed && n >= kLargeVertices;
+  const bool streaming = n >= kLargeVertices, large = packed && streaming;
 
   // Per-run palette preparation into the loops' layout (loops.hpp), on the stack (Run() never allocates): lbs
   // transposes its matrices, cga_points converts every motor once with the generated kernel, cga_motors
@@ -276,10 +257,15 @@ bool SkinningJob::Run() const {
       block = k.motor[normals][large];
       break;
   }
-  if (!packed) return run_strided(*this, block, converted, palette);
   const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
                   in_nz.data(),  joints.data(), weights.data(), out_px.data(), out_py.data(),
-                  out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data()};
+                  out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data(), in_positions_stride,
+                  in_normals_stride, out_positions_stride, out_normals_stride, joints_stride, weights_stride};
+  if (!packed) {
+    const bool matrix_loop = method == SkinningMethod::lbs || method == SkinningMethod::cga_points;
+    if (BlockFn strided = matrix_loop ? k.matrix_strided[normals][streaming] : nullptr) block = strided;
+    else return run_strided(s, n, normals, block, converted, palette);
+  }
   bool ok = true;
   for (std::size_t begin = 0; begin < n && ok; begin += kBlock)
     ok = block(converted, s, begin, std::min(n, begin + kBlock), palette);

@@ -56,6 +56,9 @@ struct Streams {
   float* __restrict onx;
   float* __restrict ony;
   float* __restrict onz;
+  // SkinningJob's strides (vertex i of px is px[i * ip], of joints joints[i * js], ...). 1 in packed runs; only
+  // the strided block functions (SkinKernels::matrix_strided) read them.
+  std::size_t ip = 1, in = 1, op = 1, on = 1, js = 1, ws = 1;
 };
 
 // Joint indices below the palette size and finite weights, for vertices [begin, end): two integer max
@@ -73,6 +76,21 @@ CGA_ALWAYS_INLINE bool block_ok(const std::array<std::uint16_t, 4>* joints, cons
   for (std::size_t e = 0; e < 4 * (end - begin); ++e) {
     max_joint = std::max(max_joint, j[e]);
     max_exponent = std::max(max_exponent, std::bit_cast<std::uint32_t>(w[e]) & 0x7f800000u);
+  }
+  return max_exponent < 0x7f800000u && max_joint < palette;
+}
+
+// block_ok for strided joints and weights (Streams::js, ws).
+CGA_ALWAYS_INLINE bool block_ok_strided(const Streams& s, std::size_t begin, std::size_t end, std::size_t palette) {
+  std::uint16_t max_joint = 0;
+  std::uint32_t max_exponent = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::array<std::uint16_t, 4>& j = s.joints[i * s.js];
+    const std::array<float, 4>& w = s.weights[i * s.ws];
+    for (int k = 0; k < 4; ++k) {
+      max_joint = std::max(max_joint, j[k]);
+      max_exponent = std::max(max_exponent, std::bit_cast<std::uint32_t>(w[k]) & 0x7f800000u);
+    }
   }
   return max_exponent < 0x7f800000u && max_joint < palette;
 }
@@ -244,6 +262,35 @@ CGA_ALWAYS_INLINE void motor_block(const float* __restrict pal, const Streams& s
   motor_rows_apply<kNormals>(rows, s, begin, end);
 }
 
+// Vertices [begin, begin + count) of strided streams copied into packed arrays (count <= kBlock), so that a
+// packed block function can skin them; stage_out writes its outputs back. Packed joints and weights are
+// used in place.
+struct Staged {
+  alignas(64) float f[12][kBlock];  // inputs px py pz nx ny nz, outputs ox oy oz onx ony onz
+  alignas(64) std::array<std::uint16_t, 4> joints[kBlock];
+  alignas(64) std::array<float, 4> weights[kBlock];
+};
+
+inline Streams stage_in(const Streams& s, std::size_t begin, std::size_t count, bool normals, Staged& t) {
+  for (std::size_t v = 0; v < count; ++v) {
+    const std::size_t i = begin + v;
+    t.f[0][v] = s.px[i * s.ip], t.f[1][v] = s.py[i * s.ip], t.f[2][v] = s.pz[i * s.ip];
+    if (normals) t.f[3][v] = s.nx[i * s.in], t.f[4][v] = s.ny[i * s.in], t.f[5][v] = s.nz[i * s.in];
+    if (s.js != 1) t.joints[v] = s.joints[i * s.js];
+    if (s.ws != 1) t.weights[v] = s.weights[i * s.ws];
+  }
+  return {t.f[0], t.f[1], t.f[2], t.f[3], t.f[4], t.f[5], s.js == 1 ? s.joints + begin : t.joints,
+          s.ws == 1 ? s.weights + begin : t.weights, t.f[6], t.f[7], t.f[8], t.f[9], t.f[10], t.f[11]};
+}
+
+inline void stage_out(const Staged& t, const Streams& s, std::size_t begin, std::size_t count, bool normals) {
+  for (std::size_t v = 0; v < count; ++v) {
+    const std::size_t i = begin + v;
+    s.ox[i * s.op] = t.f[6][v], s.oy[i * s.op] = t.f[7][v], s.oz[i * s.op] = t.f[8][v];
+    if (normals) s.onx[i * s.on] = t.f[9][v], s.ony[i * s.on] = t.f[10][v], s.onz[i * s.on] = t.f[11][v];
+  }
+}
+
 // Checks the block [begin, end) (block_ok), then skins it; false when the block is invalid (nothing of it
 // written). pal is the converted palette, palette its entry count.
 using BlockFn = bool (*)(const float* pal, const Streams& s, std::size_t begin, std::size_t end, std::size_t palette);
@@ -255,6 +302,10 @@ struct SkinKernels {
   BlockFn matrix[2][2];  // lbs and cga_points, [normals][large mesh]
   BlockFn dq[2];         // dqs, [normals]
   BlockFn motor[2][2];   // cga_motors, [normals][large mesh]
+  // lbs and cga_points reading and writing strided streams in place, [normals][large mesh]; bit-identical to
+  // matrix[.][.]. Null: Run() stages strided streams through packed blocks (run_strided), as it does for every
+  // other method.
+  BlockFn matrix_strided[2][2];
 };
 
 // The tables, each defined in its ISA's file; the SIMD ones are null where the build or the CPU lacks them.

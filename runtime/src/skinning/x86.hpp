@@ -28,4 +28,23 @@ CGA_AVX2 CGA_ALWAYS_INLINE void prefetch_ahead(const Streams& s, std::size_t i) 
   prefetch(s.weights, 16 * v + 64);
 }
 
+// The strided loops' prefetch: the lines of the 8 vertices kPrefetchAhead after i, in the positions' stream
+// and in the joints', weights' and normals' streams where those do not start inside the positions' window (in
+// an interleaved vertex buffer they share its lines). py and pz are taken to share px's lines.
+CGA_AVX2 CGA_ALWAYS_INLINE void prefetch_window(const void* base, std::size_t stride_bytes, std::size_t v,
+                                                std::uintptr_t window, std::size_t span) {
+  if (reinterpret_cast<std::uintptr_t>(base) + stride_bytes * v - window < span) return;
+  for (std::size_t b = 0; b < 8 * stride_bytes; b += 64) prefetch(base, stride_bytes * v + b);
+}
+template <bool kNormals>
+CGA_AVX2 CGA_ALWAYS_INLINE void prefetch_ahead_strided(const Streams& s, std::size_t i) {
+  const std::size_t v = i + kPrefetchAhead;
+  const std::uintptr_t window = reinterpret_cast<std::uintptr_t>(s.px) + 4 * s.ip * v;
+  const std::size_t span = 8 * 4 * s.ip;
+  for (std::size_t b = 0; b < span; b += 64) prefetch(s.px, 4 * s.ip * v + b);
+  prefetch_window(s.joints, 8 * s.js, v, window, span);
+  prefetch_window(s.weights, 16 * s.ws, v, window, span);
+  if constexpr (kNormals) prefetch_window(s.nx, 4 * s.in, v, window, span);
+}
+
 }  // namespace cga::skinning_detail
