@@ -70,7 +70,8 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
   const float size = 3.0f * std::exp(0.5f);
   std::vector<std::size_t> counts;
   for (std::size_t n = 1; n <= 17; ++n) counts.push_back(n);
-  for (std::size_t n : {255u, 256u, 257u, 263u, 520u}) counts.push_back(n);
+  // 600 >= 24^2: cga-motors takes its pair-sign table (SkinningJob::Run) there.
+  for (std::size_t n : {255u, 256u, 257u, 263u, 520u, 600u}) counts.push_back(n);
   for (const std::size_t n : counts) {
     INFO(n << " vertices");
     SkinnedMesh mesh = make_random_skinned_mesh(n, 24, static_cast<std::uint32_t>(1000 + n));
@@ -110,6 +111,36 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
         }
       }
     }
+  }
+}
+
+TEST_CASE("cga-motors' pair-sign table gives the bits of the per-vertex rotor dot products", "[skinning][simd]") {
+  // Run() builds the table when palette^2 <= vertex count: 600 vertices with 24 joints do (576), their first
+  // 568 (71 groups of 8, as in the longer run) do not. Every other motor is negated (the same similarity), so
+  // half the pairs need the sign fix and a wrong table would misplace those vertices.
+  const std::vector<Transform> xs = make_random_transforms(24, 43, 2.0f, 0.5f);
+  Palettes pal = make_palettes(xs);
+  for (std::size_t e = 1; e < pal.motors.size(); e += 2)
+    for (float& c : pal.motors[e].c) c = -c;
+  const SkinnedMesh mesh = make_random_skinned_mesh(600, 24, 4242u);
+  SkinnedMesh head = mesh;
+  constexpr std::size_t kHead = 568;
+  for (auto* v : {&head.px, &head.py, &head.pz, &head.nx, &head.ny, &head.nz}) v->resize(kHead);
+  head.joints.resize(kHead);
+  head.weights.resize(kHead);
+  for (const bool avx512 : {true, false}) {
+    const SkinnedOutput with_table = skin(SkinningMethod::cga_motors, mesh, pal, true, avx512);
+    const SkinnedOutput without = skin(SkinningMethod::cga_motors, head, pal, true, avx512);
+    const SkinnedOutput portable = skin(SkinningMethod::cga_motors, mesh, pal, false);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < kHead; ++i)
+      differ += with_table.px[i] != without.px[i] || with_table.py[i] != without.py[i] ||
+                with_table.pz[i] != without.pz[i] || with_table.nx[i] != without.nx[i] ||
+                with_table.ny[i] != without.ny[i] || with_table.nz[i] != without.nz[i];
+    CHECK(differ == 0);
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+      REQUIRE(std::hypot(with_table.px[i] - portable.px[i], with_table.py[i] - portable.py[i],
+                         with_table.pz[i] - portable.pz[i]) <= 1e-5f * 3.0f * std::exp(0.5f));
   }
 }
 

@@ -177,11 +177,35 @@ CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& streams, s
   return true;
 }
 
+// <G_a, G_b> of two motor entries' lanes 0-3 as motor_blend8_avx2 computes it: (g0 h0 + g1 h1) + (g2 h2 + g3 h3),
+// each product rounded (no FMA), so a table of its signs gives the same bits as the dot products.
+CGA_AVX2 CGA_ALWAYS_INLINE float rotor_dot_avx2(const float* a, const float* b) {
+  const __m128 p = _mm_mul_ps(_mm_loadu_ps(a), _mm_loadu_ps(b));
+  const __m128 h = _mm_hadd_ps(p, p);
+  return _mm_cvtss_f32(_mm_hadd_ps(h, h));
+}
+
+CGA_AVX2 void pair_signs_avx2(const float* pal, std::size_t palette, std::uint8_t* out) {
+  for (std::size_t a = 0; a < palette; ++a)
+    for (std::size_t b = 0; b < palette; ++b)
+      out[a * palette + b] = std::signbit(rotor_dot_avx2(pal + kEntry * a, pal + kEntry * b)) ? 1 : 0;
+}
+
+// Sign masks of the 8 sign patterns of influences 1-3 (bit k - 1 set: lane k negative); influence 0 is the
+// reference and keeps its sign.
+alignas(16) constexpr float kSignPatterns[8][4] = {
+    {0.0f, 0.0f, 0.0f, 0.0f},  {0.0f, -0.0f, 0.0f, 0.0f},  {0.0f, 0.0f, -0.0f, 0.0f},  {0.0f, -0.0f, -0.0f, 0.0f},
+    {0.0f, 0.0f, 0.0f, -0.0f}, {0.0f, -0.0f, 0.0f, -0.0f}, {0.0f, 0.0f, -0.0f, -0.0f}, {0.0f, -0.0f, -0.0f, -0.0f}};
+
 // cga_motors pass 1 for 8 vertices: blend within each vertex (sign fix from the rotor lanes 0-3 of the
-// entries), then transpose the 8 blended motors into rows[.][b .. b + 8).
-CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, const Streams& s, std::size_t i,
-                                                  MotorRows& rows, std::size_t b) {
+// entries, or with kSigns from the pair-sign table after the palette), then transpose the 8 blended motors
+// into rows[.][b .. b + 8). The table takes the dot products off each vertex's dependency chain (joints ->
+// palette loads -> products -> horizontal adds -> signed weights -> blend).
+template <bool kSigns>
+CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, std::size_t palette,
+                                                  const Streams& s, std::size_t i, MotorRows& rows, std::size_t b) {
   const __m128 sign_mask = _mm_set1_ps(-0.0f);
+  const std::uint8_t* signs = reinterpret_cast<const std::uint8_t*>(pal + kEntry * palette);
   __m256 lo[8], hi[8];
 #pragma GCC unroll 8
   for (int v = 0; v < 8; ++v) {
@@ -191,15 +215,22 @@ CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, c
     const float* q2 = pal + kEntry * j[2];
     const float* q3 = pal + kEntry * j[3];
     const __m256 l0 = _mm256_loadu_ps(q0), l1 = _mm256_loadu_ps(q1), l2 = _mm256_loadu_ps(q2), l3 = _mm256_loadu_ps(q3);
-    // rotor_sign::signed_weight on 4 lanes: the G-lane dot products <q0, qk> as (0, d1, d2, d3), then the
-    // weights with those signs (copysign).
-    const __m128 r0 = _mm256_castps256_ps128(l0);
-    const __m128 p1 = _mm_mul_ps(r0, _mm256_castps256_ps128(l1));
-    const __m128 p2 = _mm_mul_ps(r0, _mm256_castps256_ps128(l2));
-    const __m128 p3 = _mm_mul_ps(r0, _mm256_castps256_ps128(l3));
-    const __m128 dots = _mm_hadd_ps(_mm_hadd_ps(_mm_setzero_ps(), p1), _mm_hadd_ps(p2, p3));
     const __m128 w = _mm_loadu_ps(s.weights[i + v].data());
-    const __m128 sw = _mm_or_ps(_mm_andnot_ps(sign_mask, w), _mm_and_ps(sign_mask, dots));
+    __m128 sw;
+    if constexpr (kSigns) {
+      const std::uint8_t* row = signs + palette * j[0];
+      const unsigned pattern = row[j[1]] | row[j[2]] << 1 | row[j[3]] << 2;
+      sw = _mm_or_ps(_mm_andnot_ps(sign_mask, w), _mm_load_ps(kSignPatterns[pattern]));
+    } else {
+      // rotor_sign::signed_weight on 4 lanes: the G-lane dot products <q0, qk> as (0, d1, d2, d3), then the
+      // weights with those signs (copysign).
+      const __m128 r0 = _mm256_castps256_ps128(l0);
+      const __m128 p1 = _mm_mul_ps(r0, _mm256_castps256_ps128(l1));
+      const __m128 p2 = _mm_mul_ps(r0, _mm256_castps256_ps128(l2));
+      const __m128 p3 = _mm_mul_ps(r0, _mm256_castps256_ps128(l3));
+      const __m128 dots = _mm_hadd_ps(_mm_hadd_ps(_mm_setzero_ps(), p1), _mm_hadd_ps(p2, p3));
+      sw = _mm_or_ps(_mm_andnot_ps(sign_mask, w), _mm_and_ps(sign_mask, dots));
+    }
     const __m256 sw2 = _mm256_castps128_ps256(sw);
     const __m256 w0 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(0));
     const __m256 w1 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(1));
@@ -241,24 +272,24 @@ CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, c
 }
 
 
-template <bool kNormals, bool kPrefetch>
-CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, const Streams& s, std::size_t begin,
-                                                 std::size_t end) {
+template <bool kNormals, bool kPrefetch, bool kSigns>
+CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, std::size_t palette, const Streams& s,
+                                                 std::size_t begin, std::size_t end) {
   alignas(64) MotorRows rows;
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
     if constexpr (kPrefetch) prefetch_ahead<kNormals>(s, i);
-    motor_blend8_avx2(pal, s, i, rows, i - begin);
+    motor_blend8_avx2<kSigns>(pal, palette, s, i, rows, i - begin);
   }
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
   motor_rows_apply<kNormals>(rows, s, begin, end);
 }
 
-template <bool kNormals, bool kPrefetch>
+template <bool kNormals, bool kPrefetch, bool kSigns = false>
 CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, const Streams& s, std::size_t begin,
                                                            std::size_t end, std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
-  motor_block_avx2<kNormals, kPrefetch>(pal, s, begin, end);
+  motor_block_avx2<kNormals, kPrefetch, kSigns>(pal, palette, s, begin, end);
   return true;
 }
 
@@ -273,6 +304,9 @@ const SkinKernels* avx2_kernels() {
       {portable_kernels().dq[0], portable_kernels().dq[1]},
       {{motor_block_avx2_fn<false, false>, motor_block_avx2_fn<false, true>},
        {motor_block_avx2_fn<true, false>, motor_block_avx2_fn<true, true>}},
+      {{motor_block_avx2_fn<false, false, true>, motor_block_avx2_fn<false, true, true>},
+       {motor_block_avx2_fn<true, false, true>, motor_block_avx2_fn<true, true, true>}},
+      pair_signs_avx2,
       {{matrix_strided_avx2_fn<false, false>, matrix_strided_avx2_fn<false, true>},
        {matrix_strided_avx2_fn<true, false>, matrix_strided_avx2_fn<true, true>}}};
   return has ? &k : nullptr;

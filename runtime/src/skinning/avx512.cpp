@@ -116,6 +116,8 @@ const SkinKernels* avx512_kernels() {
       {avx2->dq[0], avx2->dq[1]},
       {{motor_block_avx512_fn<false, false>, motor_block_avx512_fn<false, true>},
        {motor_block_avx512_fn<true, false>, motor_block_avx512_fn<true, true>}},
+      {{nullptr, nullptr}, {nullptr, nullptr}},
+      nullptr,
       {{avx2->matrix_strided[0][0], avx2->matrix_strided[0][1]},
        {avx2->matrix_strided[1][0], avx2->matrix_strided[1][1]}}};
   return &k;

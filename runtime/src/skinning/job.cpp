@@ -227,6 +227,8 @@ bool SkinningJob::Run() const {
   // transposes its matrices, cga_points converts every motor once with the generated kernel, cga_motors
   // stores its motors in split form padded to 16 floats, dqs repacks GLM's dual quaternions as 8 plain floats.
   alignas(64) float converted[kMaxConvertedPalette * kEntry];
+  static_assert(kMaxPairSignPalette * (kEntry * sizeof(float) + kMaxPairSignPalette) <= sizeof converted,
+                "the pair-sign table must fit after the motor entries");
   const SkinKernels& k = kernels_for(use_simd, use_avx512);
   BlockFn block = nullptr;
   const std::size_t palette = palette_size(*this);
@@ -255,6 +257,11 @@ bool SkinningJob::Run() const {
         for (std::size_t r = 12; r < kEntry; ++r) entry[r] = 0.0f;
       }
       block = k.motor[normals][large];
+      // The pair-sign table costs palette^2 dot products: worth it when that is at most the vertex count.
+      if (k.pair_signs && palette <= kMaxPairSignPalette && palette * palette <= n) {
+        k.pair_signs(converted, palette, reinterpret_cast<std::uint8_t*>(converted + kEntry * palette));
+        block = k.motor_signed[normals][large];
+      }
       break;
   }
   const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),

@@ -4,6 +4,8 @@
 //   matrix entry  16 floats, column-major with padded columns (m00 m10 m20 0)(m01 m11 m21 0)(m02 ..)(t 0)
 //   dq entry       8 floats (real x y z w, dual x y z w)
 //   motor entry   16 floats, split form: lanes 0-3 G = a + b, 4-7 U (einf blades), 8-11 H = a - b, 12-15 zero
+//   pair signs    (cga_motors with SkinKernels::motor_signed) palette x palette bytes after the motor entries:
+//                 [a * palette + b] = 1 when <G_a, G_b> has its sign bit set, else 0
 // Private to runtime/src/skinning/ (see docs/runtime.md, "Adding a skinning method or an instruction set").
 #pragma once
 
@@ -39,6 +41,9 @@ constexpr std::size_t kBlock = 256;
 constexpr std::size_t kLargeVertices = std::size_t{1} << 17;
 // Floats per converted palette entry (matrix and motor entries; dq entries take 8).
 constexpr std::size_t kEntry = 16;
+// Largest palette for which cga_motors builds the pair-sign table: palette^2 bytes, which must fit after
+// the motor entries in Run()'s converted palette (kMaxConvertedPalette x kEntry floats).
+constexpr std::size_t kMaxPairSignPalette = 128;
 
 // Pointers of one run, restrict-qualified so the compiler knows outputs do not alias inputs.
 struct Streams {
@@ -302,6 +307,11 @@ struct SkinKernels {
   BlockFn matrix[2][2];  // lbs and cga_points, [normals][large mesh]
   BlockFn dq[2];         // dqs, [normals]
   BlockFn motor[2][2];   // cga_motors, [normals][large mesh]
+  // cga_motors reading the rotor signs from the pair-sign table after the palette, [normals][large mesh];
+  // pair_signs builds that table with the same arithmetic as motor[.][.]'s dot products, so the results are
+  // the same bits. Null where the ISA has none.
+  BlockFn motor_signed[2][2];
+  void (*pair_signs)(const float* pal, std::size_t palette, std::uint8_t* out);
   // lbs and cga_points reading and writing strided streams in place, [normals][large mesh]; bit-identical to
   // matrix[.][.]. Null: Run() stages strided streams through packed blocks (run_strided), as it does for every
   // other method.

@@ -59,6 +59,8 @@ const SkinKernels& portable_kernels() {
                              {{matrix_block_p, matrix_block_p}, {matrix_block_pn, matrix_block_pn}},
                              {dq_block_p, dq_block_pn},
                              {{motor_block_p, motor_block_p}, {motor_block_pn, motor_block_pn}},
+                             {{nullptr, nullptr}, {nullptr, nullptr}},
+                             nullptr,
                              {{nullptr, nullptr}, {nullptr, nullptr}}};
   return k;
 }
