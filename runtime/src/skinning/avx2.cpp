@@ -185,57 +185,64 @@ CGA_AVX2 CGA_ALWAYS_INLINE float rotor_dot_avx2(const float* a, const float* b) 
   return _mm_cvtss_f32(_mm_hadd_ps(h, h));
 }
 
-CGA_AVX2 void pair_signs_avx2(const float* pal, std::size_t palette, std::uint8_t* out) {
+// The pair-sign data after the motor entries (loops.hpp, "negated motors" and "pair signs").
+CGA_AVX2 void pair_signs_avx2(float* pal, std::size_t palette) {
+  float* negated = pal + kEntry * palette;
+  for (std::size_t e = 0; e < kEntry * palette; ++e) negated[e] = -pal[e];
+  std::uint8_t* out = reinterpret_cast<std::uint8_t*>(pal + 2 * kEntry * palette);
   for (std::size_t a = 0; a < palette; ++a)
     for (std::size_t b = 0; b < palette; ++b)
-      out[a * palette + b] = std::signbit(rotor_dot_avx2(pal + kEntry * a, pal + kEntry * b)) ? 1 : 0;
+      out[a * palette + b] =
+          std::signbit(rotor_dot_avx2(pal + kEntry * a, pal + kEntry * b)) ? static_cast<std::uint8_t>(palette) : 0;
 }
 
-// Sign masks of the 8 sign patterns of influences 1-3 (bit k - 1 set: lane k negative); influence 0 is the
-// reference and keeps its sign.
-alignas(16) constexpr float kSignPatterns[8][4] = {
-    {0.0f, 0.0f, 0.0f, 0.0f},  {0.0f, -0.0f, 0.0f, 0.0f},  {0.0f, 0.0f, -0.0f, 0.0f},  {0.0f, -0.0f, -0.0f, 0.0f},
-    {0.0f, 0.0f, 0.0f, -0.0f}, {0.0f, -0.0f, 0.0f, -0.0f}, {0.0f, 0.0f, -0.0f, -0.0f}, {0.0f, -0.0f, -0.0f, -0.0f}};
-
-// cga_motors pass 1 for 8 vertices: blend within each vertex (sign fix from the rotor lanes 0-3 of the
-// entries, or with kSigns from the pair-sign table after the palette), then transpose the 8 blended motors
-// into rows[.][b .. b + 8). The table takes the dot products off each vertex's dependency chain (joints ->
-// palette loads -> products -> horizontal adds -> signed weights -> blend).
+// cga_motors pass 1 for 8 vertices: blend within each vertex with the rotor sign fix, then transpose the 8
+// blended motors into rows[.][b .. b + 8). The sign fix either computes the G-lane dot products and signs
+// the weights, or (kSigns) reads the pair-sign table and takes influence k from the negated copy of its
+// entry: w (-q) is -(w q) exactly, so both give the same bits, and the table takes the dot products, the
+// horizontal adds and the weight shuffles off each vertex's dependency chain.
 template <bool kSigns>
 CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, std::size_t palette,
                                                   const Streams& s, std::size_t i, MotorRows& rows, std::size_t b) {
-  const __m128 sign_mask = _mm_set1_ps(-0.0f);
-  const std::uint8_t* signs = reinterpret_cast<const std::uint8_t*>(pal + kEntry * palette);
   __m256 lo[8], hi[8];
 #pragma GCC unroll 8
   for (int v = 0; v < 8; ++v) {
     const std::array<std::uint16_t, 4> j = s.joints[i + v];
+    const float* wp = s.weights[i + v].data();
     const float* q0 = pal + kEntry * j[0];
-    const float* q1 = pal + kEntry * j[1];
-    const float* q2 = pal + kEntry * j[2];
-    const float* q3 = pal + kEntry * j[3];
-    const __m256 l0 = _mm256_loadu_ps(q0), l1 = _mm256_loadu_ps(q1), l2 = _mm256_loadu_ps(q2), l3 = _mm256_loadu_ps(q3);
-    const __m128 w = _mm_loadu_ps(s.weights[i + v].data());
-    __m128 sw;
+    const float *q1, *q2, *q3;
+    __m256 w0, w1, w2, w3;
     if constexpr (kSigns) {
-      const std::uint8_t* row = signs + palette * j[0];
-      const unsigned pattern = row[j[1]] | row[j[2]] << 1 | row[j[3]] << 2;
-      sw = _mm_or_ps(_mm_andnot_ps(sign_mask, w), _mm_load_ps(kSignPatterns[pattern]));
+      const std::uint8_t* row = reinterpret_cast<const std::uint8_t*>(pal + 2 * kEntry * palette) + palette * j[0];
+      q1 = pal + kEntry * (j[1] + row[j[1]]);
+      q2 = pal + kEntry * (j[2] + row[j[2]]);
+      q3 = pal + kEntry * (j[3] + row[j[3]]);
+      // |w|, as copysign gives it on the other path.
+      const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+      w0 = _mm256_and_ps(abs_mask, _mm256_broadcast_ss(wp));
+      w1 = _mm256_and_ps(abs_mask, _mm256_broadcast_ss(wp + 1));
+      w2 = _mm256_and_ps(abs_mask, _mm256_broadcast_ss(wp + 2));
+      w3 = _mm256_and_ps(abs_mask, _mm256_broadcast_ss(wp + 3));
     } else {
+      q1 = pal + kEntry * j[1];
+      q2 = pal + kEntry * j[2];
+      q3 = pal + kEntry * j[3];
       // rotor_sign::signed_weight on 4 lanes: the G-lane dot products <q0, qk> as (0, d1, d2, d3), then the
       // weights with those signs (copysign).
-      const __m128 r0 = _mm256_castps256_ps128(l0);
-      const __m128 p1 = _mm_mul_ps(r0, _mm256_castps256_ps128(l1));
-      const __m128 p2 = _mm_mul_ps(r0, _mm256_castps256_ps128(l2));
-      const __m128 p3 = _mm_mul_ps(r0, _mm256_castps256_ps128(l3));
+      const __m128 sign_mask = _mm_set1_ps(-0.0f);
+      const __m128 r0 = _mm_loadu_ps(q0);
+      const __m128 p1 = _mm_mul_ps(r0, _mm_loadu_ps(q1));
+      const __m128 p2 = _mm_mul_ps(r0, _mm_loadu_ps(q2));
+      const __m128 p3 = _mm_mul_ps(r0, _mm_loadu_ps(q3));
       const __m128 dots = _mm_hadd_ps(_mm_hadd_ps(_mm_setzero_ps(), p1), _mm_hadd_ps(p2, p3));
-      sw = _mm_or_ps(_mm_andnot_ps(sign_mask, w), _mm_and_ps(sign_mask, dots));
+      const __m128 sw = _mm_or_ps(_mm_andnot_ps(sign_mask, _mm_loadu_ps(wp)), _mm_and_ps(sign_mask, dots));
+      const __m256 sw2 = _mm256_castps128_ps256(sw);
+      w0 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(0));
+      w1 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(1));
+      w2 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(2));
+      w3 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(3));
     }
-    const __m256 sw2 = _mm256_castps128_ps256(sw);
-    const __m256 w0 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(0));
-    const __m256 w1 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(1));
-    const __m256 w2 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(2));
-    const __m256 w3 = _mm256_permutevar8x32_ps(sw2, _mm256_set1_epi32(3));
+    const __m256 l0 = _mm256_loadu_ps(q0), l1 = _mm256_loadu_ps(q1), l2 = _mm256_loadu_ps(q2), l3 = _mm256_loadu_ps(q3);
     lo[v] = _mm256_add_ps(_mm256_fmadd_ps(w1, l1, _mm256_mul_ps(w0, l0)), _mm256_fmadd_ps(w3, l3, _mm256_mul_ps(w2, l2)));
     // The last 4 lanes of an entry are padding: 128-bit halves suffice.
     const __m128 h = _mm_add_ps(_mm_fmadd_ps(_mm256_castps256_ps128(w1), _mm_loadu_ps(q1 + 8),

@@ -227,8 +227,9 @@ bool SkinningJob::Run() const {
   // transposes its matrices, cga_points converts every motor once with the generated kernel, cga_motors
   // stores its motors in split form padded to 16 floats, dqs repacks GLM's dual quaternions as 8 plain floats.
   alignas(64) float converted[kMaxConvertedPalette * kEntry];
-  static_assert(kMaxPairSignPalette * (kEntry * sizeof(float) + kMaxPairSignPalette) <= sizeof converted,
-                "the pair-sign table must fit after the motor entries");
+  static_assert(kMaxPairSignPalette * (2 * kEntry * sizeof(float) + kMaxPairSignPalette) <= sizeof converted &&
+                    kMaxPairSignPalette <= 255,
+                "the pair-sign data must fit after the motor entries");
   const SkinKernels& k = kernels_for(use_simd, use_avx512);
   BlockFn block = nullptr;
   const std::size_t palette = palette_size(*this);
@@ -257,9 +258,9 @@ bool SkinningJob::Run() const {
         for (std::size_t r = 12; r < kEntry; ++r) entry[r] = 0.0f;
       }
       block = k.motor[normals][large];
-      // The pair-sign table costs palette^2 dot products: worth it when that is at most the vertex count.
+      // The pair-sign data costs palette^2 dot products: worth it when that is at most the vertex count.
       if (k.pair_signs && palette <= kMaxPairSignPalette && palette * palette <= n) {
-        k.pair_signs(converted, palette, reinterpret_cast<std::uint8_t*>(converted + kEntry * palette));
+        k.pair_signs(converted, palette);
         block = k.motor_signed[normals][large];
       }
       break;

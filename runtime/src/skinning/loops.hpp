@@ -4,8 +4,10 @@
 //   matrix entry  16 floats, column-major with padded columns (m00 m10 m20 0)(m01 m11 m21 0)(m02 ..)(t 0)
 //   dq entry       8 floats (real x y z w, dual x y z w)
 //   motor entry   16 floats, split form: lanes 0-3 G = a + b, 4-7 U (einf blades), 8-11 H = a - b, 12-15 zero
-//   pair signs    (cga_motors with SkinKernels::motor_signed) palette x palette bytes after the motor entries:
-//                 [a * palette + b] = 1 when <G_a, G_b> has its sign bit set, else 0
+//   with SkinKernels::motor_signed (cga_motors), after the palette's motor entries:
+//     negated motors  palette entries, entry e negated (at kEntry * (palette + e))
+//     pair signs      palette x palette bytes: [a * palette + b] = palette when <G_a, G_b> has its sign bit
+//                     set (influence b of a vertex whose first joint is a takes the negated entry), else 0
 // Private to runtime/src/skinning/ (see docs/runtime.md, "Adding a skinning method or an instruction set").
 #pragma once
 
@@ -41,8 +43,9 @@ constexpr std::size_t kBlock = 256;
 constexpr std::size_t kLargeVertices = std::size_t{1} << 17;
 // Floats per converted palette entry (matrix and motor entries; dq entries take 8).
 constexpr std::size_t kEntry = 16;
-// Largest palette for which cga_motors builds the pair-sign table: palette^2 bytes, which must fit after
-// the motor entries in Run()'s converted palette (kMaxConvertedPalette x kEntry floats).
+// Largest palette for which cga_motors builds the pair-sign data: the negated entries and palette^2 bytes,
+// which must fit after the motor entries in Run()'s converted palette (kMaxConvertedPalette x kEntry floats),
+// and a table byte must hold the palette size.
 constexpr std::size_t kMaxPairSignPalette = 128;
 
 // Pointers of one run, restrict-qualified so the compiler knows outputs do not alias inputs.
@@ -308,10 +311,10 @@ struct SkinKernels {
   BlockFn dq[2];         // dqs, [normals]
   BlockFn motor[2][2];   // cga_motors, [normals][large mesh]
   // cga_motors reading the rotor signs from the pair-sign table after the palette, [normals][large mesh];
-  // pair_signs builds that table with the same arithmetic as motor[.][.]'s dot products, so the results are
-  // the same bits. Null where the ISA has none.
+  // pair_signs writes the negated entries and that table (the signs with the same arithmetic as
+  // motor[.][.]'s dot products), so the results are the same bits. Null where the ISA has none.
   BlockFn motor_signed[2][2];
-  void (*pair_signs)(const float* pal, std::size_t palette, std::uint8_t* out);
+  void (*pair_signs)(float* pal, std::size_t palette);
   // lbs and cga_points reading and writing strided streams in place, [normals][large mesh]; bit-identical to
   // matrix[.][.]. Null: Run() stages strided streams through packed blocks (run_strided), as it does for every
   // other method.
