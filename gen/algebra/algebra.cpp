@@ -7,6 +7,7 @@
 #include <cctype>
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <sstream>
 
 namespace cgagen::algebra {
@@ -494,7 +495,7 @@ AlgebraSpec builtin_spec(const std::string& name) {
 }
 
 std::shared_ptr<const Algebra>& current_slot() {
-  static std::shared_ptr<const Algebra> a = builtin("cga");
+  thread_local std::shared_ptr<const Algebra> a = builtin("cga");
   return a;
 }
 
@@ -507,8 +508,10 @@ const std::vector<std::string>& builtin_names() {
 }
 
 std::shared_ptr<const Algebra> builtin(const std::string& name) {
+  static std::mutex lock;  // threads may each compile
   static std::map<std::string, std::shared_ptr<const Algebra>> made;
   if (std::find(builtin_names().begin(), builtin_names().end(), name) == builtin_names().end()) return nullptr;
+  const std::lock_guard<std::mutex> hold(lock);
   auto& slot = made[name];
   if (!slot) slot = std::make_shared<const Algebra>(builtin_spec(name));
   return slot;
@@ -532,9 +535,12 @@ std::shared_ptr<const Algebra> load(const std::string& name_or_file) {
 }
 
 const Algebra& current() { return *current_slot(); }
+std::shared_ptr<const Algebra> current_shared() { return current_slot(); }
 void use(std::shared_ptr<const Algebra> a) { current_slot() = std::move(a); }
 
-Using::Using(std::shared_ptr<const Algebra> a) : previous_(current_slot()) { use(std::move(a)); }
+Using::Using(std::shared_ptr<const Algebra> a) : previous_(current_slot()) {
+  if (a) use(std::move(a));
+}
 Using::~Using() { use(previous_); }
 
 }  // namespace cgagen::algebra

@@ -8,8 +8,11 @@
 // change applied sparsely, and cached per pair actually used: no 2^n x 2^n table is ever built, so ccga
 // (16 vectors, 65,536 blades) works for sparse scripts.
 //
-// The process compiles one algebra at a time: algebra::current() (default CGA), set by cgagen --algebra
-// through algebra::use(). The free functions of blade.hpp and products.hpp answer for current().
+// The value travels with the work: expand() takes it, a Kernel and an opt::Program carry it, and expand(),
+// optimize(), stage(), emit() and the reports install it as their thread's current algebra (Using) for
+// their duration. The free functions of blade.hpp and products.hpp answer for that current algebra, so
+// kernels of different algebras can be compiled side by side in one process. (Not on several threads at
+// once: GiNaC's reference counts are not atomic.)
 #pragma once
 
 #include <cstdint>
@@ -97,10 +100,11 @@ AlgebraSpec parse_definition(const std::string& text, const std::string& file, c
 // NAME (built-in) or a path to a definition.csv; throws AlgebraError.
 std::shared_ptr<const Algebra> load(const std::string& name_or_file);
 
-// The algebra being compiled (default: the built-in CGA).
+// The thread's current algebra (default: the built-in CGA).
 const Algebra& current();
+std::shared_ptr<const Algebra> current_shared();
 void use(std::shared_ptr<const Algebra> a);
-// Sets an algebra for a scope (tests), restoring the previous one after.
+// Sets the thread's algebra for a scope, restoring the previous one after; a null `a` keeps the current one.
 class Using {
  public:
   explicit Using(std::shared_ptr<const Algebra> a);

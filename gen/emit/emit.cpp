@@ -337,6 +337,7 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
 }
 
 std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options) {
+  algebra::Using in(programs.empty() ? nullptr : programs.front()->algebra);
   const Target target = options.target;
   const Syntax& sx = target.syntax();
   const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +

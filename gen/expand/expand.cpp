@@ -1275,9 +1275,13 @@ class Expander {
 
 }  // namespace
 
-Kernel expand(const front::Script& script, const std::string& kernel_name) {
+Kernel expand(const front::Script& script, const std::string& kernel_name,
+              std::shared_ptr<const algebra::Algebra> algebra) {
+  algebra::Using in(std::move(algebra));
   Expander x(kernel_name);
-  return x.run(script);
+  Kernel k = x.run(script);
+  k.algebra = algebra::current_shared();
+  return k;
 }
 
 }  // namespace cgagen

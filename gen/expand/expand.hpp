@@ -13,6 +13,8 @@ namespace cgagen {
 // Throws front::CompileError (with the location of the offending expression) for every fault in the
 // script: unknown macro, wrong arity, non-scalar function argument, division by a non-invertible
 // multivector, macro recursion, unknown blade in a pragma, ...
-Kernel expand(const front::Script& script, const std::string& kernel_name);
+// Expands the script in `algebra` (null: the thread's current algebra, by default CGA); the Kernel keeps it.
+Kernel expand(const front::Script& script, const std::string& kernel_name,
+              std::shared_ptr<const algebra::Algebra> algebra = nullptr);
 
 }  // namespace cgagen

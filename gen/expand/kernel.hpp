@@ -9,9 +9,11 @@
 
 #include <ginac/ginac.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "algebra/algebra.hpp"
 #include "algebra/blade.hpp"
 #include "front/ast.hpp"
 #include "front/diagnostics.hpp"
@@ -62,6 +64,7 @@ struct UniformName {  // one name of `#pragma uniform NAME...`, checked by the s
 
 struct Kernel {
   std::string name;  // the function name (the script's file stem unless overridden)
+  std::shared_ptr<const algebra::Algebra> algebra;  // what the blades and products are in (set by expand())
   std::vector<KernelInput> inputs;
   std::vector<KernelValue> values;    // in script order
   std::vector<KernelOutput> outputs;  // in order of first marking as output

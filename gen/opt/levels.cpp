@@ -57,6 +57,7 @@ int blade_pos(const KernelValue& v, algebra::BladeIndex b) {
 Program skeleton(const Kernel& k, Level level) {
   Program p;
   p.name = k.name;
+  p.algebra = k.algebra;
   p.level = level;
   p.inputs = k.inputs;
   return p;
@@ -571,6 +572,7 @@ Program optimize(const Kernel& kernel, Level level) {
   // A fault of GiNaC's inside the optimizer is a bug of cgagen's, but the user still gets a located error
   // (at the first output), never a library's message without a location.
   symbolic::NodeCacheScope caches;
+  algebra::Using in(kernel.algebra);
   try {
     return optimize_level(kernel, level);
   } catch (const front::CompileError&) {

@@ -40,6 +40,7 @@ struct ProgramOutput {
 
 struct Program {
   std::string name;
+  std::shared_ptr<const algebra::Algebra> algebra;  // the Kernel's (null: the thread's current algebra)
   Level level = Level::O2;
   std::vector<KernelInput> inputs;
   std::vector<Temp> temps;  // in evaluation order

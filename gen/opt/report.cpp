@@ -28,6 +28,7 @@ std::string format_stats(const Program& p) {
 }
 
 std::string format_inputs(const Program& p) {
+  algebra::Using in(p.algebra);
   std::string s = "inputs:";
   if (p.inputs.empty()) s += " (none)";
   for (size_t i = 0; i < p.inputs.size(); ++i) {
@@ -141,6 +142,7 @@ class Evaluator {
 }  // namespace
 
 std::vector<EvalLine> evaluate(const Program& p, const InputValues& inputs) {
+  algebra::Using in(p.algebra);
   const SymbolNames names = symbol_names(p);
   CanonicalKeys keys(names);
   Evaluator ev(keys);
@@ -160,7 +162,7 @@ std::vector<EvalLine> evaluate(const Program& p, const InputValues& inputs) {
   for (const auto& t : p.temps) ev.bind(t.sym, ev.eval(t.value));
   std::vector<EvalLine> out;
   for (const auto& o : p.outputs)
-    for (const auto& s : o.slots) out.push_back({o.name, s.blade, ev.eval(s.value)});
+    for (const auto& s : o.slots) out.push_back({o.name, s.blade, algebra::blade_name(s.blade), ev.eval(s.value)});
   return out;
 }
 
@@ -170,7 +172,7 @@ std::string format_eval(const std::vector<EvalLine>& lines) {
   for (const auto& l : lines) {
     // -0 prints as 0: the sign of a zero depends on GiNaC's term order, which varies between processes.
     std::snprintf(buf, sizeof buf, "%.17g", l.value == 0.0 ? 0.0 : l.value);
-    s += l.output + " " + algebra::blade_name(l.blade) + " " + buf + "\n";
+    s += l.output + " " + l.blade_name + " " + buf + "\n";
   }
   return s;
 }

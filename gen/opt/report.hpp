@@ -23,6 +23,7 @@ using InputValues = std::map<std::string, std::vector<double>>;
 struct EvalLine {
   std::string output;
   algebra::BladeIndex blade;
+  std::string blade_name;  // in the program's algebra
   double value;
 };
 // Evaluates the program in double precision exactly as the emitted code computes it (same operation

@@ -239,6 +239,7 @@ Program finish(const Program& shape, std::string name, std::vector<KernelInput> 
                std::vector<ex> roots, const std::vector<ProgramOutput>& outputs, const std::string& temp_prefix) {
   Program p;
   p.name = std::move(name);
+  p.algebra = shape.algebra;
   p.level = shape.level;
   p.inputs = std::move(inputs);
   if (shape.level == Level::O2) {
@@ -267,6 +268,7 @@ bool shape_o2(const Program& p) { return p.level == Level::O2; }
 }  // namespace
 
 StagedProgram stage(const Program& p, const std::vector<std::string>& uniforms) {
+  algebra::Using in(p.algebra);
   const std::set<std::string> uniform_set(uniforms.begin(), uniforms.end());
   StagedProgram sp;
   sp.uniforms = uniforms;

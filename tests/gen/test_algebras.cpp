@@ -16,6 +16,11 @@
 
 #include "algebra/algebra.hpp"
 #include "algebra/blade.hpp"
+#include "emit/emit.hpp"
+#include "expand/expand.hpp"
+#include "front/parser.hpp"
+#include "opt/program.hpp"
+#include "opt/report.hpp"
 #include "oracle/algebra.hpp"
 #include "symbolic/multivector.hpp"
 
@@ -596,4 +601,34 @@ TEST_CASE("output is byte-identical across processes in other algebras too") {
   const Cli first = run_cli("--algebra 3dpga " + motor);
   REQUIRE(first.code == 0);
   for (int k = 0; k < 5; ++k) CHECK(run_cli("--algebra 3dpga " + motor).out == first.out);
+}
+
+TEST_CASE("the algebra travels with the kernel: two algebras compiled side by side in one process") {
+  // No algebra::use(): expand() takes the algebra, the Kernel and the Program carry it, and optimize(),
+  // emit() and the reports install it for their duration. The thread's algebra stays CGA throughout.
+  const std::string pga_text =
+      "#pragma input M 1 e0^e1 e0^e2 e0^e3 e1^e2 e1^e3 e2^e3 e0^e1^e2^e3\nP = createPoint(x, y, z);\n?Q = M * P * ~M;\n";
+  const std::string cga_text = "P = createPoint(x, y, z);\n?S = P - 0.5 * r * r * einf;\n";
+  auto kernel = [](const std::string& text, std::shared_ptr<const algebra::Algebra> a) {
+    front::SourceFile file("t.clu", text);
+    return expand(front::parse(file), "t", std::move(a));
+  };
+  auto code = [](const Kernel& k) { return emit::emit(opt::optimize(k, opt::Level::O2), emit::EmitOptions{}); };
+  const auto pga = algebra::builtin("3dpga"), cga = algebra::builtin("cga");
+  const std::string pga_alone = code(kernel(pga_text, pga));
+  const std::string cga_alone = code(kernel(cga_text, cga));
+  CHECK(pga_alone.find("e0^e1^e2") != std::string::npos);  // PGA's blade names in PGA's output
+  CHECK(cga_alone.find("e1^e2^e3") == std::string::npos);   // ... and not CGA's (its sphere is a vector)
+
+  // Interleaved: both expanded first, then optimized and emitted in the other order.
+  const Kernel kp = kernel(pga_text, pga), kc = kernel(cga_text, nullptr);  // null: the thread's, CGA
+  REQUIRE(kp.algebra == pga);
+  REQUIRE(kc.algebra == cga);
+  const opt::Program pc = opt::optimize(kc, opt::Level::O2), pp = opt::optimize(kp, opt::Level::O2);
+  CHECK(pp.algebra == pga);
+  CHECK(emit::emit(pc, emit::EmitOptions{}) == cga_alone);
+  CHECK(emit::emit(pp, emit::EmitOptions{}) == pga_alone);
+  const std::string eval = opt::format_eval(opt::evaluate(pp, {{"x", {1}}, {"y", {2}}, {"z", {3}}, {"M", {1, 0, 0, 0, 0, 0, 0, 0}}}));
+  CHECK(eval.find("Q e0^e1^e2") != std::string::npos);
+  CHECK(&algebra::current() == cga.get());
 }
