@@ -128,11 +128,32 @@ CGA_AVX2 bool matrix_block_avx2_fn(const float* pal, const Streams& s, std::size
 // pair registers and normals after the 8-wide renormalization, so nothing goes through a staging buffer and
 // the results are bit-identical to the packed loop's. A block's last (end - begin) % 8 vertices are staged
 // and take the portable loop, as they do in a packed run.
+// block_ok (loops.hpp) for strided joints and weights (Streams::js, ws) on 128-bit vectors: a vertex's 4
+// joints and 4 weight exponents are one load and one unsigned max each (a scalar loop took ~20
+// instructions per vertex, 15 % of an interleaved lbs run).
+CGA_AVX2 CGA_ALWAYS_INLINE bool block_ok_strided_avx2(const Streams& s, std::size_t begin, std::size_t end,
+                                                      std::size_t palette) {
+  const __m128i exponent = _mm_set1_epi32(0x7f800000);
+  __m128i joints = _mm_setzero_si128(), exponents = _mm_setzero_si128();
+  for (std::size_t i = begin; i < end; ++i) {
+    joints = _mm_max_epu16(joints, _mm_loadl_epi64(reinterpret_cast<const __m128i*>(s.joints[i * s.js].data())));
+    exponents = _mm_max_epu32(
+        exponents, _mm_and_si128(exponent, _mm_loadu_si128(reinterpret_cast<const __m128i*>(s.weights[i * s.ws].data()))));
+  }
+  joints = _mm_max_epu16(joints, _mm_srli_si128(joints, 4));
+  joints = _mm_max_epu16(joints, _mm_srli_si128(joints, 2));
+  exponents = _mm_max_epu32(exponents, _mm_srli_si128(exponents, 8));
+  exponents = _mm_max_epu32(exponents, _mm_srli_si128(exponents, 4));
+  const auto max_joint = static_cast<std::uint16_t>(_mm_extract_epi16(joints, 0));
+  const auto max_exponent = static_cast<std::uint32_t>(_mm_cvtsi128_si32(exponents));
+  return max_exponent < 0x7f800000u && max_joint < palette;
+}
+
 template <bool kNormals, bool kPrefetch>
 CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& streams, std::size_t begin, std::size_t end,
                                      std::size_t palette) {
   const Streams s = streams;
-  if (!block_ok_strided(s, begin, end, palette)) return false;
+  if (!block_ok_strided_avx2(s, begin, end, palette)) return false;
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
@@ -201,14 +222,14 @@ CGA_AVX2 void pair_signs_avx2(float* pal, std::size_t palette) {
 // the weights, or (kSigns) reads the pair-sign table and takes influence k from the negated copy of its
 // entry: w (-q) is -(w q) exactly, so both give the same bits, and the table takes the dot products, the
 // horizontal adds and the weight shuffles off each vertex's dependency chain.
-template <bool kSigns>
+template <bool kSigns, bool kStrided = false>
 CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, std::size_t palette,
                                                   const Streams& s, std::size_t i, MotorRows& rows, std::size_t b) {
   __m256 lo[8], hi[8];
 #pragma GCC unroll 8
   for (int v = 0; v < 8; ++v) {
-    const std::array<std::uint16_t, 4> j = s.joints[i + v];
-    const float* wp = s.weights[i + v].data();
+    const std::array<std::uint16_t, 4> j = s.joints[kStrided ? (i + v) * s.js : i + v];
+    const float* wp = s.weights[kStrided ? (i + v) * s.ws : i + v].data();
     const float* q0 = pal + kEntry * j[0];
     const float *q1, *q2, *q3;
     __m256 w0, w1, w2, w3;
@@ -300,6 +321,29 @@ CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, con
   return true;
 }
 
+// cga_motors on strided streams: the strided check and prefetch of matrix_strided_avx2_fn, pass 1 reading
+// joints and weights in place, then the block's positions (and normals) staged for pass 2, which vectorizes
+// across vertices over packed arrays only. The same arithmetic as motor_block_avx2_fn, so the same bits.
+template <bool kNormals, bool kPrefetch, bool kSigns>
+CGA_AVX2 __attribute__((flatten)) bool motor_strided_avx2_fn(const float* pal, const Streams& streams,
+                                                             std::size_t begin, std::size_t end, std::size_t palette) {
+  const Streams s = streams;
+  if (!block_ok_strided_avx2(s, begin, end, palette)) return false;
+  alignas(64) MotorRows rows;
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) {
+    if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i);
+    motor_blend8_avx2<kSigns, true>(pal, palette, s, i, rows, i - begin);
+  }
+  for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
+  Staged t;
+  Streams in_place = s;  // joints and weights stay where they are: pass 2 reads neither
+  in_place.js = in_place.ws = 1;
+  motor_rows_apply<kNormals>(rows, stage_in(in_place, begin, end - begin, kNormals, t), 0, end - begin);
+  stage_out(t, s, begin, end - begin, kNormals);
+  return true;
+}
+
 }  // namespace
 
 const SkinKernels* avx2_kernels() {
@@ -315,7 +359,11 @@ const SkinKernels* avx2_kernels() {
        {motor_block_avx2_fn<true, false, true>, motor_block_avx2_fn<true, true, true>}},
       pair_signs_avx2,
       {{matrix_strided_avx2_fn<false, false>, matrix_strided_avx2_fn<false, true>},
-       {matrix_strided_avx2_fn<true, false>, matrix_strided_avx2_fn<true, true>}}};
+       {matrix_strided_avx2_fn<true, false>, matrix_strided_avx2_fn<true, true>}},
+      {{{motor_strided_avx2_fn<false, false, false>, motor_strided_avx2_fn<false, false, true>},
+        {motor_strided_avx2_fn<false, true, false>, motor_strided_avx2_fn<false, true, true>}},
+       {{motor_strided_avx2_fn<true, false, false>, motor_strided_avx2_fn<true, false, true>},
+        {motor_strided_avx2_fn<true, true, false>, motor_strided_avx2_fn<true, true, true>}}}};
   return has ? &k : nullptr;
 }
 

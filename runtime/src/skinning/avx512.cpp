@@ -119,7 +119,8 @@ const SkinKernels* avx512_kernels() {
       {{nullptr, nullptr}, {nullptr, nullptr}},
       nullptr,
       {{avx2->matrix_strided[0][0], avx2->matrix_strided[0][1]},
-       {avx2->matrix_strided[1][0], avx2->matrix_strided[1][1]}}};
+       {avx2->matrix_strided[1][0], avx2->matrix_strided[1][1]}},
+      {}};
   return &k;
 }
 

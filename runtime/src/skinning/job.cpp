@@ -232,6 +232,7 @@ bool SkinningJob::Run() const {
                 "the pair-sign data must fit after the motor entries");
   const SkinKernels& k = kernels_for(use_simd, use_avx512);
   BlockFn block = nullptr;
+  bool signed_motors = false;  // cga_motors with the pair-sign data after its palette
   const std::size_t palette = palette_size(*this);
   switch (method) {
     case SkinningMethod::lbs:
@@ -259,7 +260,8 @@ bool SkinningJob::Run() const {
       }
       block = k.motor[normals][large];
       // The pair-sign data costs palette^2 dot products: worth it when that is at most the vertex count.
-      if (k.pair_signs && palette <= kMaxPairSignPalette && palette * palette <= n) {
+      signed_motors = k.pair_signs && palette <= kMaxPairSignPalette && palette * palette <= n;
+      if (signed_motors) {
         k.pair_signs(converted, palette);
         block = k.motor_signed[normals][large];
       }
@@ -270,8 +272,12 @@ bool SkinningJob::Run() const {
                   out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data(), in_positions_stride,
                   in_normals_stride, out_positions_stride, out_normals_stride, joints_stride, weights_stride};
   if (!packed) {
-    const bool matrix_loop = method == SkinningMethod::lbs || method == SkinningMethod::cga_points;
-    if (BlockFn strided = matrix_loop ? k.matrix_strided[normals][streaming] : nullptr) block = strided;
+    BlockFn strided = nullptr;
+    if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points)
+      strided = k.matrix_strided[normals][streaming];
+    else if (method == SkinningMethod::cga_motors)
+      strided = k.motor_strided[normals][streaming][signed_motors];
+    if (strided) block = strided;
     else return run_strided(s, n, normals, block, converted, palette);
   }
   bool ok = true;

@@ -88,21 +88,6 @@ CGA_ALWAYS_INLINE bool block_ok(const std::array<std::uint16_t, 4>* joints, cons
   return max_exponent < 0x7f800000u && max_joint < palette;
 }
 
-// block_ok for strided joints and weights (Streams::js, ws).
-CGA_ALWAYS_INLINE bool block_ok_strided(const Streams& s, std::size_t begin, std::size_t end, std::size_t palette) {
-  std::uint16_t max_joint = 0;
-  std::uint32_t max_exponent = 0;
-  for (std::size_t i = begin; i < end; ++i) {
-    const std::array<std::uint16_t, 4>& j = s.joints[i * s.js];
-    const std::array<float, 4>& w = s.weights[i * s.ws];
-    for (int k = 0; k < 4; ++k) {
-      max_joint = std::max(max_joint, j[k]);
-      max_exponent = std::max(max_exponent, std::bit_cast<std::uint32_t>(w[k]) & 0x7f800000u);
-    }
-  }
-  return max_exponent < 0x7f800000u && max_joint < palette;
-}
-
 // Applies a row-major 3x4 matrix to the point i (and the linear part to its normal, renormalized).
 template <bool kNormals>
 CGA_ALWAYS_INLINE void apply_matrix(const float m[12], const Streams& s, std::size_t i) {
@@ -244,11 +229,12 @@ CGA_ALWAYS_INLINE void motor_rows_apply(const MotorRows& rows, const Streams& s,
   if constexpr (kNormals) renormalize(s, begin, end);
 }
 
-// Pass 1 for one vertex, portable: the blended motor's coefficients into rows[.][b].
+// Pass 1 for one vertex, portable: the blended motor's coefficients into rows[.][b]. Reads joints and
+// weights at their strides (1 in packed runs).
 CGA_ALWAYS_INLINE void motor_blend_one(const float* __restrict pal, const Streams& s, std::size_t i,
                                        MotorRows& rows, std::size_t b) {
-  const std::array<std::uint16_t, 4> j = s.joints[i];
-  const std::array<float, 4> w = s.weights[i];
+  const std::array<std::uint16_t, 4> j = s.joints[i * s.js];
+  const std::array<float, 4> w = s.weights[i * s.ws];
   const float* q0 = pal + kEntry * j[0];
   v8 lo = w[0] * load8(q0);
   v8 hi = w[0] * load8(q0 + 8);
@@ -316,9 +302,11 @@ struct SkinKernels {
   BlockFn motor_signed[2][2];
   void (*pair_signs)(float* pal, std::size_t palette);
   // lbs and cga_points reading and writing strided streams in place, [normals][large mesh]; bit-identical to
-  // matrix[.][.]. Null: Run() stages strided streams through packed blocks (run_strided), as it does for every
-  // other method.
+  // matrix[.][.]. Null: Run() stages strided streams through packed blocks (run_strided), as it does for dqs.
   BlockFn matrix_strided[2][2];
+  // cga_motors on strided streams, [normals][large mesh][pair-sign table]: joints and weights read in place,
+  // positions and normals staged per block for pass 2; bit-identical to motor[.][.] / motor_signed[.][.].
+  BlockFn motor_strided[2][2][2];
 };
 
 // The tables, each defined in its ISA's file; the SIMD ones are null where the build or the CPU lacks them.

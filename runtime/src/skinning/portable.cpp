@@ -61,7 +61,8 @@ const SkinKernels& portable_kernels() {
                              {{motor_block_p, motor_block_p}, {motor_block_pn, motor_block_pn}},
                              {{nullptr, nullptr}, {nullptr, nullptr}},
                              nullptr,
-                             {{nullptr, nullptr}, {nullptr, nullptr}}};
+                             {{nullptr, nullptr}, {nullptr, nullptr}},
+                             {}};
   return k;
 }
 
