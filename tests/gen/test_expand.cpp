@@ -518,7 +518,7 @@ TEST_CASE("zero tests through the value chain: exact probes, no inlining", "[exp
   CHECK(k.values.back().blades[0] == 2);
 }
 
-TEST_CASE("node caches live only while a scope is open; nested scopes share the outer one", "[expand]") {
+TEST_CASE("node caches live only while a scope is open, nested scopes share the outer one", "[expand]") {
   // A long-lived process (the fuzzer) must get back all that one generation allocated: no cache may
   // outlive the expander's or the optimizer's own scope.
   REQUIRE(symbolic::NodeCaches::current() == nullptr);
