@@ -276,7 +276,9 @@ class Expander {
   // distance check of a trilateration, vanishes for every positive d. That verdict costs one evaluation of
   // the statement, where the exact test inlines and expands the whole chain of values (minutes for GPS).
   // Three points: random signs, the same inputs negated (so every input is negative at one of the two), and
-  // independent random signs.
+  // independent random signs. A value symbol gets its signed samples at the first test that needs them
+  // (signed_sample): only coefficients the exact probes cannot decide are tested there, and the values are
+  // the same whenever they are computed.
   std::array<GiNaC::exmap, 3> signed_samples_;
   std::uint64_t signed_state_ = 0xD1B54A32D192ED03ull;
   std::vector<Mark> marks_;                        // in order of first marking
@@ -520,7 +522,6 @@ class Expander {
       if (!at_sample) continue;  // identically zero once earlier values are inlined
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
       samples_[sym] = *at_sample;
-      add_signed_value(sym, c);
       probes_.define(sym, c);
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
@@ -825,12 +826,21 @@ class Expander {
     signed_samples_[2][sym] = GiNaC::numeric(next_signed_value());
   }
 
-  void add_signed_value(const GiNaC::symbol& sym, const ex& c) {
-    for (size_t k = 0; k < signed_samples_.size(); ++k) signed_samples_[k][sym] = signed_sample(c, k);
+  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there. The value
+  // symbols c uses get their samples first, at all points (a value symbol has them at all or none).
+  ex signed_sample(const ex& c, size_t k) {
+    symbolic::define_dependencies_first(
+        c, [&](const ex& sym) { return definitions_.count(sym) && !signed_samples_[0].count(sym); },
+        [&](const ex& sym) -> const ex& { return definitions_.at(sym); },
+        [&](const ex& sym) {
+          const ex& def = definitions_.at(sym);
+          for (size_t j = 0; j < signed_samples_.size(); ++j) signed_samples_[j][sym] = sample_at_signed_point(def, j);
+        });
+    return sample_at_signed_point(c, k);
   }
 
-  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there.
-  ex signed_sample(const ex& c, size_t k) {
+  // c at signed point k, where every symbol of c has its sample.
+  ex sample_at_signed_point(const ex& c, size_t k) {
     try {
       // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
       auto fast = symbolic::evalf_at(c, signed_samples_[k]);  // no expression built

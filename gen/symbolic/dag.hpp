@@ -53,6 +53,34 @@ bool visit_nodes_once(const GiNaC::ex& e, F&& f) {
 // Adds the symbols of e to `symbols`, each shared node visited once.
 void collect_symbols_into(const GiNaC::ex& e, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols);
 
+// For values computed lazily along a chain of definitions (a symbol's value at a probe point needs the
+// values of the symbols its definition uses): calls define(s) once for every symbol s that e uses, directly
+// or through definitions, while pending(s) holds, the symbols a definition uses before the symbol itself.
+// definition(s) gives s's definition, over symbols defined before s (no cycles); define(s) must make
+// pending(s) false. Iterative: chains of thousands of statements need no deep recursion.
+template <class Pending, class Definition, class Define>
+void define_dependencies_first(const GiNaC::ex& e, Pending&& pending, Definition&& definition, Define&& define) {
+  std::vector<std::pair<GiNaC::ex, bool>> stack;  // (symbol, its dependencies pushed already)
+  auto push_pending_symbols = [&](const GiNaC::ex& x) {
+    std::set<GiNaC::ex, GiNaC::ex_is_less> symbols;
+    collect_symbols_into(x, symbols);
+    for (const GiNaC::ex& s : symbols)
+      if (pending(s)) stack.emplace_back(s, false);
+  };
+  push_pending_symbols(e);
+  while (!stack.empty()) {
+    auto [s, ready] = std::move(stack.back());
+    stack.pop_back();
+    if (!pending(s)) continue;  // reached twice
+    if (ready) {
+      define(s);
+    } else {
+      stack.emplace_back(s, true);
+      push_pending_symbols(definition(s));
+    }
+  }
+}
+
 // Does e have a power with a negative numeric exponent (a denominator)? Each shared node once.
 bool has_negative_power(const GiNaC::ex& e);
 

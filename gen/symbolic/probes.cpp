@@ -111,12 +111,18 @@ void ProbePoints::add_input(const GiNaC::symbol& s) {
   }
 }
 
-void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) {
-  for (auto& at : at_)
-    if (auto v = value_at(definition, at)) at[s] = *v;
-}
+void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { pending_.emplace(s, definition); }
 
-ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) const {
+ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
+  symbolic::define_dependencies_first(
+      e, [&](const GiNaC::ex& s) { return pending_.count(s) > 0; },
+      [&](const GiNaC::ex& s) -> const GiNaC::ex& { return pending_.at(s); },
+      [&](const GiNaC::ex& s) {
+        auto it = pending_.find(s);
+        for (auto& at : at_)
+          if (auto v = value_at(it->second, at)) at[s] = *v;
+        pending_.erase(it);
+      });
   int zeros = 0;
   for (const auto& at : at_) {
     auto v = value_at(e, at);

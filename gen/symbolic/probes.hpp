@@ -36,14 +36,17 @@ class ProbePoints {
   // A free symbol (an input): draws its value at every point, in order of calls.
   void add_input(const GiNaC::symbol& s);
   // A symbol standing for `definition` (over symbols added or defined before): its value at every point
-  // where the definition evaluates to a rational number.
+  // where the definition evaluates to a rational number. Computed at the first test that needs it: most
+  // values are never tested through (a script's 98 joins, of which the outputs use 7), and a value is the
+  // same whenever it is computed.
   void define(const GiNaC::symbol& s, const GiNaC::ex& definition);
   // Zero when e evaluates to exactly 0 at every point, Nonzero when it is a nonzero rational at some point,
   // Unknown otherwise.
-  Verdict test(const GiNaC::ex& e) const;
+  Verdict test(const GiNaC::ex& e);
 
  private:
   std::array<std::map<GiNaC::ex, std::uint64_t, GiNaC::ex_is_less>, kPoints> at_;  // symbol -> value in [0, p)
+  std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> pending_;  // defined symbols not evaluated yet
   std::uint64_t state_ = 0x243F6A8885A308D3ull;  // fixed: the same points in every run
 };
 
