@@ -137,7 +137,7 @@ class Orienter {
 
  private:
   CanonicalKeys& keys_;
-  std::map<ex, ex, ex_is_less> memo_;
+  ExHashMap<ex> memo_;
 };
 
 }  // namespace
