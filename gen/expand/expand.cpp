@@ -518,10 +518,15 @@ class Expander {
           }))
         throw CompileError(s.loc, "the value of '" + s.name + "' is complex (a square root or logarithm of a "
                                     "negative constant); the generated code computes with real numbers only");
-      std::optional<ex> at_sample = sample(c);
-      if (!at_sample) continue;  // identically zero once earlier values are inlined
+      // Identically zero once earlier values are inlined? Most coefficients are plainly not, and an exact
+      // probe says so at once; the others go through the float sample first (sample()).
+      std::optional<ex> at_sample;
+      if (probes_.test(c) != symbolic::ProbePoints::Verdict::Nonzero) {
+        at_sample = sample(c);
+        if (!at_sample) continue;
+      }
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
-      samples_[sym] = *at_sample;
+      if (at_sample) samples_[sym] = *at_sample;  // else computed when a later sample needs it
       probes_.define(sym, c);
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
@@ -863,19 +868,35 @@ class Expander {
   // c evaluated at the sample point, or nullopt when c is identically zero with the values inlined.
   // When c cannot be evaluated there (a pole, a function GiNaC leaves unevaluated) it is kept.
   std::optional<ex> sample(const ex& c) {
-    ex v;
-    try {
-      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
-      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
-      auto fast = symbolic::evalf_at(c, samples_);  // no expression built
-      v = fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
-    } catch (const std::exception&) {
-      return ex(GiNaC::numeric(0));
-    }
+    // A value symbol's sample is computed at the first sample that uses it (record_value skips the sample
+    // of coefficients the exact probes prove nonzero); it is the same whenever it is computed.
+    symbolic::define_dependencies_first(
+        c, [&](const ex& sym) { return definitions_.count(sym) && !samples_.count(sym); },
+        [&](const ex& sym) -> const ex& { return definitions_.at(sym); },
+        [&](const ex& sym) {
+          const ex v = evaluate_at_sample(definitions_.at(sym)).value_or(GiNaC::numeric(0));
+          samples_[sym] = v;
+        });
+    const std::optional<ex> at = evaluate_at_sample(c);
+    if (!at) return ex(GiNaC::numeric(0));
+    const ex& v = *at;
     if (!GiNaC::is_a<GiNaC::numeric>(v)) return v;
     if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > GiNaC::numeric(1e-8)) return v;
     if (vanishes(c)) return std::nullopt;
     return v;
+  }
+
+  // c at the sample point, every symbol of c having its sample: a number, or what GiNaC leaves of c there
+  // (a function it does not evaluate); nullopt where c cannot be evaluated there (a pole).
+  std::optional<ex> evaluate_at_sample(const ex& c) {
+    try {
+      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
+      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
+      auto fast = symbolic::evalf_at(c, samples_);  // no expression built
+      return fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
   }
 
   // Is c (over inputs and value symbols) identically zero once the values are inlined?

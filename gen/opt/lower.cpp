@@ -137,7 +137,7 @@ class Orienter {
 
  private:
   CanonicalKeys& keys_;
-  ExHashMap<ex> memo_;
+  symbolic::ExHashMap<ex> memo_;
 };
 
 }  // namespace

@@ -13,12 +13,12 @@
 
 #include <ginac/ginac.h>
 
-#include <cstddef>
 #include <functional>
 #include <map>
 #include <string>
-#include <unordered_map>
 #include <vector>
+
+#include "symbolic/dag.hpp"
 
 namespace cgagen::opt {
 
@@ -33,15 +33,6 @@ struct OpCounts {
   long total() const { return add + mul + div + call; }
   friend bool operator==(const OpCounts&, const OpCounts&) = default;
 };
-
-// Hash and equality of expressions as values (GiNaC's cached hash; equal expressions hash alike): memo
-// tables keyed by expression that are only looked up, never iterated, so their order cannot matter. A
-// lookup compares one or two entries, where an ordered map compares ~log2(n) along its path.
-struct ExHash {
-  std::size_t operator()(const GiNaC::ex& e) const { return e.gethash(); }
-};
-template <class T>
-using ExHashMap = std::unordered_map<GiNaC::ex, T, ExHash, GiNaC::ex_is_equal>;
 
 // Names of symbols, used for canonical keys and printing. Symbols not in the map print as GiNaC names.
 using SymbolNames = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
@@ -64,7 +55,7 @@ class CanonicalKeys {
   };
   const Entry& entry(const GiNaC::ex& e);
   const SymbolNames& names_;
-  ExHashMap<Entry> memo_;  // references to entries stay valid as it grows
+  symbolic::ExHashMap<Entry> memo_;  // references to entries stay valid as it grows
 };
 
 // One factor of a product: base^exponent with exponent >= 1 spelled out as repeated products.

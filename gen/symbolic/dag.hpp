@@ -18,6 +18,15 @@ namespace cgagen::symbolic {
 // The node's identity: the shared object ex points to.
 inline const GiNaC::basic* node_of(const GiNaC::ex& e) { return &GiNaC::ex_to<GiNaC::basic>(e); }
 
+// Hash and equality of expressions as values (GiNaC's cached hash; equal expressions hash alike), for
+// tables keyed by expression that are only looked up, never iterated, so that their order cannot matter.
+// A lookup compares one or two entries, where an ordered map (ex_is_less) compares ~log2(n) along its path.
+struct ExHash {
+  std::size_t operator()(const GiNaC::ex& e) const { return e.gethash(); }
+};
+template <class T>
+using ExHashMap = std::unordered_map<GiNaC::ex, T, ExHash, GiNaC::ex_is_equal>;
+
 // The terms of a sum / factors of a product as GiNaC stores them: (rest, coeff) pairs, coeff a number (a
 // term's coefficient, a factor's exponent; the sum's or product's numeric overall coefficient is not among
 // them). op(i) rebuilds coeff*rest or rest^coeff as a fresh object at each call, so a walk through op()

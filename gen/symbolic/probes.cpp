@@ -24,6 +24,12 @@ std::uint64_t inverse_mod(std::uint64_t a) {  // a^(p-2), a != 0 (Fermat)
 }
 
 std::uint64_t reduce(const GiNaC::numeric& integer) {  // integer mod p, in [0, p)
+  // Most coefficients are small integers: reduced in machine words, without cln's allocating mod.
+  if (integer.int_length() < 62) {
+    const long v = integer.to_long();  // |v| < 2^62
+    const std::uint64_t m = static_cast<std::uint64_t>(v < 0 ? -v : v) % kPrime;
+    return v < 0 && m != 0 ? kPrime - m : m;
+  }
   GiNaC::numeric m = GiNaC::mod(integer, GiNaC::numeric(static_cast<long>(kPrime)));
   return static_cast<std::uint64_t>(m.to_long());
 }
@@ -42,6 +48,7 @@ std::uint64_t pow_mod(std::uint64_t a, std::uint64_t e) {
 
 // A rational number modulo p; nullopt when its denominator is a multiple of p.
 std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
+  if (n.is_integer()) return reduce(n);
   if (!n.is_rational()) return std::nullopt;
   const std::uint64_t den = reduce(n.denom());
   if (den == 0) return std::nullopt;
@@ -52,14 +59,15 @@ std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
 // e is not a rational function of known symbols or has a pole there. Exact: the same value as
 // substituting the point's rationals and reducing, except where an intermediate denominator is a multiple
 // of p (probability ~2^-61 per operation).
-std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const std::map<GiNaC::ex, std::uint64_t, GiNaC::ex_is_less>& at) {
+template <class Values>
+std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at) {
   std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
   auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
     if (GiNaC::is_a<GiNaC::numeric>(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
     if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
     std::optional<std::uint64_t> v;
     if (GiNaC::is_a<GiNaC::symbol>(x)) {
-      if (auto it = at.find(x); it != at.end()) v = it->second;
+      if (auto it = at.find(x); it != at.end()) v = it->second;  // none where it did not evaluate
     } else if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
       const bool product = GiNaC::is_a<GiNaC::mul>(x);
       const auto& pairs = symbolic::pairs_of(x);
@@ -111,21 +119,25 @@ void ProbePoints::add_input(const GiNaC::symbol& s) {
   }
 }
 
-void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { pending_.emplace(s, definition); }
+void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { definitions_.emplace(s, definition); }
+
+// e at point k, once the defined symbols e depends on have their values there.
+std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int k) {
+  Values& at = at_[static_cast<std::size_t>(k)];
+  symbolic::define_dependencies_first(
+      e, [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); },
+      [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
+      [&](const GiNaC::ex& s) {
+        const std::optional<std::uint64_t> v = value_at(definitions_.at(s), at);
+        at[s] = v;
+      });
+  return value_at(e, at);
+}
 
 ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
-  symbolic::define_dependencies_first(
-      e, [&](const GiNaC::ex& s) { return pending_.count(s) > 0; },
-      [&](const GiNaC::ex& s) -> const GiNaC::ex& { return pending_.at(s); },
-      [&](const GiNaC::ex& s) {
-        auto it = pending_.find(s);
-        for (auto& at : at_)
-          if (auto v = value_at(it->second, at)) at[s] = *v;
-        pending_.erase(it);
-      });
   int zeros = 0;
-  for (const auto& at : at_) {
-    auto v = value_at(e, at);
+  for (int k = 0; k < kPoints; ++k) {
+    auto v = value_at_point(e, k);
     if (!v) continue;
     if (*v != 0) return Verdict::Nonzero;
     ++zeros;
