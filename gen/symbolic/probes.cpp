@@ -59,8 +59,10 @@ std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
 // e is not a rational function of known symbols or has a pole there. Exact: the same value as
 // substituting the point's rationals and reducing, except where an intermediate denominator is a multiple
 // of p (probability ~2^-61 per operation).
-template <class Values>
-std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at) {
+// A symbol without a value in `at` for which unknown(symbol) holds sets *unknown_met (the caller then gives
+// it one and asks again); other symbols without a value make e's value nullopt.
+template <class Values, class Unknown>
+std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, bool* unknown_met) {
   std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
   auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
     if (GiNaC::is_a<GiNaC::numeric>(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
@@ -68,6 +70,7 @@ std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at) {
     std::optional<std::uint64_t> v;
     if (GiNaC::is_a<GiNaC::symbol>(x)) {
       if (auto it = at.find(x); it != at.end()) v = it->second;  // none where it did not evaluate
+      else if (unknown(x)) *unknown_met = true;
     } else if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
       const bool product = GiNaC::is_a<GiNaC::mul>(x);
       const auto& pairs = symbolic::pairs_of(x);
@@ -121,17 +124,22 @@ void ProbePoints::add_input(const GiNaC::symbol& s) {
 
 void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { definitions_.emplace(s, definition); }
 
-// e at point k, once the defined symbols e depends on have their values there.
+// e at point k. The defined symbols e depends on get their values there first, when e meets one without.
 std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int k) {
   Values& at = at_[static_cast<std::size_t>(k)];
+  auto pending = [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); };
+  bool met_pending = false;
+  std::optional<std::uint64_t> v = value_at(e, at, pending, &met_pending);
+  if (!met_pending) return v;
   symbolic::define_dependencies_first(
-      e, [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); },
-      [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
+      e, pending, [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
       [&](const GiNaC::ex& s) {
-        const std::optional<std::uint64_t> v = value_at(definitions_.at(s), at);
-        at[s] = v;
+        bool unused = false;
+        const std::optional<std::uint64_t> sv = value_at(definitions_.at(s), at, pending, &unused);
+        at[s] = sv;
       });
-  return value_at(e, at);
+  bool unused = false;
+  return value_at(e, at, pending, &unused);
 }
 
 ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
