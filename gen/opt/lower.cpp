@@ -88,56 +88,78 @@ const CanonicalKeys::Entry& CanonicalKeys::entry(const ex& e) {
 
 namespace {
 
+// Returns e itself where nothing in it changes: most of a program is oriented already when a pass runs
+// again, and rebuilding a sum or product from its own operands makes GiNaC sort them again (an equal
+// expression, at the price of a fresh allocation and canonicalization per node).
 class Orienter {
  public:
   explicit Orienter(CanonicalKeys& keys) : keys_(keys) {}
   ex operator()(const ex& e) {
     if (is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e)) return e;
     auto it = memo_.find(e);
-    if (it != memo_.end()) return it->second;
+    if (it != memo_.end()) return it->second.unchanged ? e : it->second.value;
     ex r;
+    bool unchanged = true;
+    auto child = [&](const ex& x) {
+      ex y = (*this)(x);
+      if (!are_ex_trivially_equal(x, y)) unchanged = false;
+      return y;
+    };
     if (is_a<add>(e)) {
       exvector terms;
-      for (size_t i = 0; i < e.nops(); ++i) terms.push_back((*this)(e.op(i)));
-      r = dynallocate<add>(terms);
+      for (size_t i = 0; i < e.nops(); ++i) terms.push_back(child(e.op(i)));
+      if (!unchanged) r = dynallocate<add>(terms);
     } else if (is_a<mul>(e)) {
       exvector factors;
       bool negate = false;
       for (size_t i = 0; i < e.nops(); ++i) {
-        ex f = (*this)(e.op(i));
+        ex f = child(e.op(i));
         if (is_a<add>(f) && keys_.sign(f) < 0) {
           f = -f;
           negate = !negate;
+          unchanged = false;
         }
         factors.push_back(f);
       }
-      r = dynallocate<mul>(factors);
-      if (negate) r = -r;
+      if (!unchanged) {
+        r = dynallocate<mul>(factors);
+        if (negate) r = -r;
+      }
     } else if (is_a<power>(e)) {
-      ex base = (*this)(e.op(0));
+      ex base = child(e.op(0));
       const ex& x = e.op(1);
       bool negate = false;
       if (is_a<numeric>(x) && ex_to<numeric>(x).is_integer() && is_a<add>(base) && keys_.sign(base) < 0) {
         base = -base;
         negate = ex_to<numeric>(x).is_odd();
+        unchanged = false;
       }
-      r = pow(base, (*this)(x));
-      if (negate) r = -r;
+      ex exponent = child(x);
+      if (!unchanged) {
+        r = pow(base, exponent);
+        if (negate) r = -r;
+      }
     } else {
       struct F : map_function {
         Orienter* self;
         ex operator()(const ex& x) override { return (*self)(x); }
       } f;
       f.self = this;
-      r = e.map(f);
+      r = e.map(f);  // e itself when no operand changes
+      unchanged = are_ex_trivially_equal(r, e);
     }
-    memo_.emplace(e, r);
+    if (unchanged) r = e;
+    memo_.emplace(e, Result{r, unchanged});
     return r;
   }
 
  private:
+  struct Result {
+    ex value;
+    bool unchanged;  // value is e: a later equal e is returned as it is
+  };
   CanonicalKeys& keys_;
-  symbolic::ExHashMap<ex> memo_;
+  symbolic::ExHashMap<Result> memo_;
 };
 
 }  // namespace
