@@ -270,6 +270,7 @@ class Expander {
   // Every input and value symbol at one fixed pseudo-random point (inputs drawn from [0.3, 1.7)): a cheap
   // first test of whether a coefficient can be zero; only near-zero ones pay for the exact check.
   GiNaC::exmap samples_;
+  symbolic::KeptValues kept_sample_values_;  // large nodes' values at that point (a symbol's never changes)
   std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
   // The same at a second point whose inputs have either sign (magnitudes in [0.3, 1.7)). A coefficient that
   // is clearly nonzero there is not identically zero, whatever the positive samples say: |d| - d, the
@@ -892,7 +893,7 @@ class Expander {
     try {
       // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
       // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
-      auto fast = symbolic::evalf_at(c, samples_);  // no expression built
+      auto fast = symbolic::evalf_at(c, samples_, &kept_sample_values_);  // no expression built
       return fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
     } catch (const std::exception&) {
       return std::nullopt;

@@ -101,7 +101,16 @@ std::size_t tree_symbol_count(const GiNaC::ex& e);
 // once, no expression built): a number, possibly complex, or nullopt where some node does not evaluate to
 // a number (a symbol without a value, a function GiNaC leaves unevaluated); callers then ask GiNaC. Throws
 // at a pole, as subs/evalf would.
-std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at);
+//
+// `kept`, when given, holds the values of large nodes (sums and products of more than 8 operands,
+// non-integer powers) between calls with the same map: a normalized value's root of a large sum sits
+// under every one of its coefficients. Only valid while the values of the symbols those nodes use stay
+// the same; entries hold their node alive (no address reuse).
+struct KeptValues {
+  static constexpr std::size_t kMaxEntries = 20000;  // emptied when full: bounds the memory of a large script
+  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, GiNaC::numeric>> values;
+};
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at, KeptValues* kept = nullptr);
 
 // e.subs(at, subs_options::no_pattern) for a map from symbols to values, computing each shared node once.
 // Throws what subs would throw (a division by zero at a pole).

@@ -393,7 +393,7 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
   return count(count, e);
 }
 
-std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at) {
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at, KeptValues* kept) {
   using namespace GiNaC;
   std::unordered_map<const basic*, std::optional<numeric>> memo;  // nodes of e, alive while e is
   auto as_number = [](const ex& f) -> std::optional<numeric> {
@@ -411,6 +411,8 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
       return v;
     }
     if (x.nops() == 0) return as_number(evalf(x));  // a constant
+    if (kept)
+      if (auto it = kept->values.find(node_of(x)); it != kept->values.end()) return it->second.second;
     std::optional<numeric> v;
     if (is_a<add>(x) || is_a<mul>(x)) {
       const bool product = is_a<mul>(x);
@@ -444,6 +446,10 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
       if (ok) v = as_number(evalf(function(ex_to<function>(x).get_serial(), args)));
     }
     memo.emplace(node_of(x), v);
+    if (kept && v && (x.nops() > 8 || (is_a<power>(x) && !(is_a<numeric>(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer())))) {
+      if (kept->values.size() >= KeptValues::kMaxEntries) kept->values.clear();
+      kept->values.emplace(node_of(x), std::make_pair(x, *v));
+    }
     return v;
   };
   return eval(eval, e);
