@@ -514,9 +514,7 @@ class Expander {
       // A complex constant (sqrt(-4) = 2i, log(-1) = i pi): the targets have real numbers only, and the
       // printers would drop the i (sqrt(-4)*x printed as 2*x). The emitted C would give NaN; say so here.
       // (Each shared node once: coefficients are DAGs whose trees can be exponentially large.)
-      if (symbolic::visit_nodes_once(c, [](const ex& x) {
-            return GiNaC::is_a<GiNaC::numeric>(x) && !GiNaC::ex_to<GiNaC::numeric>(x).is_real();
-          }))
+      if (symbolic::has_nonreal_number(c))
         throw CompileError(s.loc, "the value of '" + s.name + "' is complex (a square root or logarithm of a "
                                     "negative constant); the generated code computes with real numbers only");
       // Identically zero once earlier values are inlined? Most coefficients are plainly not, and an exact

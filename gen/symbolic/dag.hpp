@@ -90,6 +90,10 @@ void define_dependencies_first(const GiNaC::ex& e, Pending&& pending, Definition
   }
 }
 
+// Does e contain a number that is not real (2i from sqrt(-4))? Each shared node once, over the stored
+// pairs of sums and products (no operand rebuilt); the numbers are those a walk through op() meets.
+bool has_nonreal_number(const GiNaC::ex& e);
+
 // Does e have a power with a negative numeric exponent (a denominator)? Each shared node once.
 bool has_negative_power(const GiNaC::ex& e);
 

@@ -344,6 +344,29 @@ bool has_negative_power(const GiNaC::ex& e) {
   return has_negative_power(e, seen);
 }
 
+bool has_nonreal_number(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  std::unordered_set<const basic*> seen;
+  auto nonreal = [](const ex& x) { return is_a<numeric>(x) && !ex_to<numeric>(x).is_real(); };
+  auto walk = [&](auto&& self, const ex& x) -> bool {
+    if (is_a<numeric>(x)) return nonreal(x);
+    if (x.nops() == 0 || !seen.insert(node_of(x)).second) return false;
+    if (is_a<expairseq>(x)) {
+      const auto& pairs = pairs_of(x);
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        if (nonreal(pairs[i].coeff) || self(self, pairs[i].rest)) return true;
+        // A product's number^exponent (2^(1/2)): what its operand evaluates to.
+        if (is_a<mul>(x) && is_a<numeric>(pairs[i].rest) && visit_nodes_once(x.op(i), nonreal)) return true;
+      }
+      return x.nops() > pairs.size() && nonreal(x.op(x.nops() - 1));  // the overall coefficient
+    }
+    for (std::size_t i = 0; i < x.nops(); ++i)
+      if (self(self, x.op(i))) return true;
+    return false;
+  };
+  return walk(walk, e);
+}
+
 void collect_symbols_into(const GiNaC::ex& x, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols) {
   using namespace GiNaC;
   std::unordered_set<const basic*> seen;
