@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <optional>
 #include <set>
+#include <typeinfo>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -17,6 +18,44 @@ namespace cgagen::symbolic {
 
 // The node's identity: the shared object ex points to.
 inline const GiNaC::basic* node_of(const GiNaC::ex& e) { return &GiNaC::ex_to<GiNaC::basic>(e); }
+
+// The class of a node, for hot walks. GiNaC's is_a<T> is a dynamic_cast, which costs a few hundred
+// instructions here, most of them strcmp of type names (Debian's libstdc++ compares type_info objects by
+// name). The classes nearly every node belongs to are recognized first by the identity of their type_info;
+// anything else (another class, or a type_info not shared across libraries) asks is_a, so the answers are
+// is_a's: Symbol for every symbol class (realsymbol), Function for every function.
+enum class Kind : unsigned char { Numeric, Symbol, Add, Mul, Power, Function, Constant, Other };
+inline Kind kind_of(const GiNaC::ex& e) {
+  const std::type_info* t = &typeid(*node_of(e));
+  if (t == &typeid(GiNaC::mul)) return Kind::Mul;
+  if (t == &typeid(GiNaC::add)) return Kind::Add;
+  if (t == &typeid(GiNaC::realsymbol) || t == &typeid(GiNaC::symbol)) return Kind::Symbol;
+  if (t == &typeid(GiNaC::numeric)) return Kind::Numeric;
+  if (t == &typeid(GiNaC::power)) return Kind::Power;
+  if (GiNaC::is_a<GiNaC::numeric>(e)) return Kind::Numeric;
+  if (GiNaC::is_a<GiNaC::symbol>(e)) return Kind::Symbol;
+  if (GiNaC::is_a<GiNaC::add>(e)) return Kind::Add;
+  if (GiNaC::is_a<GiNaC::mul>(e)) return Kind::Mul;
+  if (GiNaC::is_a<GiNaC::power>(e)) return Kind::Power;
+  if (GiNaC::is_a<GiNaC::function>(e)) return Kind::Function;
+  if (GiNaC::is_a<GiNaC::constant>(e)) return Kind::Constant;
+  return Kind::Other;
+}
+inline bool is_numeric(const GiNaC::ex& e) { return kind_of(e) == Kind::Numeric; }
+inline bool is_symbol(const GiNaC::ex& e) { return kind_of(e) == Kind::Symbol; }
+inline bool is_add(const GiNaC::ex& e) { return kind_of(e) == Kind::Add; }
+inline bool is_mul(const GiNaC::ex& e) { return kind_of(e) == Kind::Mul; }
+inline bool is_power(const GiNaC::ex& e) { return kind_of(e) == Kind::Power; }
+// A symbol, a number or a constant (Pi): what the optimizer treats as atomic.
+inline bool is_symbol_number_or_constant(const GiNaC::ex& e) {
+  const Kind k = kind_of(e);
+  return k == Kind::Symbol || k == Kind::Numeric || k == Kind::Constant;
+}
+// is_a<expairseq>: GiNaC's sums and products (pairs_of applies).
+inline bool is_add_or_mul(const GiNaC::ex& e) {
+  const Kind k = kind_of(e);
+  return k == Kind::Add || k == Kind::Mul || (k == Kind::Other && GiNaC::is_a<GiNaC::expairseq>(e));
+}
 
 // Hash and equality of expressions as values (GiNaC's cached hash; equal expressions hash alike), for
 // tables keyed by expression that are only looked up, never iterated, so that their order cannot matter.

@@ -65,14 +65,14 @@ template <class Values, class Unknown>
 std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, bool* unknown_met) {
   std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
   auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
-    if (GiNaC::is_a<GiNaC::numeric>(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
+    if (symbolic::is_numeric(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
     if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
     std::optional<std::uint64_t> v;
-    if (GiNaC::is_a<GiNaC::symbol>(x)) {
+    if (symbolic::is_symbol(x)) {
       if (auto it = at.find(x); it != at.end()) v = it->second;  // none where it did not evaluate
       else if (unknown(x)) *unknown_met = true;
-    } else if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
-      const bool product = GiNaC::is_a<GiNaC::mul>(x);
+    } else if (symbolic::is_add(x) || symbolic::is_mul(x)) {
+      const bool product = symbolic::is_mul(x);
       const auto& pairs = symbolic::pairs_of(x);
       std::uint64_t acc = product ? 1 : 0;
       bool ok = true;
@@ -100,7 +100,7 @@ std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unkn
         else acc = product ? mul_mod(acc, *oc) : add_mod(acc, *oc);
       }
       if (ok) v = acc;
-    } else if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
+    } else if (symbolic::is_power(x) && symbolic::is_numeric(x.op(1)) &&
                GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer()) {
       auto r = self(self, x.op(0));
       const GiNaC::numeric& k = GiNaC::ex_to<GiNaC::numeric>(x.op(1));
