@@ -94,8 +94,16 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
       const ex f = evalf(pow(self(self, e.op(0)), self(self, e.op(1))));
       if (!symbolic::is_numeric(f)) throw std::runtime_error("not a number at the probe");
       v = ex_to<numeric>(f);
+    } else if (is_a<function>(e)) {
+      // A function call: GiNaC's function at its arguments' values (an argument is often a large sum, the
+      // root of a normalized value: substituting into it would rebuild it node by node).
+      exvector args;
+      for (size_t i = 0; i < e.nops(); ++i) args.push_back(self(self, e.op(i)));
+      const ex f = evalf(function(ex_to<function>(e).get_serial(), args));
+      if (!symbolic::is_numeric(f)) throw std::runtime_error("not a number at the probe");
+      v = ex_to<numeric>(f);
     } else {
-      // Function calls and anything else: GiNaC on the node with its operands' values.
+      // Anything else: GiNaC on the node with its operands' values.
       exmap at;
       for (const ex& sym : symbols_of(e)) at[sym] = probe_value(ex_to<symbol>(sym).get_name(), k).evalf();
       const ex f = DagSubs(at)(e).evalf();
