@@ -73,8 +73,12 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
   std::unordered_map<const basic*, numeric> memo;
   auto eval = [&](auto&& self, const ex& e) -> numeric {
     if (symbolic::is_numeric(e)) return ex_to<numeric>(ex_to<numeric>(e).evalf());
-    if (symbolic::is_symbol(e)) return ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
-    if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;
+    if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;  // symbols too
+    if (symbolic::is_symbol(e)) {
+      const numeric v = ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
+      memo.emplace(node_of(e), v);
+      return v;
+    }
     if (cache)
       if (auto it = cache->find(node_of(e)); it != cache->end()) return it->second.value;
     numeric v;
