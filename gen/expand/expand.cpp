@@ -270,13 +270,16 @@ class Expander {
   // Every input and value symbol at one fixed pseudo-random point (inputs drawn from [0.3, 1.7)): a cheap
   // first test of whether a coefficient can be zero; only near-zero ones pay for the exact check.
   GiNaC::exmap samples_;
+  symbolic::KeptValues kept_sample_values_;  // large nodes' values at that point (a symbol's never changes)
   std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
   // The same at a second point whose inputs have either sign (magnitudes in [0.3, 1.7)). A coefficient that
   // is clearly nonzero there is not identically zero, whatever the positive samples say: |d| - d, the
   // distance check of a trilateration, vanishes for every positive d. That verdict costs one evaluation of
   // the statement, where the exact test inlines and expands the whole chain of values (minutes for GPS).
   // Three points: random signs, the same inputs negated (so every input is negative at one of the two), and
-  // independent random signs.
+  // independent random signs. A value symbol gets its signed samples at the first test that needs them
+  // (signed_sample): only coefficients the exact probes cannot decide are tested there, and the values are
+  // the same whenever they are computed.
   std::array<GiNaC::exmap, 3> signed_samples_;
   std::uint64_t signed_state_ = 0xD1B54A32D192ED03ull;
   std::vector<Mark> marks_;                        // in order of first marking
@@ -511,16 +514,18 @@ class Expander {
       // A complex constant (sqrt(-4) = 2i, log(-1) = i pi): the targets have real numbers only, and the
       // printers would drop the i (sqrt(-4)*x printed as 2*x). The emitted C would give NaN; say so here.
       // (Each shared node once: coefficients are DAGs whose trees can be exponentially large.)
-      if (symbolic::visit_nodes_once(c, [](const ex& x) {
-            return GiNaC::is_a<GiNaC::numeric>(x) && !GiNaC::ex_to<GiNaC::numeric>(x).is_real();
-          }))
+      if (symbolic::has_nonreal_number(c))
         throw CompileError(s.loc, "the value of '" + s.name + "' is complex (a square root or logarithm of a "
                                     "negative constant); the generated code computes with real numbers only");
-      std::optional<ex> at_sample = sample(c);
-      if (!at_sample) continue;  // identically zero once earlier values are inlined
+      // Identically zero once earlier values are inlined? Most coefficients are plainly not, and an exact
+      // probe says so at once; the others go through the float sample first (sample()).
+      std::optional<ex> at_sample;
+      if (probes_.test(c) != symbolic::ProbePoints::Verdict::Nonzero) {
+        at_sample = sample(c);
+        if (!at_sample) continue;
+      }
       GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
-      samples_[sym] = *at_sample;
-      add_signed_value(sym, c);
+      if (at_sample) samples_[sym] = *at_sample;  // else computed when a later sample needs it
       probes_.define(sym, c);
       kv.blades.push_back(b);
       kv.coeffs.push_back(c);
@@ -825,12 +830,21 @@ class Expander {
     signed_samples_[2][sym] = GiNaC::numeric(next_signed_value());
   }
 
-  void add_signed_value(const GiNaC::symbol& sym, const ex& c) {
-    for (size_t k = 0; k < signed_samples_.size(); ++k) signed_samples_[k][sym] = signed_sample(c, k);
+  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there. The value
+  // symbols c uses get their samples first, at all points (a value symbol has them at all or none).
+  ex signed_sample(const ex& c, size_t k) {
+    symbolic::define_dependencies_first(
+        c, [&](const ex& sym) { return definitions_.count(sym) && !signed_samples_[0].count(sym); },
+        [&](const ex& sym) -> const ex& { return definitions_.at(sym); },
+        [&](const ex& sym) {
+          const ex& def = definitions_.at(sym);
+          for (size_t j = 0; j < signed_samples_.size(); ++j) signed_samples_[j][sym] = sample_at_signed_point(def, j);
+        });
+    return sample_at_signed_point(c, k);
   }
 
-  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there.
-  ex signed_sample(const ex& c, size_t k) {
+  // c at signed point k, where every symbol of c has its sample.
+  ex sample_at_signed_point(const ex& c, size_t k) {
     try {
       // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
       auto fast = symbolic::evalf_at(c, signed_samples_[k]);  // no expression built
@@ -853,19 +867,35 @@ class Expander {
   // c evaluated at the sample point, or nullopt when c is identically zero with the values inlined.
   // When c cannot be evaluated there (a pole, a function GiNaC leaves unevaluated) it is kept.
   std::optional<ex> sample(const ex& c) {
-    ex v;
-    try {
-      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
-      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
-      auto fast = symbolic::evalf_at(c, samples_);  // no expression built
-      v = fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
-    } catch (const std::exception&) {
-      return ex(GiNaC::numeric(0));
-    }
+    // A value symbol's sample is computed at the first sample that uses it (record_value skips the sample
+    // of coefficients the exact probes prove nonzero); it is the same whenever it is computed.
+    symbolic::define_dependencies_first(
+        c, [&](const ex& sym) { return definitions_.count(sym) && !samples_.count(sym); },
+        [&](const ex& sym) -> const ex& { return definitions_.at(sym); },
+        [&](const ex& sym) {
+          const ex v = evaluate_at_sample(definitions_.at(sym)).value_or(GiNaC::numeric(0));
+          samples_[sym] = v;
+        });
+    const std::optional<ex> at = evaluate_at_sample(c);
+    if (!at) return ex(GiNaC::numeric(0));
+    const ex& v = *at;
     if (!GiNaC::is_a<GiNaC::numeric>(v)) return v;
     if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > GiNaC::numeric(1e-8)) return v;
     if (vanishes(c)) return std::nullopt;
     return v;
+  }
+
+  // c at the sample point, every symbol of c having its sample: a number, or what GiNaC leaves of c there
+  // (a function it does not evaluate); nullopt where c cannot be evaluated there (a pole).
+  std::optional<ex> evaluate_at_sample(const ex& c) {
+    try {
+      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
+      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
+      auto fast = symbolic::evalf_at(c, samples_, &kept_sample_values_);  // no expression built
+      return fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
   }
 
   // Is c (over inputs and value symbols) identically zero once the values are inlined?

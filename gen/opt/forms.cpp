@@ -20,7 +20,7 @@ using namespace GiNaC;
 // every process.
 size_t tree_size(const ex& e) { return symbolic::tree_symbol_count(e); }
 
-bool is_atomic(const ex& e) { return is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e); }
+bool is_atomic(const ex& e) { return symbolic::is_symbol_number_or_constant(e); }
 
 bool has_denominator(const ex& e) { return symbolic::has_negative_power(e); }
 
@@ -35,25 +35,25 @@ Rat canonical(const ex& e) {
 // e as (numerator, D) when e is a sum whose terms all have the same non-numeric denominator D (integer
 // powers with negative exponents); nullopt otherwise.
 std::optional<std::pair<ex, ex>> split_common_denominator(const ex& e) {
-  if (!is_a<add>(e)) return std::nullopt;
+  if (!symbolic::is_add(e)) return std::nullopt;
   std::optional<ex> den;
   exvector nums;
   for (size_t i = 0; i < e.nops(); ++i) {
     const ex& t = e.op(i);
     exvector up, down;
     auto take = [&](const ex& f) {
-      if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer() &&
+      if (symbolic::is_power(f) && symbolic::is_numeric(f.op(1)) && ex_to<numeric>(f.op(1)).is_integer() &&
           ex_to<numeric>(f.op(1)).is_negative())
         down.push_back(pow(f.op(0), -f.op(1)));
       else
         up.push_back(f);
     };
-    if (is_a<mul>(t))
+    if (symbolic::is_mul(t))
       for (size_t j = 0; j < t.nops(); ++j) take(t.op(j));
     else
       take(t);
     ex d = dynallocate<mul>(down);
-    if (is_a<numeric>(d)) return std::nullopt;
+    if (symbolic::is_numeric(d)) return std::nullopt;
     if (!den) den = d;
     else if (!den->is_equal(d)) return std::nullopt;
     nums.push_back(dynallocate<mul>(up));
@@ -69,11 +69,11 @@ constexpr size_t kMaxNormalNodes = 1000;
 // exponent (what to_rational leaves of e)?
 bool has_denominator_outside_calls(const ex& e) {
   std::unordered_set<const basic*> seen;
-  auto is_integer = [](const ex& k) { return is_a<numeric>(k) && ex_to<numeric>(k).is_integer(); };
+  auto is_integer = [](const ex& k) { return symbolic::is_numeric(k) && ex_to<numeric>(k).is_integer(); };
   auto walk = [&](auto&& self, const ex& x) -> bool {
     if (x.nops() == 0 || is_a<function>(x) || !seen.insert(symbolic::node_of(x)).second) return false;
-    if (is_a<add>(x) || is_a<mul>(x)) {
-      const bool product = is_a<mul>(x);
+    if (symbolic::is_add(x) || symbolic::is_mul(x)) {
+      const bool product = symbolic::is_mul(x);
       for (const auto& p : symbolic::pairs_of(x)) {
         if (product && !is_integer(p.coeff)) continue;  // opaque
         if (product && ex_to<numeric>(p.coeff).is_negative()) return true;
@@ -81,7 +81,7 @@ bool has_denominator_outside_calls(const ex& e) {
       }
       return false;
     }
-    if (is_a<power>(x)) {
+    if (symbolic::is_power(x)) {
       if (!is_integer(x.op(1))) return false;  // opaque
       return ex_to<numeric>(x.op(1)).is_negative() || self(self, x.op(0));
     }
@@ -96,12 +96,12 @@ bool has_denominator_outside_calls(const ex& e) {
 size_t largest_call_argument(const ex& e) {
   size_t n = 0;
   std::unordered_set<const basic*> seen;
-  auto is_integer = [](const ex& k) { return is_a<numeric>(k) && ex_to<numeric>(k).is_integer(); };
+  auto is_integer = [](const ex& k) { return symbolic::is_numeric(k) && ex_to<numeric>(k).is_integer(); };
   // Over the stored nodes, each shared one once (a product's factor x^k is a pair (x, k) there).
   auto walk = [&](auto&& self, const ex& x) -> void {
     if (x.nops() == 0 || !seen.insert(symbolic::node_of(x)).second) return;
-    if (is_a<add>(x) || is_a<mul>(x)) {
-      const bool product = is_a<mul>(x);
+    if (symbolic::is_add(x) || symbolic::is_mul(x)) {
+      const bool product = symbolic::is_mul(x);
       for (const auto& p : symbolic::pairs_of(x)) {
         if (product && !is_integer(p.coeff)) n = std::max(n, tree_size(p.rest));
         self(self, p.rest);
@@ -110,7 +110,7 @@ size_t largest_call_argument(const ex& e) {
     }
     if (is_a<function>(x))
       for (size_t i = 0; i < x.nops(); ++i) n = std::max(n, tree_size(x.op(i)));
-    else if (is_a<power>(x) && !is_integer(x.op(1)))
+    else if (symbolic::is_power(x) && !is_integer(x.op(1)))
       n = std::max(n, tree_size(x.op(0)));
     for (size_t i = 0; i < x.nops(); ++i) self(self, x.op(i));
   };
@@ -119,12 +119,12 @@ size_t largest_call_argument(const ex& e) {
 }
 
 bool combine_keeps(const Rat& r) {
-  if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return true;
+  if (!has_denominator(r.num) || (symbolic::is_add(r.num) && r.num.nops() > 200)) return true;
   return largest_call_argument(r.num) > kMaxNormalNodes && !has_denominator_outside_calls(r.num);
 }
 
 Rat combine_fractions(const Rat& r) {
-  if (!has_denominator(r.num) || (is_a<add>(r.num) && r.num.nops() > 200)) return r;
+  if (!has_denominator(r.num) || (symbolic::is_add(r.num) && r.num.nops() > 200)) return r;
   // When every term has the same denominator D the terms over D stay as many (they are distinct monomials),
   // so only a common factor of the numerator and D can make the form shorter: one gcd instead of
   // numer_denom's gcd per term (seconds on circle3).
@@ -132,7 +132,7 @@ Rat combine_fractions(const Rat& r) {
     // gcd takes polynomials over the rationals: function calls and roots become temporary symbols first.
     exmap repl;
     const ex n = split->first.to_polynomial(repl), d = split->second.to_polynomial(repl);
-    if (is_a<numeric>(gcd(n, d))) return r;
+    if (symbolic::is_numeric(gcd(n, d))) return r;
   }
   // numer_denom also normalizes inside function arguments and roots, which simplifies small ones
   // (sqrt(t)^2 = t) but takes minutes on a large quotient under sqrt(abs(...)). When an argument has more
@@ -146,10 +146,10 @@ Rat combine_fractions(const Rat& r) {
   ex nd = (large ? r.num.to_rational(opaque) : r.num).numer_denom();
   ex n = expand(nd.op(0)), d = expand(nd.op(1));
   if (large) n = expand(n.subs(opaque, kSymbolSubs)), d = expand(d.subs(opaque, kSymbolSubs));
-  auto size = [](const ex& e) { return is_a<add>(e) ? e.nops() : size_t{1}; };
+  auto size = [](const ex& e) { return symbolic::is_add(e) ? e.nops() : size_t{1}; };
   if (n.is_zero()) return {0, 1};
   if (size(n) + size(d) >= size(r.num)) return r;
-  if (is_a<numeric>(d)) return {expand(n / d), 1};
+  if (symbolic::is_numeric(d)) return {expand(n / d), 1};
   return {n, d};
 }
 
@@ -158,12 +158,12 @@ Rat combine_fractions(const Rat& r) {
 namespace {
 double estimate_terms_memo(const ex& e, const std::map<ex, double, ex_is_less>& sizes,
                            std::unordered_map<const basic*, std::pair<ex, double>>& memo) {
-  if (is_a<symbol>(e)) {
+  if (symbolic::is_symbol(e)) {
     auto it = sizes.find(e);
     return it == sizes.end() ? 1 : it->second;
   }
-  const bool sum = is_a<add>(e), product = is_a<mul>(e);
-  const bool integer_power = is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer();
+  const bool sum = symbolic::is_add(e), product = symbolic::is_mul(e);
+  const bool integer_power = symbolic::is_power(e) && symbolic::is_numeric(e.op(1)) && ex_to<numeric>(e.op(1)).is_pos_integer();
   if (!sum && !product && !integer_power) return 1;
   auto it = memo.find(symbolic::node_of(e));
   if (it != memo.end()) return it->second.second;
@@ -202,15 +202,15 @@ ex collect_in(const ex& e, const std::vector<ex>& xs) {
   auto split = [&](const ex& t) {
     Split s{std::vector<int>(xs.size(), 0), 1};
     auto power_of = [&](const ex& f) -> bool {
-      const ex& base = is_a<power>(f) ? f.op(0) : f;
+      const ex& base = symbolic::is_power(f) ? f.op(0) : f;
       auto it = index.find(base);
       if (it == index.end()) return false;
-      if (!is_a<power>(f)) return s.degree[it->second] += 1, true;
-      if (!is_a<numeric>(f.op(1)) || !ex_to<numeric>(f.op(1)).is_integer()) return false;
+      if (!symbolic::is_power(f)) return s.degree[it->second] += 1, true;
+      if (!symbolic::is_numeric(f.op(1)) || !ex_to<numeric>(f.op(1)).is_integer()) return false;
       s.degree[it->second] += ex_to<numeric>(f.op(1)).to_int();
       return true;
     };
-    if (is_a<mul>(t)) {
+    if (symbolic::is_mul(t)) {
       exvector rest;
       for (size_t j = 0; j < t.nops(); ++j)
         if (!power_of(t.op(j))) rest.push_back(t.op(j));
@@ -221,7 +221,7 @@ ex collect_in(const ex& e, const std::vector<ex>& xs) {
     return s;
   };
   std::vector<Split> terms;
-  if (is_a<add>(e))
+  if (symbolic::is_add(e))
     for (size_t i = 0; i < e.nops(); ++i) terms.push_back(split(e.op(i)));
   else
     terms.push_back(split(e));

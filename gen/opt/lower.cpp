@@ -31,16 +31,16 @@ const CanonicalKeys::Entry& CanonicalKeys::entry(const ex& e) {
   auto it = memo_.find(e);
   if (it != memo_.end()) return it->second;
   Entry r{1, "", ""};
-  if (is_a<symbol>(e)) {
+  if (symbolic::is_symbol(e)) {
     auto n = names_.find(e);
     r.magnitude = n != names_.end() ? n->second : ex_to<symbol>(e).get_name();
-  } else if (is_a<numeric>(e)) {
+  } else if (symbolic::is_numeric(e)) {
     const numeric& v = ex_to<numeric>(e);
     if (v.is_real() && v.is_negative()) r.sign = -1;
     r.magnitude = numeric_text(r.sign < 0 ? ex(-v) : e);
   } else if (is_a<constant>(e)) {
     r.magnitude = numeric_text(e);
-  } else if (is_a<add>(e)) {
+  } else if (symbolic::is_add(e)) {
     std::vector<std::pair<std::string, int>> terms;
     for (size_t i = 0; i < e.nops(); ++i) {
       const Entry& t = entry(e.op(i));
@@ -51,12 +51,12 @@ const CanonicalKeys::Entry& CanonicalKeys::entry(const ex& e) {
     r.magnitude = "(+";
     for (auto& [m, sg] : terms) r.magnitude += std::string(sg * r.sign > 0 ? " " : " -") + m;
     r.magnitude += ")";
-  } else if (is_a<mul>(e)) {
+  } else if (symbolic::is_mul(e)) {
     std::vector<std::string> parts;
     for (size_t i = 0; i < e.nops(); ++i) {
       const Entry& f = entry(e.op(i));
       r.sign *= f.sign;
-      if (!(is_a<numeric>(e.op(i)) && f.magnitude == "1")) parts.push_back(f.magnitude);
+      if (!(symbolic::is_numeric(e.op(i)) && f.magnitude == "1")) parts.push_back(f.magnitude);
     }
     std::sort(parts.begin(), parts.end());
     if (parts.size() == 1) {  // -x has the magnitude of x
@@ -66,10 +66,10 @@ const CanonicalKeys::Entry& CanonicalKeys::entry(const ex& e) {
       for (auto& p : parts) r.magnitude += " " + p;
       r.magnitude += ")";
     }
-  } else if (is_a<power>(e)) {
+  } else if (symbolic::is_power(e)) {
     const Entry& b = entry(e.op(0));
     const ex& x = e.op(1);
-    if (is_a<numeric>(x) && ex_to<numeric>(x).is_integer()) {
+    if (symbolic::is_numeric(x) && ex_to<numeric>(x).is_integer()) {
       if (ex_to<numeric>(x).is_odd()) r.sign = b.sign;
       r.magnitude = "(^ " + b.magnitude + " " + numeric_text(x) + ")";
     } else {
@@ -88,56 +88,78 @@ const CanonicalKeys::Entry& CanonicalKeys::entry(const ex& e) {
 
 namespace {
 
+// Returns e itself where nothing in it changes: most of a program is oriented already when a pass runs
+// again, and rebuilding a sum or product from its own operands makes GiNaC sort them again (an equal
+// expression, at the price of a fresh allocation and canonicalization per node).
 class Orienter {
  public:
   explicit Orienter(CanonicalKeys& keys) : keys_(keys) {}
   ex operator()(const ex& e) {
-    if (is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e)) return e;
+    if (symbolic::is_symbol_number_or_constant(e)) return e;
     auto it = memo_.find(e);
-    if (it != memo_.end()) return it->second;
+    if (it != memo_.end()) return it->second.unchanged ? e : it->second.value;
     ex r;
-    if (is_a<add>(e)) {
+    bool unchanged = true;
+    auto child = [&](const ex& x) {
+      ex y = (*this)(x);
+      if (!are_ex_trivially_equal(x, y)) unchanged = false;
+      return y;
+    };
+    if (symbolic::is_add(e)) {
       exvector terms;
-      for (size_t i = 0; i < e.nops(); ++i) terms.push_back((*this)(e.op(i)));
-      r = dynallocate<add>(terms);
-    } else if (is_a<mul>(e)) {
+      for (size_t i = 0; i < e.nops(); ++i) terms.push_back(child(e.op(i)));
+      if (!unchanged) r = dynallocate<add>(terms);
+    } else if (symbolic::is_mul(e)) {
       exvector factors;
       bool negate = false;
       for (size_t i = 0; i < e.nops(); ++i) {
-        ex f = (*this)(e.op(i));
-        if (is_a<add>(f) && keys_.sign(f) < 0) {
+        ex f = child(e.op(i));
+        if (symbolic::is_add(f) && keys_.sign(f) < 0) {
           f = -f;
           negate = !negate;
+          unchanged = false;
         }
         factors.push_back(f);
       }
-      r = dynallocate<mul>(factors);
-      if (negate) r = -r;
-    } else if (is_a<power>(e)) {
-      ex base = (*this)(e.op(0));
+      if (!unchanged) {
+        r = dynallocate<mul>(factors);
+        if (negate) r = -r;
+      }
+    } else if (symbolic::is_power(e)) {
+      ex base = child(e.op(0));
       const ex& x = e.op(1);
       bool negate = false;
-      if (is_a<numeric>(x) && ex_to<numeric>(x).is_integer() && is_a<add>(base) && keys_.sign(base) < 0) {
+      if (symbolic::is_numeric(x) && ex_to<numeric>(x).is_integer() && symbolic::is_add(base) && keys_.sign(base) < 0) {
         base = -base;
         negate = ex_to<numeric>(x).is_odd();
+        unchanged = false;
       }
-      r = pow(base, (*this)(x));
-      if (negate) r = -r;
+      ex exponent = child(x);
+      if (!unchanged) {
+        r = pow(base, exponent);
+        if (negate) r = -r;
+      }
     } else {
       struct F : map_function {
         Orienter* self;
         ex operator()(const ex& x) override { return (*self)(x); }
       } f;
       f.self = this;
-      r = e.map(f);
+      r = e.map(f);  // e itself when no operand changes
+      unchanged = are_ex_trivially_equal(r, e);
     }
-    memo_.emplace(e, r);
+    if (unchanged) r = e;
+    memo_.emplace(e, Result{r, unchanged});
     return r;
   }
 
  private:
+  struct Result {
+    ex value;
+    bool unchanged;  // value is e: a later equal e is returned as it is
+  };
   CanonicalKeys& keys_;
-  std::map<ex, ex, ex_is_less> memo_;
+  symbolic::ExHashMap<Result> memo_;
 };
 
 }  // namespace
@@ -145,20 +167,20 @@ class Orienter {
 ex orient_sums(const ex& e, CanonicalKeys& keys) { return Orienter(keys)(e); }
 
 bool is_sqrt(const ex& e) {
-  return is_a<power>(e) && is_a<numeric>(e.op(1)) && ex_to<numeric>(e.op(1)) == numeric(1, 2);
+  return symbolic::is_power(e) && symbolic::is_numeric(e.op(1)) && ex_to<numeric>(e.op(1)) == numeric(1, 2);
 }
 
 static void add_factor(ProductParts& p, const ex& f, CanonicalKeys& keys) {
-  if (is_a<numeric>(f)) {
+  if (symbolic::is_numeric(f)) {
     p.coeff *= ex_to<numeric>(f);
     return;
   }
-  if (is_a<power>(f) && is_a<numeric>(f.op(1))) {
+  if (symbolic::is_power(f) && symbolic::is_numeric(f.op(1))) {
     numeric n = ex_to<numeric>(f.op(1));
     if (n.is_integer()) {
       int k = n.to_int();
       ex base = f.op(0);
-      if (is_a<add>(base) && keys.sign(base) < 0) {  // orient the sum; odd powers carry the sign out
+      if (symbolic::is_add(base) && keys.sign(base) < 0) {  // orient the sum; odd powers carry the sign out
         base = -base;
         if (k % 2 != 0) p.coeff = -p.coeff;
       }
@@ -171,7 +193,7 @@ static void add_factor(ProductParts& p, const ex& f, CanonicalKeys& keys) {
       return;
     }
   }
-  if (is_a<add>(f) && keys.sign(f) < 0) {
+  if (symbolic::is_add(f) && keys.sign(f) < 0) {
     p.coeff = -p.coeff;
     p.num.push_back({-f, 1});
     return;
@@ -181,7 +203,7 @@ static void add_factor(ProductParts& p, const ex& f, CanonicalKeys& keys) {
 
 ProductParts split_product(const ex& e, CanonicalKeys& keys) {
   ProductParts p;
-  if (is_a<mul>(e)) {
+  if (symbolic::is_mul(e)) {
     for (size_t i = 0; i < e.nops(); ++i) add_factor(p, e.op(i), keys);
   } else {
     add_factor(p, e, keys);
@@ -196,7 +218,7 @@ ProductParts split_product(const ex& e, CanonicalKeys& keys) {
   return p;
 }
 
-bool is_negative_term(const ex& e, CanonicalKeys& keys) { return !is_a<add>(e) && keys.sign(e) < 0; }
+bool is_negative_term(const ex& e, CanonicalKeys& keys) { return !symbolic::is_add(e) && keys.sign(e) < 0; }
 
 std::vector<ex> sum_terms(const ex& sum, CanonicalKeys& keys) {
   std::vector<ex> terms;
@@ -212,7 +234,7 @@ std::vector<ex> sum_terms(const ex& sum, CanonicalKeys& keys) {
 std::vector<ex> ordered_children(const ex& e, CanonicalKeys& keys) {
   std::vector<ex> c;
   for (size_t i = 0; i < e.nops(); ++i) c.push_back(e.op(i));
-  if (is_a<add>(e) || is_a<mul>(e))
+  if (symbolic::is_add(e) || symbolic::is_mul(e))
     std::stable_sort(c.begin(), c.end(), [&](const ex& a, const ex& b) { return keys.less(a, b); });
   return c;
 }
@@ -221,8 +243,8 @@ static OpCounts count_atom(const ex& b, CanonicalKeys& keys);
 
 OpCounts count_ops(const ex& e, CanonicalKeys& keys) {
   OpCounts c;
-  if (is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e)) return c;
-  if (is_a<add>(e)) {
+  if (symbolic::is_symbol_number_or_constant(e)) return c;
+  if (symbolic::is_add(e)) {
     c.add += static_cast<long>(e.nops()) - 1;
     for (size_t i = 0; i < e.nops(); ++i) c += count_ops(e.op(i), keys);
     return c;
@@ -248,9 +270,9 @@ OpCounts count_ops(const ex& e, CanonicalKeys& keys) {
 
 static OpCounts count_atom(const ex& b, CanonicalKeys& keys) {
   OpCounts c;
-  if (is_a<symbol>(b) || is_a<numeric>(b) || is_a<constant>(b)) return c;
-  if (is_a<add>(b) || is_a<mul>(b)) return count_ops(b, keys);
-  if (is_a<power>(b)) {  // a non-integer power: sqrt or pow
+  if (symbolic::is_symbol_number_or_constant(b)) return c;
+  if (symbolic::is_add(b) || symbolic::is_mul(b)) return count_ops(b, keys);
+  if (symbolic::is_power(b)) {  // a non-integer power: sqrt or pow
     c.call += 1;
     c += count_ops(b.op(0), keys);
     if (!is_sqrt(b)) c += count_ops(b.op(1), keys);

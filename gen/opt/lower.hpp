@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "symbolic/dag.hpp"
+
 namespace cgagen::opt {
 
 struct OpCounts {
@@ -53,7 +55,7 @@ class CanonicalKeys {
   };
   const Entry& entry(const GiNaC::ex& e);
   const SymbolNames& names_;
-  std::map<GiNaC::ex, Entry, GiNaC::ex_is_less> memo_;
+  symbolic::ExHashMap<Entry> memo_;  // references to entries stay valid as it grows
 };
 
 // One factor of a product: base^exponent with exponent >= 1 spelled out as repeated products.

@@ -25,7 +25,7 @@ namespace {
 bool has_denominator(const GiNaC::ex& e) { return has_negative_power(e); }
 
 // Terms of an expanded coefficient (a sum's terms; anything else is one).
-std::size_t term_count(const GiNaC::ex& e) { return GiNaC::is_a<GiNaC::add>(e) ? e.nops() : 1; }
+std::size_t term_count(const GiNaC::ex& e) { return symbolic::is_add(e) ? e.nops() : 1; }
 
 GiNaC::ex to_ex(const algebra::Rational& r) { return GiNaC::numeric(r.num) / GiNaC::numeric(r.den); }
 
@@ -72,14 +72,18 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
   auto* cache = caches ? &caches->probe_values[static_cast<size_t>(k)] : nullptr;
   std::unordered_map<const basic*, numeric> memo;
   auto eval = [&](auto&& self, const ex& e) -> numeric {
-    if (is_a<numeric>(e)) return ex_to<numeric>(ex_to<numeric>(e).evalf());
-    if (is_a<symbol>(e)) return ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
-    if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;
+    if (symbolic::is_numeric(e)) return ex_to<numeric>(ex_to<numeric>(e).evalf());
+    if (auto it = memo.find(node_of(e)); it != memo.end()) return it->second;  // symbols too
+    if (symbolic::is_symbol(e)) {
+      const numeric v = ex_to<numeric>(probe_value(ex_to<symbol>(e).get_name(), k).evalf());
+      memo.emplace(node_of(e), v);
+      return v;
+    }
     if (cache)
       if (auto it = cache->find(node_of(e)); it != cache->end()) return it->second.value;
     numeric v;
-    if (is_a<add>(e) || is_a<mul>(e)) {
-      const bool product = is_a<mul>(e);
+    if (symbolic::is_add(e) || symbolic::is_mul(e)) {
+      const bool product = symbolic::is_mul(e);
       const auto& pairs = pairs_of(e);
       v = product ? numeric(1) : numeric(0);
       for (const auto& p : pairs) {
@@ -90,20 +94,28 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
         const numeric oc = ex_to<numeric>(ex_to<numeric>(e.op(e.nops() - 1)).evalf());
         v = product ? v * oc : v + oc;
       }
-    } else if (is_a<power>(e)) {
+    } else if (symbolic::is_power(e)) {
       const ex f = evalf(pow(self(self, e.op(0)), self(self, e.op(1))));
-      if (!is_a<numeric>(f)) throw std::runtime_error("not a number at the probe");
+      if (!symbolic::is_numeric(f)) throw std::runtime_error("not a number at the probe");
+      v = ex_to<numeric>(f);
+    } else if (is_a<function>(e)) {
+      // A function call: GiNaC's function at its arguments' values (an argument is often a large sum, the
+      // root of a normalized value: substituting into it would rebuild it node by node).
+      exvector args;
+      for (size_t i = 0; i < e.nops(); ++i) args.push_back(self(self, e.op(i)));
+      const ex f = evalf(function(ex_to<function>(e).get_serial(), args));
+      if (!symbolic::is_numeric(f)) throw std::runtime_error("not a number at the probe");
       v = ex_to<numeric>(f);
     } else {
-      // Function calls and anything else: GiNaC on the node with its operands' values.
+      // Anything else: GiNaC on the node with its operands' values.
       exmap at;
       for (const ex& sym : symbols_of(e)) at[sym] = probe_value(ex_to<symbol>(sym).get_name(), k).evalf();
       const ex f = DagSubs(at)(e).evalf();
-      if (!is_a<numeric>(f)) throw std::runtime_error("not a number at the probe");
+      if (!symbolic::is_numeric(f)) throw std::runtime_error("not a number at the probe");
       v = ex_to<numeric>(f);
     }
     memo.emplace(node_of(e), v);
-    if (cache && (!is_a<mul>(e) || e.nops() > 8)) {
+    if (cache && (!symbolic::is_mul(e) || e.nops() > 8)) {
       if (cache->size() >= NodeCaches::kMaxEntries) cache->clear();
       cache->emplace(node_of(e), NodeCaches::Value{e, v});
     }
@@ -137,7 +149,7 @@ bool zero_after_float_probes(const GiNaC::ex& x, const std::vector<GiNaC::exmap>
   for (const exmap& at : points) {
     try {
       const ex v = DagSubs(at)(x);
-      if (is_a<numeric>(v) && ex_to<numeric>(v).is_rational() && !v.is_zero()) return false;
+      if (symbolic::is_numeric(v) && ex_to<numeric>(v).is_rational() && !v.is_zero()) return false;
     } catch (const std::exception&) {
       // a pole at the probe: decide exactly
     }
@@ -320,19 +332,19 @@ bool operator==(const Multivector& a, const Multivector& b) { return (a - b).is_
 
 namespace {
 bool is_negative_number(const GiNaC::ex& x) {
-  return GiNaC::is_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_negative();
+  return symbolic::is_numeric(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_negative();
 }
 
 bool has_negative_power(const GiNaC::ex& e, std::unordered_set<const GiNaC::basic*>& seen) {
   using namespace GiNaC;
   if (e.nops() == 0 || !seen.insert(node_of(e)).second) return false;
-  if (is_a<expairseq>(e)) {
-    const bool product = is_a<mul>(e);  // a product's factor x^k is the pair (x, k)
+  if (symbolic::is_add_or_mul(e)) {
+    const bool product = symbolic::is_mul(e);  // a product's factor x^k is the pair (x, k)
     for (const auto& p : pairs_of(e))
       if ((product && is_negative_number(p.coeff)) || has_negative_power(p.rest, seen)) return true;
     return false;
   }
-  if (is_a<power>(e) && is_negative_number(e.op(1))) return true;
+  if (symbolic::is_power(e) && is_negative_number(e.op(1))) return true;
   for (size_t i = 0; i < e.nops(); ++i)
     if (has_negative_power(e.op(i), seen)) return true;
   return false;
@@ -344,16 +356,39 @@ bool has_negative_power(const GiNaC::ex& e) {
   return has_negative_power(e, seen);
 }
 
+bool has_nonreal_number(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  std::unordered_set<const basic*> seen;
+  auto nonreal = [](const ex& x) { return symbolic::is_numeric(x) && !ex_to<numeric>(x).is_real(); };
+  auto walk = [&](auto&& self, const ex& x) -> bool {
+    if (symbolic::is_numeric(x)) return nonreal(x);
+    if (x.nops() == 0 || !seen.insert(node_of(x)).second) return false;
+    if (symbolic::is_add_or_mul(x)) {
+      const auto& pairs = pairs_of(x);
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        if (nonreal(pairs[i].coeff) || self(self, pairs[i].rest)) return true;
+        // A product's number^exponent (2^(1/2)): what its operand evaluates to.
+        if (symbolic::is_mul(x) && symbolic::is_numeric(pairs[i].rest) && visit_nodes_once(x.op(i), nonreal)) return true;
+      }
+      return x.nops() > pairs.size() && nonreal(x.op(x.nops() - 1));  // the overall coefficient
+    }
+    for (std::size_t i = 0; i < x.nops(); ++i)
+      if (self(self, x.op(i))) return true;
+    return false;
+  };
+  return walk(walk, e);
+}
+
 void collect_symbols_into(const GiNaC::ex& x, std::set<GiNaC::ex, GiNaC::ex_is_less>& symbols) {
   using namespace GiNaC;
   std::unordered_set<const basic*> seen;
   auto walk = [&](auto&& self, const ex& e) -> void {
-    if (is_a<symbol>(e)) {
+    if (symbolic::is_symbol(e)) {
       symbols.insert(e);
       return;
     }
     if (e.nops() == 0 || !seen.insert(node_of(e)).second) return;
-    if (is_a<expairseq>(e)) {
+    if (symbolic::is_add_or_mul(e)) {
       for (const auto& p : pairs_of(e)) self(self, p.rest);
     } else {
       for (size_t i = 0; i < e.nops(); ++i) self(self, e.op(i));
@@ -370,14 +405,14 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
   auto* cache = caches ? &caches->symbol_counts : nullptr;
   std::unordered_map<const GiNaC::basic*, std::size_t> memo;  // nodes of e, alive while e is
   auto count = [&](auto&& self, const GiNaC::ex& x) -> std::size_t {
-    if (GiNaC::is_a<GiNaC::symbol>(x)) return 1;
+    if (symbolic::is_symbol(x)) return 1;
     if (x.nops() == 0) return 0;
     auto it = memo.find(node_of(x));
     if (it != memo.end()) return it->second;
     if (cache)
       if (auto c = cache->find(node_of(x)); c != cache->end()) return c->second.count;
     std::size_t n = 0;
-    if (GiNaC::is_a<GiNaC::expairseq>(x)) {
+    if (symbolic::is_add_or_mul(x)) {
       // Sums and products: the coefficients, exponents and overall coefficient are numbers (no symbols).
       for (const auto& pair : pairs_of(x)) n += self(self, pair.rest);
     } else {
@@ -393,17 +428,17 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
   return count(count, e);
 }
 
-std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at) {
+std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at, KeptValues* kept) {
   using namespace GiNaC;
   std::unordered_map<const basic*, std::optional<numeric>> memo;  // nodes of e, alive while e is
   auto as_number = [](const ex& f) -> std::optional<numeric> {
-    if (!is_a<numeric>(f)) return std::nullopt;
+    if (!symbolic::is_numeric(f)) return std::nullopt;
     return ex_to<numeric>(f);
   };
   auto eval = [&](auto&& self, const ex& x) -> std::optional<numeric> {
-    if (is_a<numeric>(x)) return as_number(evalf(x));
+    if (symbolic::is_numeric(x)) return as_number(evalf(x));
     if (auto it = memo.find(node_of(x)); it != memo.end()) return it->second;  // symbols too: a map lookup
-    if (is_a<symbol>(x)) {
+    if (symbolic::is_symbol(x)) {
       auto it = at.find(x);
       std::optional<numeric> v;
       if (it != at.end()) v = as_number(evalf(it->second));
@@ -411,9 +446,11 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
       return v;
     }
     if (x.nops() == 0) return as_number(evalf(x));  // a constant
+    if (kept)
+      if (auto it = kept->values.find(node_of(x)); it != kept->values.end()) return it->second.second;
     std::optional<numeric> v;
-    if (is_a<add>(x) || is_a<mul>(x)) {
-      const bool product = is_a<mul>(x);
+    if (symbolic::is_add(x) || symbolic::is_mul(x)) {
+      const bool product = symbolic::is_mul(x);
       const auto& pairs = pairs_of(x);
       // Numbers only: no expression objects built (a product's exponents are numbers, a sum's coefficients too).
       numeric acc = product ? numeric(1) : numeric(0);
@@ -430,7 +467,7 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
         acc = product ? acc * oc : acc + oc;
       }
       if (ok) v = as_number(evalf(acc));
-    } else if (is_a<power>(x)) {
+    } else if (symbolic::is_power(x)) {
       auto b = self(self, x.op(0)), k = self(self, x.op(1));
       if (b && k) v = as_number(evalf(pow(*b, *k)));
     } else if (is_a<function>(x)) {
@@ -444,6 +481,10 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
       if (ok) v = as_number(evalf(function(ex_to<function>(x).get_serial(), args)));
     }
     memo.emplace(node_of(x), v);
+    if (kept && v && (x.nops() > 8 || (symbolic::is_power(x) && !(symbolic::is_numeric(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer())))) {
+      if (kept->values.size() >= KeptValues::kMaxEntries) kept->values.clear();
+      kept->values.emplace(node_of(x), std::make_pair(x, *v));
+    }
     return v;
   };
   return eval(eval, e);
@@ -451,14 +492,14 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
 
 GiNaC::ex DagSubs::operator()(const GiNaC::ex& e) {
   using namespace GiNaC;
-  if (is_a<symbol>(e)) {
+  if (symbolic::is_symbol(e)) {
     auto it = at_.find(e);
     return it == at_.end() ? e : it->second;
   }
   if (e.nops() == 0) return e;
   // Sums, products, powers and function calls are rebuilt from their substituted operands (what subs
   // does); anything else goes to GiNaC.
-  if (!is_a<add>(e) && !is_a<mul>(e) && !is_a<power>(e) && !is_a<function>(e))
+  if (!symbolic::is_add(e) && !symbolic::is_mul(e) && !symbolic::is_power(e) && !is_a<function>(e))
     return e.subs(at_, subs_options::no_pattern);
   auto it = memo_.find(node_of(e));
   if (it != memo_.end()) return it->second.second;

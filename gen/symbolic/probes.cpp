@@ -24,6 +24,12 @@ std::uint64_t inverse_mod(std::uint64_t a) {  // a^(p-2), a != 0 (Fermat)
 }
 
 std::uint64_t reduce(const GiNaC::numeric& integer) {  // integer mod p, in [0, p)
+  // Most coefficients are small integers: reduced in machine words, without cln's allocating mod.
+  if (integer.int_length() < 62) {
+    const long v = integer.to_long();  // |v| < 2^62
+    const std::uint64_t m = static_cast<std::uint64_t>(v < 0 ? -v : v) % kPrime;
+    return v < 0 && m != 0 ? kPrime - m : m;
+  }
   GiNaC::numeric m = GiNaC::mod(integer, GiNaC::numeric(static_cast<long>(kPrime)));
   return static_cast<std::uint64_t>(m.to_long());
 }
@@ -42,6 +48,7 @@ std::uint64_t pow_mod(std::uint64_t a, std::uint64_t e) {
 
 // A rational number modulo p; nullopt when its denominator is a multiple of p.
 std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
+  if (n.is_integer()) return reduce(n);
   if (!n.is_rational()) return std::nullopt;
   const std::uint64_t den = reduce(n.denom());
   if (den == 0) return std::nullopt;
@@ -52,16 +59,20 @@ std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
 // e is not a rational function of known symbols or has a pole there. Exact: the same value as
 // substituting the point's rationals and reducing, except where an intermediate denominator is a multiple
 // of p (probability ~2^-61 per operation).
-std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const std::map<GiNaC::ex, std::uint64_t, GiNaC::ex_is_less>& at) {
+// A symbol without a value in `at` for which unknown(symbol) holds sets *unknown_met (the caller then gives
+// it one and asks again); other symbols without a value make e's value nullopt.
+template <class Values, class Unknown>
+std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, bool* unknown_met) {
   std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
   auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
-    if (GiNaC::is_a<GiNaC::numeric>(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
+    if (symbolic::is_numeric(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
     if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
     std::optional<std::uint64_t> v;
-    if (GiNaC::is_a<GiNaC::symbol>(x)) {
-      if (auto it = at.find(x); it != at.end()) v = it->second;
-    } else if (GiNaC::is_a<GiNaC::add>(x) || GiNaC::is_a<GiNaC::mul>(x)) {
-      const bool product = GiNaC::is_a<GiNaC::mul>(x);
+    if (symbolic::is_symbol(x)) {
+      if (auto it = at.find(x); it != at.end()) v = it->second;  // none where it did not evaluate
+      else if (unknown(x)) *unknown_met = true;
+    } else if (symbolic::is_add(x) || symbolic::is_mul(x)) {
+      const bool product = symbolic::is_mul(x);
       const auto& pairs = symbolic::pairs_of(x);
       std::uint64_t acc = product ? 1 : 0;
       bool ok = true;
@@ -89,7 +100,7 @@ std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const std::map<GiNaC::
         else acc = product ? mul_mod(acc, *oc) : add_mod(acc, *oc);
       }
       if (ok) v = acc;
-    } else if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
+    } else if (symbolic::is_power(x) && symbolic::is_numeric(x.op(1)) &&
                GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer()) {
       auto r = self(self, x.op(0));
       const GiNaC::numeric& k = GiNaC::ex_to<GiNaC::numeric>(x.op(1));
@@ -111,15 +122,30 @@ void ProbePoints::add_input(const GiNaC::symbol& s) {
   }
 }
 
-void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) {
-  for (auto& at : at_)
-    if (auto v = value_at(definition, at)) at[s] = *v;
+void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { definitions_.emplace(s, definition); }
+
+// e at point k. The defined symbols e depends on get their values there first, when e meets one without.
+std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int k) {
+  Values& at = at_[static_cast<std::size_t>(k)];
+  auto pending = [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); };
+  bool met_pending = false;
+  std::optional<std::uint64_t> v = value_at(e, at, pending, &met_pending);
+  if (!met_pending) return v;
+  symbolic::define_dependencies_first(
+      e, pending, [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
+      [&](const GiNaC::ex& s) {
+        bool unused = false;
+        const std::optional<std::uint64_t> sv = value_at(definitions_.at(s), at, pending, &unused);
+        at[s] = sv;
+      });
+  bool unused = false;
+  return value_at(e, at, pending, &unused);
 }
 
-ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) const {
+ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
   int zeros = 0;
-  for (const auto& at : at_) {
-    auto v = value_at(e, at);
+  for (int k = 0; k < kPoints; ++k) {
+    auto v = value_at_point(e, k);
     if (!v) continue;
     if (*v != 0) return Verdict::Nonzero;
     ++zeros;

@@ -518,6 +518,25 @@ TEST_CASE("zero tests through the value chain: exact probes, no inlining", "[exp
   CHECK(k.values.back().blades[0] == 2);
 }
 
+TEST_CASE("zero tests reach values whose probe values and samples were never needed before", "[expand]") {
+  // Values proved nonzero at the first exact probe point get their other probe values, float samples and
+  // signed samples only when a later test needs them: here all 3000 at once, at the last statement
+  // (iteratively: no recursion as deep as the chain).
+  std::string chain = "v0 = x + 1;\n";
+  for (int i = 1; i <= 3000; ++i) chain += "v" + std::to_string(i) + " = v" + std::to_string(i - 1) + " + x;\n";
+  chain += "?r = (v3000 - v2999 - x)*e1 + v3000*e2;";
+  Kernel k = expand_text(chain);
+  REQUIRE(k.values.back().blades.size() == 1);
+  CHECK(k.values.back().blades[0] == 2);
+  // Through abs (no exact probe values): the float and signed samples, then the exact test.
+  chain = "v0 = abs(x) + 1;\n";
+  for (int i = 1; i <= 300; ++i) chain += "v" + std::to_string(i) + " = v" + std::to_string(i - 1) + " + abs(x);\n";
+  chain += "?r = (v300 - v299 - abs(x))*e1 + v300*e2;";
+  k = expand_text(chain);
+  REQUIRE(k.values.back().blades.size() == 1);
+  CHECK(k.values.back().blades[0] == 2);
+}
+
 TEST_CASE("node caches live only while a scope is open, nested scopes share the outer one", "[expand]") {
   // A long-lived process (the fuzzer) must get back all that one generation allocated: no cache may
   // outlive the expander's or the optimizer's own scope.
