@@ -14,11 +14,14 @@
 #include <vector>
 
 #include "opt/program.hpp"
+#include "symbolic/dag.hpp"
 
 namespace cgagen::opt::detail {
 
 using ExSet = std::set<GiNaC::ex, GiNaC::ex_is_less>;
 using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
+// Memo tables that are only looked up, never iterated (their order cannot reach the output): hashed.
+using ExMemo = symbolic::ExHashMap<GiNaC::ex>;
 
 // subs() options for maps whose keys are all symbols: no pattern matching, and no scan of the whole map
 // for product patterns at every sum and product (seconds with thousands of keys).

@@ -19,7 +19,7 @@ class FactorSums {
   // Every sum of the program factored (factor_sum), innermost first. Runs last, on the sums the sharing
   // passes left: a factored form hides products from them.
   void factor_all_sums(std::vector<ex>& roots) {
-    ExMap memo;
+    ExMemo memo;
     std::vector<Temp> out;
     for (auto t : st.temps) {
       t.value = factor_sums(t.value, memo, out);
@@ -29,14 +29,14 @@ class FactorSums {
     st.temps = std::move(out);
   }
 
-  ex factor_sums(const ex& e, ExMap& memo, std::vector<Temp>& out) {
+  ex factor_sums(const ex& e, ExMemo& memo, std::vector<Temp>& out) {
     if (is_atomic(e)) return e;
     if (auto it = memo.find(e); it != memo.end()) return it->second;
     std::vector<ex> children = ordered_children(e, st.keys);  // in key order: temporaries are made in that order
-    ExMap done;
+    ExMemo done;
     for (const ex& c : children) done[c] = factor_sums(c, memo, out);
     struct F : map_function {
-      const ExMap* done;
+      const ExMemo* done;
       ex operator()(const ex& x) override {
         auto it = done->find(x);
         return it == done->end() ? x : it->second;

@@ -12,7 +12,7 @@ void inline_single_use(CseState& st, std::vector<ex>& roots) {
   // Occurrences of each temporary's symbol per expression (node k < T: temporary k, else root k - T),
   // kept up to date as values change, so a pass costs the size of the program, not temps x program.
   const size_t nt = st.temps.size();
-  std::map<ex, size_t, ex_is_less> temp_index;
+  symbolic::ExHashMap<size_t> temp_index;
   for (size_t i = 0; i < nt; ++i) temp_index[st.temps[i].sym] = i;
   std::vector<std::map<size_t, int>> occ(nt);  // temp -> node -> occurrences
   auto account = [&](const ex& e, size_t node, int delta) {

@@ -40,7 +40,7 @@ class PairProducts {
   }
 
 
-  void gather_muls(const ex& e, ExSet& visited, std::vector<ex>& order) {
+  void gather_muls(const ex& e, symbolic::ExHashSet& visited, std::vector<ex>& order) {
     if (is_atomic(e) || !visited.insert(e).second) return;
     for (const ex& c : ordered_children(e, st.keys)) gather_muls(c, visited, order);
     if (is_a<mul>(e)) {
@@ -57,7 +57,7 @@ class PairProducts {
 
   // Greedy extraction of the factor pair shared by most products (repeatedly).
   void pair_products(std::vector<ex>& roots) {
-    ExSet visited;
+    symbolic::ExHashSet visited;
     std::vector<ex> order;
     for (const auto& t : st.temps) gather_muls(t.value, visited, order);
     for (const auto& r : roots) gather_muls(r, visited, order);
@@ -66,7 +66,7 @@ class PairProducts {
     // chosen pair are recounted), and ties go to the pair first in canonical key order.
     std::vector<ex> atom_ex;
     std::vector<std::string> atom_key;
-    std::map<ex, int, ex_is_less> atom_id;
+    symbolic::ExHashMap<int> atom_id;
     std::vector<std::set<size_t>> cores_with;  // atom id -> indices into `order` of the cores holding it
     auto intern = [&](const ex& a) {
       auto [it, fresh] = atom_id.emplace(a, static_cast<int>(atom_ex.size()));
@@ -144,7 +144,7 @@ class PairProducts {
       for (int id : ids[c]) atoms.push_back(atom_ex[id]);
     }
     if (pair_temps.empty()) return;
-    ExMap memo;
+    ExMemo memo;
     // A pair's own product may be one of the rewritten cores (then it would refer to itself): build it
     // from its two atoms.
     for (size_t i = 0; i < pair_temps.size(); ++i)
@@ -156,7 +156,7 @@ class PairProducts {
     st.temps.insert(st.temps.end(), pair_temps.begin(), pair_temps.end());
   }
 
-  ex rebuild_products(const ex& e, ExMap& memo) {
+  ex rebuild_products(const ex& e, ExMemo& memo) {
     if (is_atomic(e)) return e;
     auto it = memo.find(e);
     if (it != memo.end()) return it->second;
@@ -181,10 +181,10 @@ class PairProducts {
     return r;
   }
 
-  ex rebuild_children(const ex& e, ExMap& memo) {
+  ex rebuild_children(const ex& e, ExMemo& memo) {
     struct F : map_function {
       PairProducts* self;
-      ExMap* memo;
+      ExMemo* memo;
       ex operator()(const ex& x) override { return self->rebuild_products(x, *memo); }
     } f;
     f.self = this;

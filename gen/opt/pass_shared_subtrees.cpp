@@ -19,7 +19,7 @@ class SharedSubtrees {
     return e;
   }
 
-  void count_uses(const ex& e, std::map<ex, int, ex_is_less>& uses) {
+  void count_uses(const ex& e, symbolic::ExHashMap<int>& uses) {
     if (is_atomic(e)) return;
     ex n = node_of(e);
     if (is_atomic(n)) return;
@@ -33,7 +33,7 @@ class SharedSubtrees {
     }
   }
 
-  ex share(const ex& e, const std::map<ex, int, ex_is_less>& uses, ExMap& memo, std::vector<Temp>& out) {
+  ex share(const ex& e, const symbolic::ExHashMap<int>& uses, ExMemo& memo, std::vector<Temp>& out) {
     if (is_atomic(e)) return e;
     auto it = memo.find(e);
     if (it != memo.end()) return it->second;
@@ -45,8 +45,8 @@ class SharedSubtrees {
       for (const ex& c : ordered_children(e, st.keys)) share(c, uses, memo, out);
       struct F : map_function {
         SharedSubtrees* self;
-        const std::map<ex, int, ex_is_less>* uses;
-        ExMap* memo;
+        const symbolic::ExHashMap<int>* uses;
+        ExMemo* memo;
         std::vector<Temp>* out;
         ex operator()(const ex& x) override { return self->share(x, *uses, *memo, *out); }
       } f;
@@ -64,10 +64,10 @@ class SharedSubtrees {
   }
 
   void shared_subtrees(std::vector<ex>& roots) {
-    std::map<ex, int, ex_is_less> uses;
+    symbolic::ExHashMap<int> uses;
     for (const auto& t : st.temps) count_uses(t.value, uses);
     for (const auto& r : roots) count_uses(r, uses);
-    ExMap memo;
+    ExMemo memo;
     std::vector<Temp> out;
     for (auto t : st.temps) {
       t.value = share(t.value, uses, memo, out);

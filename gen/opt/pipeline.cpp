@@ -36,7 +36,7 @@ void orient_all(CseState& st, std::vector<ex>& roots) {
 
 // Orders the temporaries so that each comes after those it uses (stable otherwise).
 void topo_sort(CseState& st) {
-  std::map<ex, size_t, ex_is_less> index;
+  symbolic::ExHashMap<size_t> index;
   for (size_t i = 0; i < st.temps.size(); ++i) index[st.temps[i].sym] = i;
   std::vector<int> state(st.temps.size(), 0);
   std::vector<Temp> out;

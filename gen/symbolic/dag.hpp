@@ -65,6 +65,7 @@ struct ExHash {
 };
 template <class T>
 using ExHashMap = std::unordered_map<GiNaC::ex, T, ExHash, GiNaC::ex_is_equal>;
+using ExHashSet = std::unordered_set<GiNaC::ex, ExHash, GiNaC::ex_is_equal>;
 
 // The terms of a sum / factors of a product as GiNaC stores them: (rest, coeff) pairs, coeff a number (a
 // term's coefficient, a factor's exponent; the sum's or product's numeric overall coefficient is not among

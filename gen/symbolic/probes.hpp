@@ -39,9 +39,9 @@ class ProbePoints {
   void add_input(const GiNaC::symbol& s);
   // A symbol standing for `definition` (over symbols added or defined before): its value at every point
   // where the definition evaluates to a rational number. Computed at the first test that needs it, point
-  // by point: most values are never tested through (a script's 98 joins, of which the outputs use 7), a
-  // nonzero coefficient is usually proved so at the first point, and a value is the same whenever it is
-  // computed.
+  // by point: a nonzero coefficient is usually proved so at the first point, so most values never need the
+  // others (nor, when no later statement uses them, even the first), and a value is the same whenever it
+  // is computed.
   void define(const GiNaC::symbol& s, const GiNaC::ex& definition);
   // Zero when e evaluates to exactly 0 at every point, Nonzero when it is a nonzero rational at some point,
   // Unknown otherwise.
