@@ -19,6 +19,27 @@ namespace cgagen::symbolic {
 // The node's identity: the shared object ex points to.
 inline const GiNaC::basic* node_of(const GiNaC::ex& e) { return &GiNaC::ex_to<GiNaC::basic>(e); }
 
+// A value per expression node, kept between walks. Each entry holds its node alive, so the node's address
+// is never reused for another node while the entry lives; the table is emptied when it reaches
+// kMaxEntries, which bounds the memory of a very large script.
+template <class T>
+class NodeTable {
+ public:
+  static constexpr std::size_t kMaxEntries = 20000;
+  const T* find(const GiNaC::ex& e) const {
+    auto it = entries_.find(node_of(e));
+    return it == entries_.end() ? nullptr : &it->second.second;
+  }
+  void keep(const GiNaC::ex& e, T value) {
+    if (entries_.size() >= kMaxEntries) entries_.clear();
+    entries_.emplace(node_of(e), std::make_pair(e, std::move(value)));
+  }
+  std::size_t size() const { return entries_.size(); }
+
+ private:
+  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, T>> entries_;
+};
+
 // The class of a node, for hot walks. GiNaC's is_a<T> is a dynamic_cast, which costs a few hundred
 // instructions here, most of them strcmp of type names (Debian's libstdc++ compares type_info objects by
 // name). The classes nearly every node belongs to are recognized first by the identity of their type_info;
@@ -150,10 +171,7 @@ std::size_t tree_symbol_count(const GiNaC::ex& e);
 // non-integer powers) between calls with the same map: a normalized value's root of a large sum sits
 // under every one of its coefficients. Only valid while the values of the symbols those nodes use stay
 // the same; entries hold their node alive (no address reuse).
-struct KeptValues {
-  static constexpr std::size_t kMaxEntries = 20000;  // emptied when full: bounds the memory of a large script
-  std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, GiNaC::numeric>> values;
-};
+using KeptValues = NodeTable<GiNaC::numeric>;
 std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& at, KeptValues* kept = nullptr);
 
 // e.subs(at, subs_options::no_pattern) for a map from symbols to values, computing each shared node once.

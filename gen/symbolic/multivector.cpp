@@ -80,7 +80,7 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
       return v;
     }
     if (cache)
-      if (auto it = cache->find(node_of(e)); it != cache->end()) return it->second.value;
+      if (const numeric* kept = cache->find(e)) return *kept;
     numeric v;
     if (symbolic::is_add(e) || symbolic::is_mul(e)) {
       const bool product = symbolic::is_mul(e);
@@ -115,10 +115,7 @@ GiNaC::numeric float_value(const GiNaC::ex& x, int k) {
       v = ex_to<numeric>(f);
     }
     memo.emplace(node_of(e), v);
-    if (cache && (!symbolic::is_mul(e) || e.nops() > 8)) {
-      if (cache->size() >= NodeCaches::kMaxEntries) cache->clear();
-      cache->emplace(node_of(e), NodeCaches::Value{e, v});
-    }
+    if (cache && (!symbolic::is_mul(e) || e.nops() > 8)) cache->keep(e, v);
     return v;
   };
   return eval(eval, x);
@@ -410,7 +407,7 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
     auto it = memo.find(node_of(x));
     if (it != memo.end()) return it->second;
     if (cache)
-      if (auto c = cache->find(node_of(x)); c != cache->end()) return c->second.count;
+      if (const std::size_t* kept = cache->find(x)) return *kept;
     std::size_t n = 0;
     if (symbolic::is_add_or_mul(x)) {
       // Sums and products: the coefficients, exponents and overall coefficient are numbers (no symbols).
@@ -419,10 +416,7 @@ std::size_t tree_symbol_count(const GiNaC::ex& e) {
       for (std::size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
     }
     memo.emplace(node_of(x), n);
-    if (cache && n >= kCachedFrom) {
-      if (cache->size() >= NodeCaches::kMaxEntries) cache->clear();
-      cache->emplace(node_of(x), NodeCaches::Count{x, n});
-    }
+    if (cache && n >= kCachedFrom) cache->keep(x, n);
     return n;
   };
   return count(count, e);
@@ -447,7 +441,7 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
     }
     if (x.nops() == 0) return as_number(evalf(x));  // a constant
     if (kept)
-      if (auto it = kept->values.find(node_of(x)); it != kept->values.end()) return it->second.second;
+      if (const numeric* value = kept->find(x)) return *value;
     std::optional<numeric> v;
     if (symbolic::is_add(x) || symbolic::is_mul(x)) {
       const bool product = symbolic::is_mul(x);
@@ -481,10 +475,8 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
       if (ok) v = as_number(evalf(function(ex_to<function>(x).get_serial(), args)));
     }
     memo.emplace(node_of(x), v);
-    if (kept && v && (x.nops() > 8 || (symbolic::is_power(x) && !(symbolic::is_numeric(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer())))) {
-      if (kept->values.size() >= KeptValues::kMaxEntries) kept->values.clear();
-      kept->values.emplace(node_of(x), std::make_pair(x, *v));
-    }
+    if (kept && v && (x.nops() > 8 || (symbolic::is_power(x) && !(symbolic::is_numeric(x.op(1)) && ex_to<numeric>(x.op(1)).is_integer()))))
+      kept->keep(x, *v);
     return v;
   };
   return eval(eval, e);
