@@ -1,10 +1,12 @@
 // SkinningJob on strided streams (ozz's in_positions_stride): an interleaved vertex buffer (position, normal
 // and a texture coordinate per vertex, 8 floats) skinned in place of the packed streams gives bit-identical
-// results to the packed run with every method and instruction set, including a partial last block, and so
+// results to the packed run with every method and instruction set, including a partial last block, with
+// x y z as triples (the strided SIMD loops) and with x, y, z apart (staged through packed blocks), and so
 // does a 48-byte engine vertex with its joints and weights interleaved too; the size rules for strided spans
 // are checked with clear errors.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -17,37 +19,41 @@ using namespace cga;
 
 namespace {
 
-constexpr std::size_t kStride = 8;  // x y z nx ny nz u v
+constexpr std::size_t kStride = 8;  // x y z nx ny nz u v, or x nx y ny z nz u v
 
 struct Interleaved {
   std::vector<float> in, out;
+  // Float offsets of px py pz nx ny nz in a vertex.
+  std::array<std::size_t, 6> at;
 };
 
-Interleaved interleave(const SkinnedMesh& mesh) {
+Interleaved interleave(const SkinnedMesh& mesh, bool triples) {
   Interleaved b;
+  b.at = triples ? std::array<std::size_t, 6>{0, 1, 2, 3, 4, 5} : std::array<std::size_t, 6>{0, 2, 4, 1, 3, 5};
   const std::size_t n = mesh.vertex_count();
   b.in.assign(kStride * n, 0.0f);
   b.out.assign(kStride * n, -7.0f);  // the u v slots must keep this
   for (std::size_t i = 0; i < n; ++i) {
     float* v = b.in.data() + kStride * i;
-    v[0] = mesh.px[i], v[1] = mesh.py[i], v[2] = mesh.pz[i];
-    v[3] = mesh.nx[i], v[4] = mesh.ny[i], v[5] = mesh.nz[i];
+    v[b.at[0]] = mesh.px[i], v[b.at[1]] = mesh.py[i], v[b.at[2]] = mesh.pz[i];
+    v[b.at[3]] = mesh.nx[i], v[b.at[4]] = mesh.ny[i], v[b.at[5]] = mesh.nz[i];
     v[6] = 0.25f, v[7] = 0.75f;
   }
   return b;
 }
 
-// The job over the interleaved buffers: attribute a at buf + a, stride 8.
+// The job over the interleaved buffers: attribute k at buf + b.at[k], stride 8.
 SkinningJob strided_job(SkinningMethod method, const SkinnedMesh& mesh, Interleaved& b, bool normals) {
   SkinningJob job;
   job.method = method;
   const std::span<const float> in(b.in);
   const std::span<float> out(b.out);
-  job.in_px = in, job.in_py = in.subspan(1), job.in_pz = in.subspan(2);
-  job.out_px = out, job.out_py = out.subspan(1), job.out_pz = out.subspan(2);
+  const auto& at = b.at;
+  job.in_px = in.subspan(at[0]), job.in_py = in.subspan(at[1]), job.in_pz = in.subspan(at[2]);
+  job.out_px = out.subspan(at[0]), job.out_py = out.subspan(at[1]), job.out_pz = out.subspan(at[2]);
   if (normals) {
-    job.in_nx = in.subspan(3), job.in_ny = in.subspan(4), job.in_nz = in.subspan(5);
-    job.out_nx = out.subspan(3), job.out_ny = out.subspan(4), job.out_nz = out.subspan(5);
+    job.in_nx = in.subspan(at[3]), job.in_ny = in.subspan(at[4]), job.in_nz = in.subspan(at[5]);
+    job.out_nx = out.subspan(at[3]), job.out_ny = out.subspan(at[4]), job.out_nz = out.subspan(at[5]);
   }
   job.in_positions_stride = job.in_normals_stride = kStride;
   job.out_positions_stride = job.out_normals_stride = kStride;
@@ -66,12 +72,13 @@ TEST_CASE("an interleaved vertex buffer skins exactly as the packed streams do",
   // 1003 vertices: three whole blocks of 256 and a partial one, whose last 3 vertices are not a group of 8;
   // 24^2 <= 1003, so cga-motors takes its pair-sign table, which 503 vertices do not.
   const std::size_t count = GENERATE(1003u, 503u);
+  const bool triples = GENERATE(true, false);
   const SkinnedMesh mesh = make_random_skinned_mesh(count, 24, 77u);
   const RandomPalettes pal = make_random_palettes(24, 1, 5u);
   for (SkinningMethod method : kAllSkinningMethods)
     for (bool normals : {false, true})
       for (int isa = 0; isa < 3; ++isa) {
-        CAPTURE(to_string(method), normals, isa);
+        CAPTURE(to_string(method), normals, isa, triples);
         SkinnedOutput packed;
         SkinningJob a = make_skinning_job(method, mesh, packed);
         if (!normals) a.in_nx = a.in_ny = a.in_nz = {}, a.out_nx = a.out_ny = a.out_nz = {};
@@ -80,7 +87,7 @@ TEST_CASE("an interleaved vertex buffer skins exactly as the packed streams do",
         REQUIRE(a.ValidationError() == "");
         REQUIRE(a.Run());
 
-        Interleaved buf = interleave(mesh);
+        Interleaved buf = interleave(mesh, triples);
         SkinningJob b = strided_job(method, mesh, buf, normals);
         set_palette(b, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
         b.use_simd = a.use_simd, b.use_avx512 = a.use_avx512;
@@ -91,13 +98,15 @@ TEST_CASE("an interleaved vertex buffer skins exactly as the packed streams do",
         std::size_t mismatches = 0;
         for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
           const float* v = buf.out.data() + kStride * i;
+          const auto& at = buf.at;
+          const float got[6] = {v[at[0]], v[at[1]], v[at[2]], v[at[3]], v[at[4]], v[at[5]]};
           const float want[3] = {packed.px[i], packed.py[i], packed.pz[i]};
-          mismatches += std::memcmp(v, want, sizeof want) != 0;
+          mismatches += std::memcmp(got, want, sizeof want) != 0;
           if (normals) {
             const float nwant[3] = {packed.nx[i], packed.ny[i], packed.nz[i]};
-            mismatches += std::memcmp(v + 3, nwant, sizeof nwant) != 0;
+            mismatches += std::memcmp(got + 3, nwant, sizeof nwant) != 0;
           } else {
-            mismatches += v[3] != -7.0f || v[4] != -7.0f || v[5] != -7.0f;
+            mismatches += got[3] != -7.0f || got[4] != -7.0f || got[5] != -7.0f;
           }
           mismatches += v[6] != -7.0f || v[7] != -7.0f;  // other attributes untouched
         }
@@ -108,7 +117,7 @@ TEST_CASE("an interleaved vertex buffer skins exactly as the packed streams do",
 TEST_CASE("strided spans must cover the vertex count at their stride", "[skinning][strided][bad-input]") {
   const SkinnedMesh mesh = make_random_skinned_mesh(10, 4, 3u);
   const RandomPalettes pal = make_random_palettes(4, 1, 1u);
-  Interleaved buf = interleave(mesh);
+  Interleaved buf = interleave(mesh, true);
   SkinningJob job = strided_job(SkinningMethod::cga_motors, mesh, buf, true);
   set_palette(job, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
   REQUIRE(job.Validate());

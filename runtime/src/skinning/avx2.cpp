@@ -54,11 +54,16 @@ CGA_AVX2 CGA_ALWAYS_INLINE void transpose_pairs(const __m256 u[4], __m256& rx, _
 }
 
 
-// The portable renormalization on 8 lanes: n / |n|, or 0 when |n| = 0.
-CGA_AVX2 CGA_ALWAYS_INLINE void unit8(__m256& x, __m256& y, __m256& z) {
+// The portable renormalization's factor on 8 lanes: 1 / |n|, or 0 when |n| = 0.
+CGA_AVX2 CGA_ALWAYS_INLINE __m256 inv_length8(__m256 x, __m256 y, __m256 z) {
   const __m256 len2 = _mm256_fmadd_ps(z, z, _mm256_fmadd_ps(y, y, _mm256_mul_ps(x, x)));
   const __m256 one_if_nonzero = _mm256_and_ps(_mm256_cmp_ps(len2, _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));
-  const __m256 inv = _mm256_div_ps(one_if_nonzero, _mm256_sqrt_ps(_mm256_max_ps(len2, _mm256_set1_ps(1e-30f))));
+  return _mm256_div_ps(one_if_nonzero, _mm256_sqrt_ps(_mm256_max_ps(len2, _mm256_set1_ps(1e-30f))));
+}
+
+// The portable renormalization on 8 lanes: n / |n|, or 0 when |n| = 0.
+CGA_AVX2 CGA_ALWAYS_INLINE void unit8(__m256& x, __m256& y, __m256& z) {
+  const __m256 inv = inv_length8(x, y, z);
   x = _mm256_mul_ps(x, inv);
   y = _mm256_mul_ps(y, inv);
   z = _mm256_mul_ps(z, inv);
@@ -72,11 +77,40 @@ CGA_AVX2 CGA_ALWAYS_INLINE void store_unit8(__m256 x, __m256 y, __m256 z, float*
   _mm256_storeu_ps(oz, z);
 }
 
-// Lanes 0-2 of v to *x, *y, *z.
-CGA_AVX2 CGA_ALWAYS_INLINE void store_xyz(__m128 v, float* x, float* y, float* z) {
-  _mm_store_ss(x, v);
-  _mm_store_ss(y, _mm_movehdup_ps(v));
-  _mm_store_ss(z, _mm_movehl_ps(v, v));
+// Strided streams hold each vertex's x y z as one triple (p, p + 1, p + 2: SkinningJob::Run takes the strided
+// loops only then). A triple is loaded as 8 + 4 bytes and stored as 8 + 4 bytes, never touching the float
+// after it (another attribute of the vertex, or past the end of the buffer).
+CGA_AVX2 CGA_ALWAYS_INLINE __m128 load3(const float* p) {
+  const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p)));
+  return _mm_insert_ps(xy, _mm_load_ss(p + 2), 0x20);  // (x y z 0)
+}
+CGA_AVX2 CGA_ALWAYS_INLINE void store3(float* p, __m128 v) {
+  _mm_storel_pi(reinterpret_cast<__m64*>(p), v);
+  _mm_store_ss(p + 2, _mm_movehl_ps(v, v));
+}
+// Lanes 0-3 and 4-7 of a pair register (x y z . of vertex k | of vertex k + 4) to the triples a and b.
+CGA_AVX2 CGA_ALWAYS_INLINE void store3_pair(float* a, float* b, __m256 v) {
+  store3(a, _mm256_castps256_ps128(v));
+  store3(b, _mm256_extractf128_ps(v, 1));
+}
+
+// The triples of vertices p + v * stride, v < 8, as x, y and z rows.
+CGA_AVX2 CGA_ALWAYS_INLINE void load_triples8(const float* p, std::size_t stride, __m256& x, __m256& y, __m256& z) {
+  __m256 u[4];
+#pragma GCC unroll 4
+  for (int k = 0; k < 4; ++k)
+    u[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(load3(p + k * stride)), load3(p + (k + 4) * stride), 1);
+  transpose_pairs(u, x, y, z);
+}
+
+// Rows x, y, z of 8 vertices to the triples p + v * stride (the inverse of load_triples8).
+CGA_AVX2 CGA_ALWAYS_INLINE void store_triples8(float* p, std::size_t stride, __m256 x, __m256 y, __m256 z) {
+  const __m256 xy0 = _mm256_unpacklo_ps(x, y), xy1 = _mm256_unpackhi_ps(x, y);  // x0 y0 x1 y1 | x4 y4 x5 y5
+  const __m256 z0 = _mm256_unpacklo_ps(z, z), z1 = _mm256_unpackhi_ps(z, z);    // z0 z0 z1 z1 | z4 z4 z5 z5
+  store3_pair(p, p + 4 * stride, _mm256_shuffle_ps(xy0, z0, 0x44));
+  store3_pair(p + stride, p + 5 * stride, _mm256_shuffle_ps(xy0, z0, 0xEE));
+  store3_pair(p + 2 * stride, p + 6 * stride, _mm256_shuffle_ps(xy1, z1, 0x44));
+  store3_pair(p + 3 * stride, p + 7 * stride, _mm256_shuffle_ps(xy1, z1, 0xEE));
 }
 
 template <bool kNormals, bool kPrefetch>
@@ -149,45 +183,60 @@ CGA_AVX2 CGA_ALWAYS_INLINE bool block_ok_strided_avx2(const Streams& s, std::siz
   return max_exponent < 0x7f800000u && max_joint < palette;
 }
 
+// A strided stream's cursor: the vertex it points at and the bytes to the next one. The strided loops walk
+// vertex by vertex with one cursor per stream, so each vertex costs one add per stream (computing the 8
+// vertices' addresses of each stream from their indices needed ~50 live values and spilled them).
+template <class T>
+struct Cursor {
+  T* p;
+  std::size_t step;  // bytes
+  CGA_ALWAYS_INLINE Cursor(T* base, std::size_t stride, std::size_t i)
+      : p(reinterpret_cast<T*>(reinterpret_cast<std::uintptr_t>(base) + sizeof(T) * stride * i)),
+        step(sizeof(T) * stride) {}
+  CGA_ALWAYS_INLINE T* at(std::size_t k) const {
+    return reinterpret_cast<T*>(reinterpret_cast<std::uintptr_t>(p) + step * k);
+  }
+  CGA_ALWAYS_INLINE void next() { p = at(1); }
+};
+
 template <bool kNormals, bool kPrefetch>
-CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& streams, std::size_t begin, std::size_t end,
+CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
                                      std::size_t palette) {
-  const Streams s = streams;
   if (!block_ok_strided_avx2(s, begin, end, palette)) return false;
+  Cursor<const float> p(s.px, s.ip, begin), nrm(s.nx, s.in, begin);
+  Cursor<const std::array<std::uint16_t, 4>> j(s.joints, s.js, begin);
+  Cursor<const std::array<float, 4>> w(s.weights, s.ws, begin);
+  Cursor<float> o(s.ox, s.op, begin), on(s.onx, s.on, begin);
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
     if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i);
-    __m256 n[4];
-#pragma GCC unroll 4
-    for (int k = 0; k < 4; ++k) {
-      __m256 lo, hi, lo4, hi4;
-      const std::size_t a = i + k, b = i + k + 4;
-      blend_matrix_avx2(pal, s.joints[a * s.js], s.weights[a * s.ws].data(), lo, hi);
-      blend_matrix_avx2(pal, s.joints[b * s.js], s.weights[b * s.ws].data(), lo4, hi4);
-      const std::size_t pa = a * s.ip, pb = b * s.ip;
-      const __m256 p = pair_halves(apply_halves(lo, hi, s.px + pa, s.py + pa, s.pz + pa, one),
-                                   apply_halves(lo4, hi4, s.px + pb, s.py + pb, s.pz + pb, one));
-      store_xyz(_mm256_castps256_ps128(p), s.ox + a * s.op, s.oy + a * s.op, s.oz + a * s.op);
-      store_xyz(_mm256_extractf128_ps(p, 1), s.ox + b * s.op, s.oy + b * s.op, s.oz + b * s.op);
+    __m128 n[8];
+#pragma GCC unroll 8
+    for (int v = 0; v < 8; ++v) {
+      __m256 lo, hi;
+      blend_matrix_avx2(pal, *j.p, w.p->data(), lo, hi);
+      const __m256 t = apply_halves(lo, hi, p.p, p.p + 1, p.p + 2, one);
+      store3(o.p, _mm_add_ps(_mm256_castps256_ps128(t), _mm256_extractf128_ps(t, 1)));
       if constexpr (kNormals) {
-        const std::size_t na = a * s.in, nb = b * s.in;
-        n[k] = pair_halves(apply_halves(lo, hi, s.nx + na, s.ny + na, s.nz + na, zero),
-                           apply_halves(lo4, hi4, s.nx + nb, s.ny + nb, s.nz + nb, zero));
+        const __m256 u = apply_halves(lo, hi, nrm.p, nrm.p + 1, nrm.p + 2, zero);
+        n[v] = _mm_add_ps(_mm256_castps256_ps128(u), _mm256_extractf128_ps(u, 1));
+        nrm.next();
       }
+      p.next(), j.next(), w.next(), o.next();
     }
     if constexpr (kNormals) {
-      __m256 x, y, z;
-      transpose_pairs(n, x, y, z);
-      unit8(x, y, z);
-      alignas(32) float u[3][8];
-      _mm256_store_ps(u[0], x);
-      _mm256_store_ps(u[1], y);
-      _mm256_store_ps(u[2], z);
-      for (std::size_t v = 0; v < 8; ++v) {
-        const std::size_t o = (i + v) * s.on;
-        s.onx[o] = u[0][v], s.ony[o] = u[1][v], s.onz[o] = u[2][v];
-      }
+      // The packed loop's factors (rows transposed only to compute them), then applied to the pair registers
+      // lane by lane: the same products, so the same bits.
+      __m256 np[4], x, y, z;
+      for (int k = 0; k < 4; ++k) np[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(n[k]), n[k + 4], 1);
+      transpose_pairs(np, x, y, z);
+      const __m256 inv = inv_length8(x, y, z);
+      store3_pair(on.at(0), on.at(4), _mm256_mul_ps(np[0], _mm256_permute_ps(inv, 0x00)));
+      store3_pair(on.at(1), on.at(5), _mm256_mul_ps(np[1], _mm256_permute_ps(inv, 0x55)));
+      store3_pair(on.at(2), on.at(6), _mm256_mul_ps(np[2], _mm256_permute_ps(inv, 0xAA)));
+      store3_pair(on.at(3), on.at(7), _mm256_mul_ps(np[3], _mm256_permute_ps(inv, 0xFF)));
+      on.p = on.at(8);
     }
   }
   if (i < end) {
@@ -321,6 +370,38 @@ CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, con
   return true;
 }
 
+// stage_in / stage_out (loops.hpp) for cga_motors' pass 2 on strided triples, 8 vertices at a time through
+// load_triples8 / store_triples8 (the scalar copies took a quarter of an interleaved run). Joints and weights
+// are not staged: pass 2 reads neither.
+CGA_AVX2 CGA_ALWAYS_INLINE Streams stage_triples_in_avx2(const Streams& s, std::size_t begin, std::size_t count,
+                                                        bool normals, Staged& t) {
+  std::size_t v = 0;
+  for (; v + 8 <= count; v += 8) {
+    __m256 x, y, z;
+    load_triples8(s.px + (begin + v) * s.ip, s.ip, x, y, z);
+    _mm256_store_ps(t.f[0] + v, x), _mm256_store_ps(t.f[1] + v, y), _mm256_store_ps(t.f[2] + v, z);
+    if (normals) {
+      load_triples8(s.nx + (begin + v) * s.in, s.in, x, y, z);
+      _mm256_store_ps(t.f[3] + v, x), _mm256_store_ps(t.f[4] + v, y), _mm256_store_ps(t.f[5] + v, z);
+    }
+  }
+  for (; v < count; ++v) stage_vertex_in(s, begin + v, v, normals, t);
+  return {t.f[0], t.f[1], t.f[2], t.f[3], t.f[4], t.f[5], nullptr, nullptr,
+          t.f[6], t.f[7], t.f[8], t.f[9], t.f[10], t.f[11]};
+}
+CGA_AVX2 CGA_ALWAYS_INLINE void stage_triples_out_avx2(const Staged& t, const Streams& s, std::size_t begin,
+                                                      std::size_t count, bool normals) {
+  std::size_t v = 0;
+  for (; v + 8 <= count; v += 8) {
+    store_triples8(s.ox + (begin + v) * s.op, s.op, _mm256_load_ps(t.f[6] + v), _mm256_load_ps(t.f[7] + v),
+                   _mm256_load_ps(t.f[8] + v));
+    if (normals)
+      store_triples8(s.onx + (begin + v) * s.on, s.on, _mm256_load_ps(t.f[9] + v), _mm256_load_ps(t.f[10] + v),
+                     _mm256_load_ps(t.f[11] + v));
+  }
+  for (; v < count; ++v) stage_vertex_out(t, s, begin + v, v, normals);
+}
+
 // cga_motors on strided streams: the strided check and prefetch of matrix_strided_avx2_fn, pass 1 reading
 // joints and weights in place, then the block's positions (and normals) staged for pass 2, which vectorizes
 // across vertices over packed arrays only. The same arithmetic as motor_block_avx2_fn, so the same bits.
@@ -337,10 +418,9 @@ CGA_AVX2 __attribute__((flatten)) bool motor_strided_avx2_fn(const float* pal, c
   }
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
   Staged t;
-  Streams in_place = s;  // joints and weights stay where they are: pass 2 reads neither
-  in_place.js = in_place.ws = 1;
-  motor_rows_apply<kNormals>(rows, stage_in(in_place, begin, end - begin, kNormals, t), 0, end - begin);
-  stage_out(t, s, begin, end - begin, kNormals);
+  const std::size_t count = end - begin;
+  motor_rows_apply<kNormals>(rows, stage_triples_in_avx2(s, begin, count, kNormals, t), 0, count);
+  stage_triples_out_avx2(t, s, begin, count, kNormals);
   return true;
 }
 

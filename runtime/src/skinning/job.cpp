@@ -204,6 +204,14 @@ bool run_strided(const Streams& s, std::size_t n, bool normals, BlockFn block, c
   return true;
 }
 
+// Every stream group stores a vertex's x y z as consecutive floats (y right after x, z after y), as interleaved
+// vertex buffers do: what the strided block functions (SkinKernels::matrix_strided, motor_strided) require.
+bool triples(const Streams& s, bool normals) {
+  const auto triple = [](const float* x, const float* y, const float* z) { return y == x + 1 && z == x + 2; };
+  return triple(s.px, s.py, s.pz) && triple(s.ox, s.oy, s.oz) &&
+         (!normals || (triple(s.nx, s.ny, s.nz) && triple(s.onx, s.ony, s.onz)));
+}
+
 }  // namespace
 
 std::string SkinningJob::ValidationError() const {
@@ -273,10 +281,12 @@ bool SkinningJob::Run() const {
                   in_normals_stride, out_positions_stride, out_normals_stride, joints_stride, weights_stride};
   if (!packed) {
     BlockFn strided = nullptr;
-    if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points)
-      strided = k.matrix_strided[normals][streaming];
-    else if (method == SkinningMethod::cga_motors)
-      strided = k.motor_strided[normals][streaming][signed_motors];
+    if (triples(s, normals)) {  // what the strided loops read and write; other layouts are staged
+      if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points)
+        strided = k.matrix_strided[normals][streaming];
+      else if (method == SkinningMethod::cga_motors)
+        strided = k.motor_strided[normals][streaming][signed_motors];
+    }
     if (strided) block = strided;
     else return run_strided(s, n, normals, block, converted, palette);
   }

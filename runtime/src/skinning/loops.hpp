@@ -265,11 +265,20 @@ struct Staged {
   alignas(64) std::array<float, 4> weights[kBlock];
 };
 
+// Vertex i's positions (and normals) into slot v of t, and slot v's outputs back to vertex i.
+inline void stage_vertex_in(const Streams& s, std::size_t i, std::size_t v, bool normals, Staged& t) {
+  t.f[0][v] = s.px[i * s.ip], t.f[1][v] = s.py[i * s.ip], t.f[2][v] = s.pz[i * s.ip];
+  if (normals) t.f[3][v] = s.nx[i * s.in], t.f[4][v] = s.ny[i * s.in], t.f[5][v] = s.nz[i * s.in];
+}
+inline void stage_vertex_out(const Staged& t, const Streams& s, std::size_t i, std::size_t v, bool normals) {
+  s.ox[i * s.op] = t.f[6][v], s.oy[i * s.op] = t.f[7][v], s.oz[i * s.op] = t.f[8][v];
+  if (normals) s.onx[i * s.on] = t.f[9][v], s.ony[i * s.on] = t.f[10][v], s.onz[i * s.on] = t.f[11][v];
+}
+
 inline Streams stage_in(const Streams& s, std::size_t begin, std::size_t count, bool normals, Staged& t) {
   for (std::size_t v = 0; v < count; ++v) {
     const std::size_t i = begin + v;
-    t.f[0][v] = s.px[i * s.ip], t.f[1][v] = s.py[i * s.ip], t.f[2][v] = s.pz[i * s.ip];
-    if (normals) t.f[3][v] = s.nx[i * s.in], t.f[4][v] = s.ny[i * s.in], t.f[5][v] = s.nz[i * s.in];
+    stage_vertex_in(s, i, v, normals, t);
     if (s.js != 1) t.joints[v] = s.joints[i * s.js];
     if (s.ws != 1) t.weights[v] = s.weights[i * s.ws];
   }
@@ -278,11 +287,7 @@ inline Streams stage_in(const Streams& s, std::size_t begin, std::size_t count, 
 }
 
 inline void stage_out(const Staged& t, const Streams& s, std::size_t begin, std::size_t count, bool normals) {
-  for (std::size_t v = 0; v < count; ++v) {
-    const std::size_t i = begin + v;
-    s.ox[i * s.op] = t.f[6][v], s.oy[i * s.op] = t.f[7][v], s.oz[i * s.op] = t.f[8][v];
-    if (normals) s.onx[i * s.on] = t.f[9][v], s.ony[i * s.on] = t.f[10][v], s.onz[i * s.on] = t.f[11][v];
-  }
+  for (std::size_t v = 0; v < count; ++v) stage_vertex_out(t, s, begin + v, v, normals);
 }
 
 // Checks the block [begin, end) (block_ok), then skins it; false when the block is invalid (nothing of it
@@ -302,7 +307,9 @@ struct SkinKernels {
   BlockFn motor_signed[2][2];
   void (*pair_signs)(float* pal, std::size_t palette);
   // lbs and cga_points reading and writing strided streams in place, [normals][large mesh]; bit-identical to
-  // matrix[.][.]. Null: Run() stages strided streams through packed blocks (run_strided), as it does for dqs.
+  // matrix[.][.]. Run() takes them (and motor_strided) only when every stream group holds x y z as one triple
+  // (y at x + 1, z at x + 2); otherwise, or when null, it stages strided streams through packed blocks
+  // (run_strided), as it does for dqs.
   BlockFn matrix_strided[2][2];
   // cga_motors on strided streams, [normals][large mesh][pair-sign table]: joints and weights read in place,
   // positions and normals staged per block for pass 2; bit-identical to motor[.][.] / motor_signed[.][.].
