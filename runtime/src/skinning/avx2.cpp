@@ -271,14 +271,18 @@ CGA_AVX2 void pair_signs_avx2(float* pal, std::size_t palette) {
 // the weights, or (kSigns) reads the pair-sign table and takes influence k from the negated copy of its
 // entry: w (-q) is -(w q) exactly, so both give the same bits, and the table takes the dot products, the
 // horizontal adds and the weight shuffles off each vertex's dependency chain.
-template <bool kSigns, bool kStrided = false>
+// Joints and weights come through cursors (packed runs pass stride-1 cursors), which this advances by 8.
+template <bool kSigns>
 CGA_AVX2 CGA_ALWAYS_INLINE void motor_blend8_avx2(const float* __restrict pal, std::size_t palette,
-                                                  const Streams& s, std::size_t i, MotorRows& rows, std::size_t b) {
+                                                  Cursor<const std::array<std::uint16_t, 4>>& jc,
+                                                  Cursor<const std::array<float, 4>>& wc, MotorRows& rows,
+                                                  std::size_t b) {
   __m256 lo[8], hi[8];
 #pragma GCC unroll 8
   for (int v = 0; v < 8; ++v) {
-    const std::array<std::uint16_t, 4> j = s.joints[kStrided ? (i + v) * s.js : i + v];
-    const float* wp = s.weights[kStrided ? (i + v) * s.ws : i + v].data();
+    const std::array<std::uint16_t, 4> j = *jc.p;
+    const float* wp = wc.p->data();
+    jc.next(), wc.next();
     const float* q0 = pal + kEntry * j[0];
     const float *q1, *q2, *q3;
     __m256 w0, w1, w2, w3;
@@ -353,10 +357,12 @@ template <bool kNormals, bool kPrefetch, bool kSigns>
 CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, std::size_t palette, const Streams& s,
                                                  std::size_t begin, std::size_t end) {
   alignas(64) MotorRows rows;
+  Cursor<const std::array<std::uint16_t, 4>> j(s.joints, 1, begin);
+  Cursor<const std::array<float, 4>> w(s.weights, 1, begin);
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
     if constexpr (kPrefetch) prefetch_ahead<kNormals>(s, i);
-    motor_blend8_avx2<kSigns>(pal, palette, s, i, rows, i - begin);
+    motor_blend8_avx2<kSigns>(pal, palette, j, w, rows, i - begin);
   }
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
   motor_rows_apply<kNormals>(rows, s, begin, end);
@@ -411,10 +417,12 @@ CGA_AVX2 __attribute__((flatten)) bool motor_strided_avx2_fn(const float* pal, c
   const Streams s = streams;
   if (!block_ok_strided_avx2(s, begin, end, palette)) return false;
   alignas(64) MotorRows rows;
+  Cursor<const std::array<std::uint16_t, 4>> j(s.joints, s.js, begin);
+  Cursor<const std::array<float, 4>> w(s.weights, s.ws, begin);
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
-    if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i);
-    motor_blend8_avx2<kSigns, true>(pal, palette, s, i, rows, i - begin);
+    if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i), prefetch_outputs_strided<kNormals>(s, i);
+    motor_blend8_avx2<kSigns>(pal, palette, j, w, rows, i - begin);
   }
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
   Staged t;

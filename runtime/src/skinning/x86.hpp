@@ -47,4 +47,15 @@ CGA_AVX2 CGA_ALWAYS_INLINE void prefetch_ahead_strided(const Streams& s, std::si
   if constexpr (kNormals) prefetch_window(s.nx, 4 * s.in, v, window, span);
 }
 
+// The output lines of the 8 vertices from i on (positions, and normals where they do not start inside the
+// positions' window), for cga_motors: its pass 2 writes a whole block in one burst, and lines not yet in
+// cache stall that burst on their reads for ownership.
+template <bool kNormals>
+CGA_AVX2 CGA_ALWAYS_INLINE void prefetch_outputs_strided(const Streams& s, std::size_t i) {
+  const std::uintptr_t window = reinterpret_cast<std::uintptr_t>(s.ox) + 4 * s.op * i;
+  const std::size_t span = 8 * 4 * s.op;
+  for (std::size_t b = 0; b < span; b += 64) prefetch(s.ox, 4 * s.op * i + b);
+  if constexpr (kNormals) prefetch_window(s.onx, 4 * s.on, i, window, span);
+}
+
 }  // namespace cga::skinning_detail
