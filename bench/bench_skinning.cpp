@@ -94,8 +94,8 @@ const InterleavedScene& interleaved_scene() {
 void bm_skinning_interleaved(benchmark::State& state, SkinningMethod method, bool normals) {
   const SkinScene& scene = random_scene();
   InterleavedScene& il = const_cast<InterleavedScene&>(interleaved_scene());  // outputs only are written
-  const std::size_t n = il.in.size();
-  SkinningJob job = make_engine_vertex_job(method, il.in, il.out, normals);
+  const std::size_t n = getenv("IL_N") ? std::size_t(atoi(getenv("IL_N"))) : il.in.size();
+  SkinningJob job = make_engine_vertex_job(method, std::span<const EngineVertex>(il.in).first(n), il.out, normals);
   job.matrices = scene.matrices.front();
   job.dual_quats = scene.dual_quats.front();
   job.motors = scene.motors.front();

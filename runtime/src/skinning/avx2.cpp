@@ -208,6 +208,20 @@ CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& s, std::si
   Cursor<const std::array<float, 4>> w(s.weights, s.ws, begin);
   Cursor<float> o(s.ox, s.op, begin), on(s.onx, s.on, begin);
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  // A group's normals are scaled and stored one group later (software pipelining): their sqrt and division
+  // then run under the next group's blends instead of stalling the loop (30 % of an interleaved run with
+  // normals when they finished in their own iteration).
+  __m256 pending[4], pending_inv;
+  Cursor<float> pending_on = on;
+  bool have_pending = false;
+  const auto finish_pending = [&]() CGA_AVX2 {
+    // The packed loop's factors applied to the pair registers lane by lane: the same products, so the same bits.
+    const Cursor<float>& c = pending_on;
+    store3_pair(c.at(0), c.at(4), _mm256_mul_ps(pending[0], _mm256_permute_ps(pending_inv, 0x00)));
+    store3_pair(c.at(1), c.at(5), _mm256_mul_ps(pending[1], _mm256_permute_ps(pending_inv, 0x55)));
+    store3_pair(c.at(2), c.at(6), _mm256_mul_ps(pending[2], _mm256_permute_ps(pending_inv, 0xAA)));
+    store3_pair(c.at(3), c.at(7), _mm256_mul_ps(pending[3], _mm256_permute_ps(pending_inv, 0xFF)));
+  };
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
     if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i);
@@ -226,19 +240,18 @@ CGA_AVX2 bool matrix_strided_avx2_fn(const float* pal, const Streams& s, std::si
       p.next(), j.next(), w.next(), o.next();
     }
     if constexpr (kNormals) {
-      // The packed loop's factors (rows transposed only to compute them), then applied to the pair registers
-      // lane by lane: the same products, so the same bits.
-      __m256 np[4], x, y, z;
-      for (int k = 0; k < 4; ++k) np[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(n[k]), n[k + 4], 1);
-      transpose_pairs(np, x, y, z);
-      const __m256 inv = inv_length8(x, y, z);
-      store3_pair(on.at(0), on.at(4), _mm256_mul_ps(np[0], _mm256_permute_ps(inv, 0x00)));
-      store3_pair(on.at(1), on.at(5), _mm256_mul_ps(np[1], _mm256_permute_ps(inv, 0x55)));
-      store3_pair(on.at(2), on.at(6), _mm256_mul_ps(np[2], _mm256_permute_ps(inv, 0xAA)));
-      store3_pair(on.at(3), on.at(7), _mm256_mul_ps(np[3], _mm256_permute_ps(inv, 0xFF)));
+      if (have_pending) finish_pending();
+      // The packed loop's factors: the rows are transposed only to compute them.
+      __m256 x, y, z;
+      for (int k = 0; k < 4; ++k) pending[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(n[k]), n[k + 4], 1);
+      transpose_pairs(pending, x, y, z);
+      pending_inv = inv_length8(x, y, z);
+      pending_on = on, have_pending = true;
       on.p = on.at(8);
     }
   }
+  if constexpr (kNormals)
+    if (have_pending) finish_pending();
   if (i < end) {
     Staged t;
     matrix_block<kNormals>(pal, stage_in(s, i, end - i, kNormals, t), 0, end - i);
