@@ -61,22 +61,6 @@ CGA_AVX2 CGA_ALWAYS_INLINE __m256 inv_length8(__m256 x, __m256 y, __m256 z) {
   return _mm256_div_ps(one_if_nonzero, _mm256_sqrt_ps(_mm256_max_ps(len2, _mm256_set1_ps(1e-30f))));
 }
 
-// The portable renormalization on 8 lanes: n / |n|, or 0 when |n| = 0.
-CGA_AVX2 CGA_ALWAYS_INLINE void unit8(__m256& x, __m256& y, __m256& z) {
-  const __m256 inv = inv_length8(x, y, z);
-  x = _mm256_mul_ps(x, inv);
-  y = _mm256_mul_ps(y, inv);
-  z = _mm256_mul_ps(z, inv);
-}
-
-CGA_AVX2 CGA_ALWAYS_INLINE void store_unit8(__m256 x, __m256 y, __m256 z, float* __restrict ox,
-                                            float* __restrict oy, float* __restrict oz) {
-  unit8(x, y, z);
-  _mm256_storeu_ps(ox, x);
-  _mm256_storeu_ps(oy, y);
-  _mm256_storeu_ps(oz, z);
-}
-
 // Strided streams hold each vertex's x y z as one triple (p, p + 1, p + 2: SkinningJob::Run takes the strided
 // loops only then). A triple is loaded as 8 + 4 bytes and stored as 8 + 4 bytes, never touching the float
 // after it (another attribute of the vertex, or past the end of the buffer).
@@ -118,6 +102,15 @@ CGA_AVX2 CGA_ALWAYS_INLINE void matrix_block_avx2(const float* __restrict pal, c
                                                   std::size_t begin, std::size_t end) {
   const Streams s = streams;  // a local copy: GCC reloads the pointers after every store otherwise
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  // A group's normals are scaled and stored one group later, as in matrix_strided_avx2_fn.
+  __m256 pending[3], pending_inv;
+  std::size_t pending_i = begin;
+  bool have_pending = false;
+  const auto finish_pending = [&]() CGA_AVX2 {
+    _mm256_storeu_ps(s.onx + pending_i, _mm256_mul_ps(pending[0], pending_inv));
+    _mm256_storeu_ps(s.ony + pending_i, _mm256_mul_ps(pending[1], pending_inv));
+    _mm256_storeu_ps(s.onz + pending_i, _mm256_mul_ps(pending[2], pending_inv));
+  };
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
     if constexpr (kPrefetch) prefetch_ahead<kNormals>(s, i);
@@ -142,10 +135,14 @@ CGA_AVX2 CGA_ALWAYS_INLINE void matrix_block_avx2(const float* __restrict pal, c
     _mm256_storeu_ps(s.oy + i, y);
     _mm256_storeu_ps(s.oz + i, z);
     if constexpr (kNormals) {
-      transpose_pairs(n, x, y, z);
-      store_unit8(x, y, z, s.onx + i, s.ony + i, s.onz + i);
+      if (have_pending) finish_pending();
+      transpose_pairs(n, pending[0], pending[1], pending[2]);
+      pending_inv = inv_length8(pending[0], pending[1], pending[2]);
+      pending_i = i, have_pending = true;
     }
   }
+  if constexpr (kNormals)
+    if (have_pending) finish_pending();
   if (i < end) matrix_block<kNormals>(pal, s, i, end);
 }
 
