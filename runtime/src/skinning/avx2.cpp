@@ -68,6 +68,19 @@ CGA_AVX2 CGA_ALWAYS_INLINE __m256 inv_length8(__m256 x, __m256 y, __m256 z) {
   return _mm256_and_ps(nonzero, _mm256_mul_ps(r, t));
 }
 
+// renormalize (loops.hpp) 8 vertices at a time with inv_length8; a last group of fewer the portable way.
+CGA_AVX2 CGA_ALWAYS_INLINE void renormalize_avx2(const Streams& s, std::size_t begin, std::size_t end) {
+  std::size_t i = begin;
+  for (; i + 8 <= end; i += 8) {
+    const __m256 x = _mm256_loadu_ps(s.onx + i), y = _mm256_loadu_ps(s.ony + i), z = _mm256_loadu_ps(s.onz + i);
+    const __m256 inv = inv_length8(x, y, z);
+    _mm256_storeu_ps(s.onx + i, _mm256_mul_ps(x, inv));
+    _mm256_storeu_ps(s.ony + i, _mm256_mul_ps(y, inv));
+    _mm256_storeu_ps(s.onz + i, _mm256_mul_ps(z, inv));
+  }
+  renormalize(s, i, end);
+}
+
 // Strided streams hold each vertex's x y z as one triple (p, p + 1, p + 2: SkinningJob::Run takes the strided
 // loops only then). A triple is loaded as 8 + 4 bytes and stored as 8 + 4 bytes, never touching the float
 // after it (another attribute of the vertex, or past the end of the buffer).
@@ -382,7 +395,8 @@ CGA_AVX2 CGA_ALWAYS_INLINE void motor_block_avx2(const float* __restrict pal, st
     motor_blend8_avx2<kSigns>(pal, palette, j, w, rows, i - begin);
   }
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
-  motor_rows_apply<kNormals>(rows, s, begin, end);
+  motor_rows_apply<kNormals, false>(rows, s, begin, end);
+  if constexpr (kNormals) renormalize_avx2(s, begin, end);
 }
 
 template <bool kNormals, bool kPrefetch, bool kSigns = false>
@@ -444,7 +458,9 @@ CGA_AVX2 __attribute__((flatten)) bool motor_strided_avx2_fn(const float* pal, c
   for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
   Staged t;
   const std::size_t count = end - begin;
-  motor_rows_apply<kNormals>(rows, stage_triples_in_avx2(s, begin, count, kNormals, t), 0, count);
+  const Streams staged = stage_triples_in_avx2(s, begin, count, kNormals, t);
+  motor_rows_apply<kNormals, false>(rows, staged, 0, count);
+  if constexpr (kNormals) renormalize_avx2(staged, 0, count);
   stage_triples_out_avx2(t, s, begin, count, kNormals);
   return true;
 }

@@ -205,8 +205,9 @@ CGA_ALWAYS_INLINE void dq_block(const float* __restrict pal, const Streams& s, s
 
 using MotorRows = float[12][kBlock];
 
-// Pass 2 over the vertices [begin, end) whose blended motors are in rows[.][i - begin].
-template <bool kNormals>
+// Pass 2 over the vertices [begin, end) whose blended motors are in rows[.][i - begin]. kRenormalize false
+// leaves the normals unnormalized for the caller's own renormalization (the AVX2 one).
+template <bool kNormals, bool kRenormalize = true>
 CGA_ALWAYS_INLINE void motor_rows_apply(const MotorRows& rows, const Streams& s, std::size_t begin,
                                         std::size_t end) {
 #pragma GCC ivdep
@@ -226,7 +227,7 @@ CGA_ALWAYS_INLINE void motor_rows_apply(const MotorRows& rows, const Streams& s,
       s.onz[i] = m[8] * a + m[9] * b + m[10] * c;
     }
   }
-  if constexpr (kNormals) renormalize(s, begin, end);
+  if constexpr (kNormals && kRenormalize) renormalize(s, begin, end);
 }
 
 // Pass 1 for one vertex, portable: the blended motor's coefficients into rows[.][b]. Reads joints and
