@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # ozz-animation side by side (issue 18): builds bench/ozz (ozz's SkinningJob and pose pipeline on the same
 # kind of data as cga-bench) from an ozz-animation git directory, then runs ozz and cga-bench interleaved
-# (ozz, cga, ozz, cga, ...) on one core and prints, per round and as medians with their spread, each
-# method's speed as a ratio to ozz measured in the same round. Only such ratios mean anything on a shared
-# machine; the absolute figures are printed to say what they rest on.
+# (each case on both sides back to back, round after round) on one core and prints, per round and as medians
+# with their spread, each method's speed as a ratio to ozz measured in the same round. Only such ratios mean
+# anything on a shared machine; the absolute figures are printed to say what they rest on.
 #   scripts/bench.sh --vs-ozz OZZ_GIT_DIR      (ROUNDS=N alternations, default 4; CPU as in bench.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,13 +21,24 @@ ozz_bench=$(bash bench/ozz/build.sh "$ozz_git" "$(realpath "$BUILD_DIR")/ozz" | 
 
 pin=()
 if [ -n "$CPU" ] && command -v taskset >/dev/null; then pin=(taskset -c "$CPU"); fi
+# Each case runs on both sides back to back (ozz first in odd rounds, cga-bench first in even ones), so a ratio
+# compares runs seconds apart: this shared host's speed drifts over minutes.
+cases=("1M:^skinning/random1M/" "64K:^skinning/random64K/" "interleaved:^skinning/interleaved1M/" "pose:^pose/paper$")
+run_ozz() { "${pin[@]}" "$ozz_bench" "$1" > "$work/ozz_${r}_$1.txt"; }
+# cga-bench takes the statistic ozz_bench takes (bench/ozz/common.h, time_it): the median of 7 samples of at
+# least 0.25 s each.
+run_cga() {
+  "${pin[@]}" "$BUILD_DIR/bench/cga-bench" --benchmark_filter="$2" --benchmark_repetitions=7 --benchmark_min_time=0.25 \
+    --benchmark_report_aggregates_only=true --benchmark_out="$work/cga_${r}_$1.json" \
+    --benchmark_out_format=json >/dev/null 2>&1
+}
 for r in $(seq 1 "$ROUNDS"); do
-  echo "round $r/$ROUNDS: ozz" >&2
-  "${pin[@]}" "$ozz_bench" > "$work/ozz_$r.txt"
-  echo "round $r/$ROUNDS: cga-bench" >&2
-  "${pin[@]}" "$BUILD_DIR/bench/cga-bench" --benchmark_filter='^(skinning/(random1M|random64K|interleaved1M)/|pose/paper$)' \
-    --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
-    --benchmark_out="$work/cga_$r.json" --benchmark_out_format=json >/dev/null 2>&1
+  for c in "${cases[@]}"; do
+    part=${c%%:*} filter=${c#*:}
+    echo "round $r/$ROUNDS: $part" >&2
+    if [ $((r % 2)) = 1 ]; then run_ozz "$part"; run_cga "$part" "$filter"
+    else run_cga "$part" "$filter"; run_ozz "$part"; fi
+  done
 done
 
 python3 - "$work" "$ROUNDS" <<'PY'
@@ -41,16 +52,18 @@ cases = [("random1M", "1M", "1 M random vertices"),
 kinds = {"positions": "P", "positions+normals": "PN"}
 rows = {(scene, kind): [] for scene, _, _ in cases for kind in kinds}
 pose = []
+parts = ["1M", "64K", "interleaved", "pose"]
 for r in range(1, rounds + 1):
-    text = open(f"{work}/ozz_{r}.txt").read()
+    text = "".join(open(f"{work}/ozz_{r}_{p}.txt").read() for p in parts)
     ozz = {(m.group(2).strip(), m.group(1)): float(m.group(3)) for m in
            re.finditer(r"ozz SkinningJob (PN|P) +(.+?) n=\d+ inf=4: ([0-9.]+) Mvert/s", text)}
     m = re.search(r"ozz pose full: sample x2\+blend\+L2M\+invbind\s+joints=\d+:\s+([0-9.]+) ns/pose", text)
     ozz_pose_ns = float(m.group(1)) if m else None
     cga = {}
-    for b in json.load(open(f"{work}/cga_{r}.json"))["benchmarks"]:
-        if b.get("aggregate_name") == "median":
-            cga[b["run_name"]] = b
+    for p in parts:
+        for b in json.load(open(f"{work}/cga_{r}_{p}.json"))["benchmarks"]:
+            if b.get("aggregate_name") == "median":
+                cga[b["run_name"]] = b
     for scene, tag, _ in cases:
         for kind, ozz_kind in kinds.items():
             if (tag, ozz_kind) not in ozz: sys.exit(f"bench-vs-ozz: no '{ozz_kind} {tag}' line in ozz output of round {r}")

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds bench/ozz/ozz_bench.cc (ozz-animation SkinningJob + pose pipeline, AVX2+FMA, -O3) against the sources
 # of ozz-animation taken from a clone or mirror of guillaumeblanc/ozz-animation; scripts/bench.sh --vs-ozz runs it.
-# usage: build.sh MIRROR_GIT_DIR OUTDIR   -> OUTDIR/ozz_bench (run: ozz_bench [skin|pose])
+# usage: build.sh MIRROR_GIT_DIR OUTDIR   -> OUTDIR/ozz_bench (run: ozz_bench [skin|pose|1M|64K|interleaved])
 set -euo pipefail
 mirror=$1; out=$2; here=$(cd "$(dirname "$0")" && pwd)
 src=$out/ozz-src; mkdir -p "$src" "$out/ozz-build"

@@ -298,16 +298,17 @@ static void bench_pose() {
   }
 }
 
+// ozz_bench [skin | pose | 1M | 64K | interleaved]: everything, or one part (scripts/bench-vs-ozz.sh runs each
+// case right next to cga-bench's same case).
 int main(int argc, char** argv) {
   std::printf("ozz SIMD path: %s\n", simd_name());
-  bool do_skin = true, do_pose = true;
-  if (argc > 1 && !std::strcmp(argv[1], "skin")) do_pose = false;
-  if (argc > 1 && !std::strcmp(argv[1], "pose")) do_skin = false;
-  if (do_skin) {
-    bench_skinning(1000000, "1M ");
-    bench_skinning(65536, "64K");
-    bench_skinning_interleaved(1000000, "1M interleaved");
-  }
-  if (do_pose) bench_pose();
+  const std::string part = argc > 1 ? argv[1] : "";
+  const auto want = [&](const char* name, bool in_skin) {
+    return part.empty() || part == name || (in_skin && part == "skin");
+  };
+  if (want("1M", true)) bench_skinning(1000000, "1M ");
+  if (want("64K", true)) bench_skinning(65536, "64K");
+  if (want("interleaved", true)) bench_skinning_interleaved(1000000, "1M interleaved");
+  if (want("pose", false)) bench_pose();
   return 0;
 }
