@@ -248,3 +248,29 @@ TEST_CASE("Run refuses a bad joint index or weight in any block, on the SIMD and
         }
     }
 }
+
+TEST_CASE("a zero normal skins to 0 and a huge or tiny one to a unit vector on every loop", "[skinning][simd]") {
+  // The SIMD loops renormalize from a reciprocal square root estimate (avx2.cpp, inv_length8) where the
+  // portable ones divide by the square root: both must give 0, not NaN, for a zero normal, and a unit vector
+  // for normals far from unit length. 1000 vertices: whole groups of 8 in several blocks, and a tail.
+  const std::vector<Transform> xs = make_random_transforms(24, 43, 2.0f, 0.5f);
+  const Palettes pal = make_palettes(xs);
+  SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 44u);
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const float scale = i % 3 == 0 ? 0.0f : i % 3 == 1 ? 1e15f : 1e-12f;
+    mesh.nx[i] *= scale, mesh.ny[i] *= scale, mesh.nz[i] *= scale;
+  }
+  for (SkinningMethod method : kAllSkinningMethods)
+    for (const bool simd : {false, true})
+      for (const bool avx512 : {false, true}) {
+        CAPTURE(to_string(method), simd, avx512);
+        const SkinnedOutput got = skin(method, mesh, pal, simd, avx512);
+        std::size_t bad = 0;
+        for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+          const float len = std::hypot(got.nx[i], got.ny[i], got.nz[i]);
+          bad += i % 3 == 0 ? !(got.nx[i] == 0.0f && got.ny[i] == 0.0f && got.nz[i] == 0.0f)
+                            : !(std::abs(len - 1.0f) <= 1e-5f);
+        }
+        CHECK(bad == 0);
+      }
+}
