@@ -409,22 +409,16 @@ CGA_AVX2 __attribute__((flatten)) bool motor_block_avx2_fn(const float* pal, con
 
 // stage_in / stage_out (loops.hpp) for cga_motors' pass 2 on strided triples, 8 vertices at a time through
 // load_triples8 / store_triples8 (the scalar copies took a quarter of an interleaved run). Joints and weights
-// are not staged: pass 2 reads neither.
-CGA_AVX2 CGA_ALWAYS_INLINE Streams stage_triples_in_avx2(const Streams& s, std::size_t begin, std::size_t count,
-                                                        bool normals, Staged& t) {
-  std::size_t v = 0;
-  for (; v + 8 <= count; v += 8) {
-    __m256 x, y, z;
-    load_triples8(s.px + (begin + v) * s.ip, s.ip, x, y, z);
-    _mm256_store_ps(t.f[0] + v, x), _mm256_store_ps(t.f[1] + v, y), _mm256_store_ps(t.f[2] + v, z);
-    if (normals) {
-      load_triples8(s.nx + (begin + v) * s.in, s.in, x, y, z);
-      _mm256_store_ps(t.f[3] + v, x), _mm256_store_ps(t.f[4] + v, y), _mm256_store_ps(t.f[5] + v, z);
-    }
+// are not staged: pass 2 reads neither. Vertices [i, i + 8) go to slots [v, v + 8).
+CGA_AVX2 CGA_ALWAYS_INLINE void stage_triples8_in_avx2(const Streams& s, std::size_t i, std::size_t v, bool normals,
+                                                      Staged& t) {
+  __m256 x, y, z;
+  load_triples8(s.px + i * s.ip, s.ip, x, y, z);
+  _mm256_store_ps(t.f[0] + v, x), _mm256_store_ps(t.f[1] + v, y), _mm256_store_ps(t.f[2] + v, z);
+  if (normals) {
+    load_triples8(s.nx + i * s.in, s.in, x, y, z);
+    _mm256_store_ps(t.f[3] + v, x), _mm256_store_ps(t.f[4] + v, y), _mm256_store_ps(t.f[5] + v, z);
   }
-  for (; v < count; ++v) stage_vertex_in(s, begin + v, v, normals, t);
-  return {t.f[0], t.f[1], t.f[2], t.f[3], t.f[4], t.f[5], nullptr, nullptr,
-          t.f[6], t.f[7], t.f[8], t.f[9], t.f[10], t.f[11]};
 }
 CGA_AVX2 CGA_ALWAYS_INLINE void stage_triples_out_avx2(const Staged& t, const Streams& s, std::size_t begin,
                                                       std::size_t count, bool normals) {
@@ -450,15 +444,19 @@ CGA_AVX2 __attribute__((flatten)) bool motor_strided_avx2_fn(const float* pal, c
   alignas(64) MotorRows rows;
   Cursor<const std::array<std::uint16_t, 4>> j(s.joints, s.js, begin);
   Cursor<const std::array<float, 4>> w(s.weights, s.ws, begin);
+  // Positions (and normals) are staged during pass 1, while their records are in L1 from its joint and
+  // weight loads.
+  Staged t;
   std::size_t i = begin;
   for (; i + 8 <= end; i += 8) {
     if constexpr (kPrefetch) prefetch_ahead_strided<kNormals>(s, i), prefetch_outputs_strided<kNormals>(s, i);
     motor_blend8_avx2<kSigns>(pal, palette, j, w, rows, i - begin);
+    stage_triples8_in_avx2(s, i, i - begin, kNormals, t);
   }
-  for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin);
-  Staged t;
+  for (; i < end; ++i) motor_blend_one(pal, s, i, rows, i - begin), stage_vertex_in(s, i, i - begin, kNormals, t);
   const std::size_t count = end - begin;
-  const Streams staged = stage_triples_in_avx2(s, begin, count, kNormals, t);
+  const Streams staged{t.f[0], t.f[1], t.f[2], t.f[3], t.f[4],  t.f[5],  nullptr,
+                       nullptr, t.f[6], t.f[7], t.f[8], t.f[9], t.f[10], t.f[11]};
   motor_rows_apply<kNormals, false>(rows, staged, 0, count);
   if constexpr (kNormals) renormalize_avx2(staged, 0, count);
   stage_triples_out_avx2(t, s, begin, count, kNormals);
