@@ -434,7 +434,7 @@ CGA_AVX2 CGA_ALWAYS_INLINE void stage_triples_out_avx2(const Staged& t, const St
 }
 
 // cga_motors on strided streams: the strided check and prefetch of matrix_strided_avx2_fn, pass 1 reading
-// joints and weights in place, then the block's positions (and normals) staged for pass 2, which vectorizes
+// joints and weights in place and staging the block's positions (and normals) for pass 2, which vectorizes
 // across vertices over packed arrays only. The same arithmetic as motor_block_avx2_fn, so the same bits.
 template <bool kNormals, bool kPrefetch, bool kSigns>
 CGA_AVX2 __attribute__((flatten)) bool motor_strided_avx2_fn(const float* pal, const Streams& streams,
