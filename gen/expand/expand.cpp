@@ -18,6 +18,7 @@
 
 #include "algebra/algebra.hpp"
 #include "expand/algebra_builtins.hpp"
+#include "expand/cost.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
 #include "symbolic/node_cache.hpp"
@@ -25,12 +26,11 @@
 #include "symbolic/multivector.hpp"
 #include "symbolic/probes.hpp"
 #include "symbolic/select.hpp"
+#include "symbolic/zero_test.hpp"
 
 namespace cgagen {
 namespace {
 
-// Substitution options for maps whose keys are all symbols (the result is that of a plain subs()).
-constexpr unsigned kSymbolSubs = GiNaC::subs_options::no_pattern | GiNaC::subs_options::pattern_is_not_product;
 
 using front::CompileError;
 using front::Expr;
@@ -210,15 +210,20 @@ class Expander {
   explicit Expander(std::string name) { kernel_.name = std::move(name); }
 
   Kernel run(const front::Script& script) {
-    symbolic::WorkBudget budget;
     symbolic::NodeCacheScope caches;
+    size_t spent = 0;
     define_algebra_builtins();
     for (const auto& [loc, message] : script.warnings) kernel_.warnings.push_back({loc, message});
     collect_script_names(script.statements);
     for (const auto& s : script.statements) {
       // GiNaC's own faults (a pole, an overflow) anywhere in a statement become a diagnostic, not a crash.
+      // The work budget is per statement: a script of many small statements compiles in time linear in
+      // its length, and only a statement that is itself too large is refused.
       try {
+        symbolic::WorkBudget budget;
+        statement_name_ = s->kind == Stmt::Kind::Assign ? s->name : "statement";
         exec_top(*s);
+        spent += budget.spent();
       } catch (const CompileError&) {
         throw;
       } catch (const symbolic::BudgetExceeded& ex) {
@@ -229,7 +234,7 @@ class Expander {
         throw CompileError(s->loc, std::string("cannot evaluate: ") + ex.what());
       }
     }
-    if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", budget.spent());
+    if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", spent);
     finish_outputs();
     drop_unused_values();
     apply_in2out();
@@ -253,6 +258,8 @@ class Expander {
   };
 
   Kernel kernel_;
+  std::string statement_name_;           // the top-level statement being expanded (names its bound parts)
+  std::map<std::string, int> parts_;     // bound parts per statement name
   std::map<std::string, Multivector> globals_;     // current value of every assigned or input name
   // Macros by name, then by arity (the highest _P(n) they use): Gaalop overloads macros by argument count.
   std::map<std::string, std::map<size_t, const Stmt*>> macros_;
@@ -260,28 +267,8 @@ class Expander {
   std::map<std::string, int> last_value_;          // index of the last assignment that may be an output
   std::set<std::string> symbol_names_;
   std::vector<Frame> frames_;                      // active macro calls, innermost last
-  // Every input and value symbol at fixed exact points: zero tests of a coefficient without inlining it.
-  symbolic::ProbePoints probes_;
-  // Each value symbol's coefficient expression (over inputs and earlier symbols), and, computed on demand,
-  // that expression with every value symbol inlined down to the inputs: the exact zero test where the
-  // probes give no verdict (coefficients with abs, sqrt, sin, ...).
-  GiNaC::exmap definitions_;
-  GiNaC::exmap inlined_;
-  // Every input and value symbol at one fixed pseudo-random point (inputs drawn from [0.3, 1.7)): a cheap
-  // first test of whether a coefficient can be zero; only near-zero ones pay for the exact check.
-  GiNaC::exmap samples_;
-  symbolic::KeptValues kept_sample_values_;  // large nodes' values at that point (a symbol's never changes)
-  std::uint64_t sample_state_ = 0x9E3779B97F4A7C15ull;
-  // The same at a second point whose inputs have either sign (magnitudes in [0.3, 1.7)). A coefficient that
-  // is clearly nonzero there is not identically zero, whatever the positive samples say: |d| - d, the
-  // distance check of a trilateration, vanishes for every positive d. That verdict costs one evaluation of
-  // the statement, where the exact test inlines and expands the whole chain of values (minutes for GPS).
-  // Three points: random signs, the same inputs negated (so every input is negative at one of the two), and
-  // independent random signs. A value symbol gets its signed samples at the first test that needs them
-  // (signed_sample): only coefficients the exact probes cannot decide are tested there, and the values are
-  // the same whenever they are computed.
-  std::array<GiNaC::exmap, 3> signed_samples_;
-  std::uint64_t signed_state_ = 0xD1B54A32D192ED03ull;
+  // Every input's and value's symbol: zero tests of a coefficient through the chain of earlier values.
+  symbolic::ZeroTests zeros_;
   std::vector<Mark> marks_;                        // in order of first marking
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
@@ -505,40 +492,69 @@ class Expander {
   // One KernelValue per assignment; later statements see the name through the value's own symbols.
   void record_value(const Stmt& s, const Multivector& v, bool bind = true) {
     int count = ++assignments_[s.name];
-    std::string base = count == 1 ? s.name : s.name + "_" + std::to_string(count);
-    KernelValue kv;
-    kv.name = s.name;
-    kv.loc = s.loc;
-    Multivector ref;
-    for (const auto& [b, c] : v.terms()) {
-      // A complex constant (sqrt(-4) = 2i, log(-1) = i pi): the targets have real numbers only, and the
-      // printers would drop the i (sqrt(-4)*x printed as 2*x). The emitted C would give NaN; say so here.
-      // (Each shared node once: coefficients are DAGs whose trees can be exponentially large.)
-      if (symbolic::has_nonreal_number(c))
-        throw CompileError(s.loc, "the value of '" + s.name + "' is complex (a square root or logarithm of a "
-                                    "negative constant); the generated code computes with real numbers only");
-      // Identically zero once earlier values are inlined? Most coefficients are plainly not, and an exact
-      // probe says so at once; the others go through the float sample first (sample()).
-      std::optional<ex> at_sample;
-      if (probes_.test(c) != symbolic::ProbePoints::Verdict::Nonzero) {
-        at_sample = sample(c);
-        if (!at_sample) continue;
-      }
-      GiNaC::realsymbol sym(unique_symbol_name(base + "_" + algebra::blade_ident(b)));
-      if (at_sample) samples_[sym] = *at_sample;  // else computed when a later sample needs it
-      probes_.define(sym, c);
-      kv.blades.push_back(b);
-      kv.coeffs.push_back(c);
-      kv.symbols.push_back(sym);
-      ref.set(b, sym);
-      definitions_[sym] = c;
-    }
-    if (bind) globals_[s.name] = ref;  // (a macro's output does not become a global name)
+    KernelValue kv = value_of(s.name, count == 1 ? s.name : s.name + "_" + std::to_string(count), s.loc, v);
+    if (bind) globals_[s.name] = reference(kv);  // (a macro's output does not become a global name)
     if (bind)
       for (auto* names : assigned_in_branch_) names->push_back(s.name);
     if (s.marker == front::Marker::EvalOnly) evaluated_values_.push_back(static_cast<int>(kernel_.values.size()));
     if (s.marker != front::Marker::EvalOnly) last_value_[s.name] = static_cast<int>(kernel_.values.size());
     kernel_.values.push_back(std::move(kv));
+  }
+
+  // A part of the current statement bound to temporaries by the cost model (expand/cost.hpp): a value of
+  // the kernel that no name refers to; later products see its blades' symbols.
+  Multivector bind_part(const Multivector& v, SourceLoc loc) {
+    const std::string name = statement_name_ + "_part" + std::to_string(++parts_[statement_name_]);
+    KernelValue kv = value_of(name, name, loc, v);
+    Multivector ref = reference(kv);
+    kernel_.values.push_back(std::move(kv));
+    return ref;
+  }
+
+  // A product of a and b, with the operands the cost model picks bound to temporaries first.
+  Multivector product(algebra::ProductKind kind, Multivector a, Multivector b, SourceLoc loc) {
+    const expand_cost::BindPlan plan = expand_cost::plan_product(kind, a, b);
+    if (plan.a) a = bind_part(a, loc);
+    if (plan.b) b = bind_part(b, loc);
+    switch (kind) {
+      case algebra::ProductKind::Geometric: return a * b;
+      case algebra::ProductKind::Outer: return a ^ b;
+      default: return inner(a, b);
+    }
+  }
+
+  static Multivector reference(const KernelValue& kv) {
+    Multivector ref;
+    for (size_t i = 0; i < kv.blades.size(); ++i) ref.set(kv.blades[i], kv.symbols[i]);
+    return ref;
+  }
+
+  // v as a kernel value: one symbol per blade whose coefficient is not identically zero.
+  KernelValue value_of(const std::string& name, const std::string& symbol_base, SourceLoc loc, const Multivector& v) {
+    KernelValue kv;
+    kv.name = name;
+    kv.loc = loc;
+    for (const auto& [b, c] : v.terms()) {
+      // A complex constant (sqrt(-4) = 2i, log(-1) = i pi): the targets have real numbers only, and the
+      // printers would drop the i (sqrt(-4)*x printed as 2*x). The emitted C would give NaN; say so here.
+      // (Each shared node once: coefficients are DAGs whose trees can be exponentially large.)
+      if (symbolic::has_nonreal_number(c))
+        throw CompileError(loc, "the value of '" + name + "' is complex (a square root or logarithm of a "
+                                "negative constant); the generated code computes with real numbers only");
+      // Identically zero once earlier values are inlined? Most coefficients are plainly not, and an exact
+      // probe says so at once; the others go through the float sample first (sample()).
+      std::optional<ex> at_sample;
+      if (!zeros_.probably_nonzero(c)) {
+        at_sample = zeros_.sample(c);
+        if (!at_sample) continue;
+      }
+      GiNaC::realsymbol sym(unique_symbol_name(symbol_base + "_" + algebra::blade_ident(b)));
+      zeros_.define(sym, c, at_sample);
+      kv.blades.push_back(b);
+      kv.coeffs.push_back(c);
+      kv.symbols.push_back(sym);
+    }
+    return kv;
   }
 
   // Values that no output needs (directly or through other values) are not part of the kernel: -O0 would
@@ -680,9 +696,7 @@ class Expander {
       Multivector ref;
       for (auto b : blades) {
         GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
-        samples_[sym] = next_sample();
-        add_signed_input(sym);
-        probes_.add_input(sym);
+        zeros_.add_input(sym);
         in.symbols.push_back(sym);
         ref.set(b, sym);
       }
@@ -810,156 +824,9 @@ class Expander {
     kernel_.ranges.push_back(r);
   }
 
-  // ---- zero tests through the value chain ---------------------------------------------------------
+  // ---- zero tests through the value chain (symbolic/zero_test.hpp) --------------------------------
 
-  ex next_sample() {
-    sample_state_ = sample_state_ * 6364136223846793005ull + 1442695040888963407ull;
-    return GiNaC::numeric(0.3 + 1.4 * static_cast<double>(sample_state_ >> 11) / 9007199254740992.0);
-  }
-
-  double next_signed_value() {
-    signed_state_ = signed_state_ * 6364136223846793005ull + 1442695040888963407ull;
-    const double m = 0.3 + 1.4 * static_cast<double>(signed_state_ >> 11) / 9007199254740992.0;
-    return (signed_state_ >> 7) & 1 ? -m : m;
-  }
-
-  void add_signed_input(const GiNaC::symbol& sym) {
-    const double a = next_signed_value();
-    signed_samples_[0][sym] = GiNaC::numeric(a);
-    signed_samples_[1][sym] = GiNaC::numeric(-a);
-    signed_samples_[2][sym] = GiNaC::numeric(next_signed_value());
-  }
-
-  // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there. The value
-  // symbols c uses get their samples first, at all points (a value symbol has them at all or none).
-  ex signed_sample(const ex& c, size_t k) {
-    symbolic::define_dependencies_first(
-        c, [&](const ex& sym) { return definitions_.count(sym) && !signed_samples_[0].count(sym); },
-        [&](const ex& sym) -> const ex& { return definitions_.at(sym); },
-        [&](const ex& sym) {
-          const ex& def = definitions_.at(sym);
-          for (size_t j = 0; j < signed_samples_.size(); ++j) signed_samples_[j][sym] = sample_at_signed_point(def, j);
-        });
-    return sample_at_signed_point(c, k);
-  }
-
-  // c at signed point k, where every symbol of c has its sample.
-  ex sample_at_signed_point(const ex& c, size_t k) {
-    try {
-      // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
-      auto fast = symbolic::evalf_at(c, signed_samples_[k]);  // no expression built
-      ex v = fast ? ex(*fast) : GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
-      if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
-    } catch (const std::exception&) {
-      // a pole at this point
-    }
-    return GiNaC::numeric(0);
-  }
-
-  // Nodes of e as a tree (shared subexpressions counted at every use: what expand() and a preorder walk
-  // visit), counting stops past `cap`.
-  static size_t tree_size(const ex& e, size_t cap) {
-    size_t n = 1;
-    for (size_t i = 0; i < e.nops() && n <= cap; ++i) n += tree_size(e.op(i), cap - n);
-    return n;
-  }
-
-  // c evaluated at the sample point, or nullopt when c is identically zero with the values inlined.
-  // When c cannot be evaluated there (a pole, a function GiNaC leaves unevaluated) it is kept.
-  std::optional<ex> sample(const ex& c) {
-    // A value symbol's sample is computed at the first sample that uses it (record_value skips the sample
-    // of coefficients the exact probes prove nonzero); it is the same whenever it is computed.
-    symbolic::define_dependencies_first(
-        c, [&](const ex& sym) { return definitions_.count(sym) && !samples_.count(sym); },
-        [&](const ex& sym) -> const ex& { return definitions_.at(sym); },
-        [&](const ex& sym) {
-          const ex v = evaluate_at_sample(definitions_.at(sym)).value_or(GiNaC::numeric(0));
-          samples_[sym] = v;
-        });
-    const std::optional<ex> at = evaluate_at_sample(c);
-    if (!at) return ex(GiNaC::numeric(0));
-    const ex& v = *at;
-    if (!GiNaC::is_a<GiNaC::numeric>(v)) return v;
-    if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(v)) > GiNaC::numeric(1e-8)) return v;
-    if (vanishes(c)) return std::nullopt;
-    return v;
-  }
-
-  // c at the sample point, every symbol of c having its sample: a number, or what GiNaC leaves of c there
-  // (a function it does not evaluate); nullopt where c cannot be evaluated there (a pole).
-  std::optional<ex> evaluate_at_sample(const ex& c) {
-    try {
-      // The keys are symbols: one lookup per node (no_pattern), and no scan of the whole map per sum or
-      // product for product patterns (pattern_is_not_product); with thousands of value symbols both add up.
-      auto fast = symbolic::evalf_at(c, samples_, &kept_sample_values_);  // no expression built
-      return fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
-    } catch (const std::exception&) {
-      return std::nullopt;
-    }
-  }
-
-  // Is c (over inputs and value symbols) identically zero once the values are inlined?
-  bool vanishes(const ex& c) {
-    switch (probes_.test(c)) {
-      case symbolic::ProbePoints::Verdict::Zero: return true;
-      case symbolic::ProbePoints::Verdict::Nonzero: return false;
-      case symbolic::ProbePoints::Verdict::Unknown: break;
-    }
-    // Far from 0 at a signed point: not identically zero (rounding at that size cannot reach 1e-6).
-    for (size_t k = 0; k < signed_samples_.size(); ++k)
-      if (GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(signed_sample(c, k))) > GiNaC::numeric(1, 1000000)) return false;
-    // The exact test inlines the chain of values; past this many tree nodes it would take minutes and
-    // gigabytes, so the coefficient is kept: a coefficient kept that is in fact zero costs code, never a
-    // wrong value.
-    constexpr size_t kMaxInlinedNodes = 200000;
-    const ex inlined = inline_values(c);
-    if (tree_size(inlined, kMaxInlinedNodes) > kMaxInlinedNodes) return false;
-    return symbolic::is_identically_zero(trig_reduced(zero_preserving_core(inlined)));
-  }
-
-  // sqrt(X), abs(X) and X^k (k > 0) are zero exactly where X is: the zero test looks at X (bug 5 of
-  // issue 14: sqrt(abs(P.P)) of a rotated point P, whose P.P cancels only once expanded).
-  static ex zero_preserving_core(ex e) {
-    for (;;) {
-      if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&
-          GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_positive())
-        e = e.op(0);
-      else if (GiNaC::is_a<GiNaC::function>(e) && GiNaC::ex_to<GiNaC::function>(e).get_name() == "abs")
-        e = e.op(0);
-      else
-        return e;
-    }
-  }
-
-  // e with sin(u)^2 written as 1 - cos(u)^2 and expanded, so that the identity sin^2 + cos^2 = 1 (a rotor
-  // times its reverse, a rotated point squaring to 0) cancels in the expansion. Even powers of sin only:
-  // the result is a polynomial in cos(u) and sin(u) of degree <= 1 in sin(u), a normal form.
-  static ex trig_reduced(const ex& e) {
-    if (!e.has(GiNaC::sin(GiNaC::wild()))) return e;
-    const ex w = GiNaC::wild();
-    ex x = e.expand();
-    x = x.subs(GiNaC::pow(GiNaC::sin(w), 2) == 1 - GiNaC::pow(GiNaC::cos(w), 2), GiNaC::subs_options::algebraic);
-    return x.expand();
-  }
-
-  // e with every value symbol replaced by its definition, recursively, down to the inputs.
-  ex inline_values(const ex& e) {
-    GiNaC::exmap subs;
-    collect_inlined(e, subs);
-    return subs.empty() ? e : e.subs(subs, kSymbolSubs);
-  }
-
-  void collect_inlined(const ex& e, GiNaC::exmap& subs) {
-    if (GiNaC::is_a<GiNaC::symbol>(e)) {
-      auto def = definitions_.find(e);
-      if (def == definitions_.end() || subs.count(e)) return;
-      auto done = inlined_.find(e);
-      if (done == inlined_.end()) done = inlined_.emplace(e, inline_values(def->second).expand()).first;
-      subs[e] = done->second;
-      return;
-    }
-    for (size_t i = 0; i < e.nops(); ++i) collect_inlined(e.op(i), subs);
-  }
+  bool vanishes(const ex& c) { return zeros_.vanishes(c); }
 
   // Statements see earlier values only through their symbols, so an identity that holds for the values
   // (c*einf*c is a vector when c is a 2-blade) is invisible here. Where it matters (a divisor, a function
@@ -994,9 +861,7 @@ class Expander {
     in.name = n;
     in.blades = {0};
     GiNaC::realsymbol sym(unique_symbol_name(n));  // real: abs(a)^2 is a^2, not a*conjugate(a)
-    samples_[sym] = next_sample();
-    add_signed_input(sym);
-    probes_.add_input(sym);
+    zeros_.add_input(sym);
     in.symbols = {sym};
     kernel_.inputs.push_back(in);
     Multivector v(sym);
@@ -1062,9 +927,9 @@ class Expander {
         switch (e.binary_op) {
           case front::BinaryOp::Add: return a + b;
           case front::BinaryOp::Sub: return a - b;
-          case front::BinaryOp::Geo: return a * b;
-          case front::BinaryOp::Outer: return a ^ b;
-          case front::BinaryOp::Inner: return inner(a, b);
+          case front::BinaryOp::Geo: return product(algebra::ProductKind::Geometric, a, b, e.loc);
+          case front::BinaryOp::Outer: return product(algebra::ProductKind::Outer, a, b, e.loc);
+          case front::BinaryOp::Inner: return product(algebra::ProductKind::Inner, a, b, e.loc);
           case front::BinaryOp::Div: return divide(a, b, *e.args.at(1));
         }
         break;

@@ -73,7 +73,9 @@ class FactorSums {
   // A sum with the symbols that several terms share taken out (see factor_sum).
   ex factor_symbols(const ex& sum, std::vector<Temp>& out) {
     std::vector<ex> terms = ordered_children(sum, st.keys);
-    ex factored = 0;
+    // Sums are built once from their terms: adding terms one by one to an ex re-sorts the sum every time
+    // (quadratic in its length, seconds on the few-thousand-term sums of a long chain).
+    exvector factored;
     for (;;) {
       std::map<ex, int, ex_is_less> uses;
       for (const ex& t : terms)
@@ -83,29 +85,29 @@ class FactorSums {
       for (const auto& [a, n] : uses)  // ties: the smaller key, so the choice does not depend on GiNaC's order
         if (n > best_uses || (n == best_uses && n > 1 && st.keys.less(a, best))) best = a, best_uses = n;
       if (best_uses < 2) break;
-      ex inner = 0;
+      exvector inner_terms;
       std::vector<ex> rest;
       for (const ex& t : terms) {
         const auto syms = direct_symbols(t);
         if (std::any_of(syms.begin(), syms.end(), [&](const ex& a) { return a.is_equal(best); }))
-          inner += t / best;
+          inner_terms.push_back(t / best);
         else
           rest.push_back(t);
       }
+      ex inner = dynallocate<add>(inner_terms);
       if (is_a<add>(inner)) {
         // The inner sum factored the same way; a numeric factor all its terms share goes in front of the
         // product (c a (b + d) rather than a (c b + c d)), where GiNaC keeps it undistributed.
         inner = factor_symbols(orient_sums(inner, st.keys), out);
         const numeric c = is_a<add>(inner) ? common_numeric_factor(inner) : numeric(1);
-        factored += c * best * inner_sum(orient_sums(inner / c, st.keys), out);
+        factored.push_back(c * best * inner_sum(orient_sums(inner / c, st.keys), out));
       } else {
-        factored += best * inner;
+        factored.push_back(best * inner);
       }
       terms = std::move(rest);
     }
-    ex r = factored;
-    for (const ex& t : terms) r += t;
-    return orient_sums(r, st.keys);
+    factored.insert(factored.end(), terms.begin(), terms.end());
+    return orient_sums(dynallocate<add>(factored), st.keys);
   }
 
   // An inner sum of factor_symbols as a temporary, one per distinct sum (by canonical key): the same

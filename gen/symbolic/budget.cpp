@@ -19,7 +19,7 @@ void WorkBudget::charge(std::size_t terms) {
                          terms, b->limits_.max_coefficient_terms);
   b->spent_ += terms;
   if (b->spent_ > b->limits_.max_total_terms)
-    throw BudgetExceeded("the script's products expand to more than " + std::to_string(b->limits_.max_total_terms) +
+    throw BudgetExceeded("the statement's products expand to more than " + std::to_string(b->limits_.max_total_terms) +
                              " terms in all",
                          b->spent_, b->limits_.max_total_terms);
 }

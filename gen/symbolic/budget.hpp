@@ -14,7 +14,8 @@ namespace cgagen::symbolic {
 struct BudgetLimits {
   // One coefficient of one product. The largest in the bundled scripts is a few hundred terms.
   std::size_t max_coefficient_terms = 20000;
-  // All products of the whole script together. The bundled scripts stay below 5000.
+  // All products of one statement together (a script of many statements may spend this on each). The bundled
+  // scripts stay below 5000.
   std::size_t max_total_terms = 100000;
 };
 
