@@ -542,7 +542,7 @@ class Expander {
   }
 
   // Values that no output needs (directly or through other values) are not part of the kernel: -O0 would
-  // emit them as dead temporaries (issue 14, bug 5: a rotated point whose square turned out 0).
+  // emit them as dead temporaries (e.g. the inputs of a rotated point's square that cancels to 0).
   void drop_unused_values() {
     std::set<ex, GiNaC::ex_is_less> needed;
     std::vector<bool> keep(kernel_.values.size(), false);
@@ -917,8 +917,8 @@ class Expander {
     return symbolic::is_identically_zero(trig_reduced(zero_preserving_core(inlined)));
   }
 
-  // sqrt(X), abs(X) and X^k (k > 0) are zero exactly where X is: the zero test looks at X (bug 5 of
-  // issue 14: sqrt(abs(P.P)) of a rotated point P, whose P.P cancels only once expanded).
+  // sqrt(X), abs(X) and X^k (k > 0) are zero exactly where X is: the zero test looks at X (so
+  // sqrt(abs(P.P)) of a rotated point P is 0: its P.P cancels only once expanded).
   static ex zero_preserving_core(ex e) {
     for (;;) {
       if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1)) &&

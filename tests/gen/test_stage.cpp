@@ -1,4 +1,4 @@
-// Staging tests (issue 19, opt/stage.hpp): the op-count targets docs/generator.md and the README state,
+// Staging tests (opt/stage.hpp): the op-count targets docs/generator.md and the README state,
 // prepare then body equal to the unstaged kernel on 1000 random inputs for every bundled script, located
 // errors for bad uniforms, and the CLI's --stats / --eval / --diff / every target for a staged kernel.
 // (The compiled C++ of the staged kernels against the oracle: tests/kernels/test_kernels.cpp.)

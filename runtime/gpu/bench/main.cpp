@@ -1,6 +1,6 @@
 // cga-gl-bench: crowd skinning throughput on the OpenGL backend (cga::gpu), per method and GL path (vertex
-// shader + transform feedback, compute shader), against the device's measured buffer copy bandwidth (issue 5
-// item 6; the GL counterpart of cga-cuda-bench, same table). Many instances of one random mesh, 64 bones by
+// shader + transform feedback, compute shader), against the device's measured buffer copy bandwidth (the
+// GL counterpart of cga-cuda-bench, same table). Many instances of one random mesh, 64 bones by
 // default, >= 10^7 vertices in all. Two input layouts:
 //   shared        every instance reads the one rest mesh (what cga::gpu::Skinner::set_mesh does): the rest
 //                 vertices are read once per dispatch and stay in cache, so the bytes streamed per skinned
