@@ -7,7 +7,7 @@
 //                 vertex are its outputs (12 B, 24 with normals) plus the rest mesh spread over the instances
 //                 (36 B, 48 with normals, / instances);
 //   per-instance  each instance reads its own copy of the rest mesh (Skinner::set_mesh_per_instance): the
-//                 issue's crowd layout, 48 B per vertex (12 position + 8 joints u16x4 + 16 weights f32x4 in,
+//                 crowd layout, 48 B per vertex (12 position + 8 joints u16x4 + 16 weights f32x4 in,
 //                 12 position out; 72 with normals), as cga-cuda-bench's "standard" layout.
 // Palettes (bones x 32 or 48 B per instance) are not counted in either. Each dispatch is timed on the GPU with
 // a GL_TIME_ELAPSED query around the draw / dispatch alone (uniforms and buffers are set up by a warm-up
