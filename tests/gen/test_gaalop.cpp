@@ -315,7 +315,7 @@ TEST_CASE("GPS trilateration (Gaalop's example, our own script) compiles fast at
 
 TEST_CASE("GPS trilateration compiles at -O1 and -O2 with the values of -O0", "[gaalop]") {
   // The distance checks z.. inline the spheres' intersection into itself: 15 million symbol occurrences as a
-  // tree, a few thousand nodes shared. Those values now keep their inputs as temporaries.
+  // tree, a few thousand nodes shared. Such values keep their inputs as temporaries.
   const std::string path = std::string(CGA_SOURCE_DIR) + "/tests/gen/gaalop/gps_trilateration.clu";
   const std::string in =
       " s1x=10 s1y=0.5 s1z=0 s2x=0 s2y=10 s2z=1 s3x=2 s3y=0 s3z=10 d1=9.7 d2=8.6 d3=8.1";
