@@ -85,7 +85,7 @@ TEST_CASE("stats, diff and eval print their reports", "[cli]") {
   r = run("--eval M=1,0,0,0,0,0,0,0,0,0,0,0 x=0.5 y=-2 z=3 " + script("transform_point.clu"));
   CHECK(r.code == 0);
   CHECK(r.out == "P e1 0.5\nP e2 -2\nP e3 3\nP e0 1\n");
-  // The spelling: the script first, the values after it.
+  // The spelling users write: the script first, the values after it.
   auto r2 = run("--eval " + script("transform_point.clu") + " M=1,0,0,0,0,0,0,0,0,0,0,0 x=0.5 y=-2 z=3");
   CHECK(r2.code == 0);
   CHECK(r2.out == r.out);

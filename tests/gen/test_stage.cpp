@@ -147,7 +147,7 @@ TEST_CASE("staged paper A.1: the prepare against the best hand-written per-bone 
   INFO("staged prepare " << opt::format_counts(prepare) << "; hand " << hand.add << " add, " << hand.mul << " mul, "
                          << hand.div << " div; ratio mul " << ratio_mul << ", add " << ratio_add);
   // The figures docs/generator.md gives: hand 96 mul + 81 add + 2 div, staged 135 + 125 + 2 (1.41x, 1.54x:
-  // the issue's 1.2x is not met). A change to either side shows here.
+  // a 1.2x target is not met). A change to either side shows here.
   CHECK(hand.mul == 96);
   CHECK(hand.add == 81);
   CHECK(hand.div == 2);
