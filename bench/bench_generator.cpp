@@ -143,7 +143,7 @@ void register_generator_benchmarks() {
     std::sort(worst.begin(), worst.end());
     worst.push_back(CGA_BENCH_CIRCLE3);
 #ifdef CGA_BENCH_GPS
-    worst.push_back(CGA_BENCH_GPS);  // Gaalop's GPS example: > 120 s at -O2 before issue 14's DAG walks
+    worst.push_back(CGA_BENCH_GPS);  // Gaalop's GPS example: deep substitution chains (symbolic/dag.hpp)
 #endif
     scripts.insert(scripts.end(), worst.begin(), worst.end());
   }

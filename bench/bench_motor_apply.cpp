@@ -1,6 +1,6 @@
 // Applying one motor to 1 M points (SoA floats), in ns/point:
 //   transform_point  the generated sandwich kernel M X ~M per point, then the division by the point weight
-//   transform_point_staged  the same script staged (issue 19, M uniform): the generated prepare once per
+//   transform_point_staged  the same script staged (M uniform): the generated prepare once per
 //                    motor (cga::motor_prepare_points: 13 values over the weight), then the generated
 //                    per-point body (9 mul + 9 add) per point
 //   glm mat3x4       the baseline: the same transform as a GLM 3x4 matrix built from TRS, dot products per point

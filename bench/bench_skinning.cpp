@@ -2,7 +2,7 @@
 // normals: on a deterministic random mesh (1 M vertices, 64 bones, 4 influences; also at 64 K vertices, which
 // stay in cache, and at 1 M in one 48-byte interleaved stride as engines store vertices) and on the real character
 // BCN_Epileptic in a pose of its clip. Two plain GLM loops (no blocking, no hand SIMD: what a straightforward
-// engine loop does) are measured beside them as references for the issue's "plain GLM LBS / DQS loop" numbers.
+// engine loop does) are measured beside them as references: what a plain loop gets.
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -291,7 +291,7 @@ void bm_plain_glm(benchmark::State& state, PlainLoop loop, bool normals) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.vertex_count()));
 }
 
-// Issue-6 targets (positions / with normals) per method.
+// Performance targets (positions / with normals) per method.
 std::optional<Target> target_for(SkinningMethod m, bool normals) {
   if (m == SkinningMethod::cga_points)
     return normals ? Target{235, ">= 235 M/s"} : Target{300, ">= 300 M/s"};

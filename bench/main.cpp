@@ -1,5 +1,5 @@
 // cga-bench: Google Benchmark's runner plus a summary table (each figure with its ratio to the in-project
-// GLM baseline of the same run and the issue-6 target). Extra flags: --cga_markdown=FILE writes the summary
+// GLM baseline of the same run and its performance target). Extra flags: --cga_markdown=FILE writes the summary
 // as Markdown; --cga_fail_on_skip makes the exit status 1 when a benchmark was skipped with an error (missing
 // model or tool; a job refusing its input), which the smoke test uses. Every other flag is Google
 // Benchmark's (--benchmark_filter=REGEX, --benchmark_min_time=S, ...).

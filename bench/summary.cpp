@@ -146,7 +146,7 @@ std::string summary_markdown(const Results& results) {
     if (f.section != section) {
       section = f.section;
       out += fmt::format("\n### {}\n\n", section);
-      out += "| Case | Result | vs. baseline (>1 = faster) | Issue-6 target | Notes |\n";
+      out += "| Case | Result | vs. baseline (>1 = faster) | Target | Notes |\n";
       out += "|---|---:|---|---|---|\n";
     }
     const Row row = make_row(f, results);

@@ -1,5 +1,5 @@
 // The summary of a cga-bench run: every benchmark registers a Figure (what to read from its result, which
-// benchmark is its baseline, which issue-6 target applies), a capturing reporter keeps the results, and at
+// benchmark is its baseline, which performance target applies), a capturing reporter keeps the results, and at
 // the end one table prints each figure with its ratio to the baseline measured in the same run, as text on
 // stdout and optionally as Markdown (the table README carries).
 #pragma once
@@ -21,10 +21,10 @@ enum class Metric {
   ms_per_iter,       // real time per iteration in ms (one generator run); lower is better
 };
 
-// An issue-6 target: the figure must reach `value` (>= for throughputs, <= for times).
+// A performance target: the figure must reach `value` (>= for throughputs, <= for times).
 struct Target {
   double value;
-  std::string text;  // as the issue states it, e.g. ">= 300 M vert/s"
+  std::string text;  // as the table prints it, e.g. ">= 300 M vert/s"
 };
 
 struct Figure {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ozz-animation side by side (issue 18): builds bench/ozz (ozz's SkinningJob and pose pipeline on the same
+# ozz-animation side by side: builds bench/ozz (ozz's SkinningJob and pose pipeline on the same
 # kind of data as cga-bench) from an ozz-animation git directory, then runs ozz and cga-bench interleaved
 # (each case on both sides back to back, round after round) on one core and prints, per round and as medians
 # with their spread, each method's speed as a ratio to ozz measured in the same round. Only such ratios mean

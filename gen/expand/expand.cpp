@@ -558,7 +558,7 @@ class Expander {
   }
 
   // Values that no output needs (directly or through other values) are not part of the kernel: -O0 would
-  // emit them as dead temporaries (issue 14, bug 5: a rotated point whose square turned out 0).
+  // emit them as dead temporaries (e.g. the inputs of a rotated point's square that cancels to 0).
   void drop_unused_values() {
     std::set<ex, GiNaC::ex_is_less> needed;
     std::vector<bool> keep(kernel_.values.size(), false);

@@ -30,7 +30,7 @@ namespace {
 constexpr double kMaxInlineTerms = 4000;
 // Above this size (tree_size, symbol occurrences counted as a tree) of a value with its earlier values
 // substituted, it keeps them as temporaries too: the term estimate misses values that are sums under roots
-// and divisors, and the zero test's normal() on such a form does not finish (issue 14: GPS trilateration,
+// and divisors, and the zero test's normal() on such a form does not finish (Gaalop's GPS trilateration,
 // whose distance checks reach 15 million). The bundled scripts stay below 11000, GPS's spheres at 92000.
 constexpr size_t kMaxInlineTreeSize = 100000;
 // Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.

@@ -1,4 +1,4 @@
-// The staging pass (issue 19): an optimized Program -> NAME_prepare(uniforms) and NAME(prepared, elements).
+// The staging pass: an optimized Program -> NAME_prepare(uniforms) and NAME(prepared, elements).
 //
 // How the split is found. The program's temporaries that read a per-element input (directly or through other
 // temporaries) are substituted into the outputs, so each output is one expression over the per-element

@@ -1,4 +1,4 @@
-// Automatic staging (issue 19): an optimized Program split into a per-batch stage and a per-element stage.
+// Automatic staging: an optimized Program split into a per-batch stage and a per-element stage.
 //
 // Inputs marked uniform (`#pragma uniform NAME...`, `--uniform A,B`, cgagen_generate(UNIFORM ...)) are fixed
 // across a batch (a motor, key poses, a blend weight); every other input varies per element (a point's x, y,

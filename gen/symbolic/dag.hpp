@@ -1,6 +1,6 @@
 // Walks over a GiNaC expression as the DAG it is. Values substituted into each other share most of their
 // subexpressions; GiNaC's preorder iterator, subs() and evalf() treat them as trees, which costs time
-// exponential in the depth of the substitution chain (issue 14, the GPS trilateration script).
+// exponential in the depth of the substitution chain (Gaalop's GPS trilateration script).
 #pragma once
 
 #include <ginac/ginac.h>

@@ -107,7 +107,7 @@ Result run_oracle(const cgagen::front::Script& script, const std::map<std::strin
 // "" when a and b agree; else what differs. Outputs named in `pragma_outputs` have a '#pragma output'
 // blade list: cgagen returns only those blades, so only the blades it returns are compared. A value below
 // 1e-7 of the output's scale counts as zero (a square root of a rounded zero is ~1e-8, where the exact
-// pipeline gives 0: issue 14's bug 5).
+// pipeline gives 0).
 std::string compare(const Result& cg, const Result& ref, const std::set<std::string>& pragma_outputs) {
   if (cg.refused || ref.refused) {
     if (cg.refused && ref.refused) return "";
@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
       ++failures;
       std::cout << "the emitted C++ of " << compiled << " sampled programs does not compile: " << unit << "\n";
     }
-    // The same programs' GLSL (issue 14: "compile the emitted C++ and GLSL of a sample").
+    // The same programs' GLSL: the emitted shader code must compile too, not only the C++.
     const fs::path vert = fs::path(work) / "sample.vert";
     std::ofstream(vert) << shader << "\nvoid main() { gl_Position = vec4(0.0); }\n";
     const std::string glsl_cmd = std::string(GLSLANG_VALIDATOR) + " " + vert.string() + " > " + vert.string() + ".log 2>&1";

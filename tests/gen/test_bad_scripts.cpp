@@ -1,4 +1,4 @@
-// Malformed scripts through the real front end and expander (issue 7 item 5): every script under
+// Malformed scripts through the real front end and expander: every script under
 // tests/gen/scripts/bad/ must fail with one `path:line:col: error: message` diagnostic pointing at the
 // offending token, and 10 MB scripts (long, wide, deep) must finish with a result or a diagnostic, never a
 // crash or a stack overflow. The expected line and column of each file are where its fault is, counted here.

@@ -85,7 +85,7 @@ TEST_CASE("stats, diff and eval print their reports", "[cli]") {
   r = run("--eval M=1,0,0,0,0,0,0,0,0,0,0,0 x=0.5 y=-2 z=3 " + script("transform_point.clu"));
   CHECK(r.code == 0);
   CHECK(r.out == "P e1 0.5\nP e2 -2\nP e3 3\nP e0 1\n");
-  // The issue's spelling: the script first, the values after it.
+  // The spelling users write: the script first, the values after it.
   auto r2 = run("--eval " + script("transform_point.clu") + " M=1,0,0,0,0,0,0,0,0,0,0,0 x=0.5 y=-2 z=3");
   CHECK(r2.code == 0);
   CHECK(r2.out == r.out);
@@ -97,7 +97,7 @@ TEST_CASE("dump-ast prints the statements", "[cli]") {
   CHECK(r.out.find("assign ?C = (* A B)") != std::string::npos);
 }
 
-// Issue 11: the fuzzer's find (the paper's A.1 with `einf` misspelt `eiof` and `translationCGA2` misspelt
+// A fuzzer find (the paper's A.1 with `einf` misspelt `eiof` and `translationCGA2` misspelt
 // `translationCGA4`) compiles at every level, warns about both names where they are used, lists them as
 // inputs in --stats, and fails under --Werror.
 TEST_CASE("misspelt names that became inputs are warned about, --Werror makes them errors", "[cli]") {
@@ -155,7 +155,7 @@ TEST_CASE("work budget: an over-budget statement fails fast with a located error
   CHECK(r.out.find("note:") == std::string::npos);
 }
 
-// Issue 14's generator bugs, each a valid script that was refused or broke: --eval at every level gives the
+// Generator regressions, each a valid script that was refused or broke: --eval at every level gives the
 // value, and the emitted C++ uses only std:: functions (no conjugate, no zero-size array).
 TEST_CASE("regressions: abs of real inputs, gcd with functions, zero outputs, exp of one blade", "[cli]") {
   struct Case {
@@ -219,7 +219,7 @@ TEST_CASE("regressions: abs of real inputs, gcd with functions, zero outputs, ex
 }
 
 // --eval follows the printed code's order of operations (sums in canonical term order, products left to
-// right), not GiNaC's process-dependent term order: the same bits in every process (issue 14, bug 6).
+// right), not GiNaC's process-dependent term order: the same bits in every process.
 TEST_CASE("eval gives the same bits in every process", "[cli]") {
   const std::string args = " --eval " + std::string(CGA_SOURCE_DIR) + "/tests/gen/scripts/paper_a1.clu "
                            "transX=1 transY=2 transZ=3 axis1X=0.1 axis1Y=0.2 axis1Z=0.9 angle1=0.7 d1=1.3 "
@@ -232,7 +232,7 @@ TEST_CASE("eval gives the same bits in every process", "[cli]") {
   }
 }
 
-// Gaalop compatibility (issue 14): forms Gaalop's CGA scripts use, each with its value.
+// Gaalop compatibility: forms Gaalop's CGA scripts use, each with its value.
 TEST_CASE("Gaalop forms: 1.0 as the scalar blade, abs of a multivector, coefficient, SphereN3, overloads", "[cli]") {
   struct Case {
     const char* script;

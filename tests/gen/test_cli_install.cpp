@@ -1,4 +1,4 @@
-// The cgagen command line as an installed tool (issue 12): --version, --target list, a script from standard
+// The cgagen command line as an installed tool: --version, --target list, a script from standard
 // input, the exit codes --help documents, and GCC's `file:line:col: error:` form of script errors.
 #include <catch2/catch.hpp>
 

@@ -93,7 +93,7 @@ TEST_CASE("test scripts: byte-identical output in every process", "[cli][determi
   check_scripts(std::filesystem::path(CGA_TEST_SCRIPTS));
 }
 
-TEST_CASE("staged kernels (issue 19): byte-identical output in every process", "[cli][determinism][stage]") {
+TEST_CASE("staged kernels: byte-identical output in every process", "[cli][determinism][stage]") {
   require_aslr();
   const std::string tp = (std::filesystem::path(CGA_SOURCE_DIR) / "runtime" / "scripts" / "transform_point.clu").string();
   const std::string a1 = (std::filesystem::path(CGA_TEST_SCRIPTS) / "paper_a1.clu").string();

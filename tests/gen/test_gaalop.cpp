@@ -1,6 +1,6 @@
-// Gaalop compatibility (issue 14): the pragmas, syntax forms, scalar functions and CGA macros of Gaalop's
-// CluScript, each with the value Gaalop gives or the located error cgagen gives instead; bug 5 (a zero
-// under sqrt(abs(...))); the GPS trilateration example compiling quickly. Runs the built cgagen.
+// Gaalop compatibility: the pragmas, syntax forms, scalar functions and CGA macros of Gaalop's
+// CluScript, each with the value Gaalop gives or the located error cgagen gives instead; a zero
+// under sqrt(abs(...)); the GPS trilateration example compiling quickly. Runs the built cgagen.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -269,7 +269,7 @@ TEST_CASE("CGA macros: Normalize, Dual, ExtractFirstPoint, ExtractSecondPoint", 
   check_eval("Normalize = { _P(1)*2 }\n?n = Normalize(x);", "x=3", {{"n/1", 6}});
 }
 
-TEST_CASE("bug 5: sqrt(abs(P.P)) of a rotated point is 0, and no dead temporaries are emitted", "[gaalop]") {
+TEST_CASE("sqrt(abs(P.P)) of a rotated point is 0, and no dead temporaries are emitted", "[gaalop]") {
   const std::string script = "R = RotorN3(ax,ay,az,phi);\nP = R*VecN3(x,y,z)*~R;\n?d = sqrt(abs(P.P));\n?e = x;\n";
   check_eval(script, "ax=1 ay=2 az=3 phi=0.4 x=1 y=2 z=3", {{"d/1", 0}, {"e/1", 1}});
   for (const char* level : {"-O0", "-O1", "-O2"}) {
@@ -313,9 +313,9 @@ TEST_CASE("GPS trilateration (Gaalop's example, our own script) compiles fast at
   CHECK(r.code == 0);
 }
 
-TEST_CASE("GPS trilateration compiles at -O1 and -O2 with the values of -O0 (issue 14, speed)", "[gaalop]") {
+TEST_CASE("GPS trilateration compiles at -O1 and -O2 with the values of -O0", "[gaalop]") {
   // The distance checks z.. inline the spheres' intersection into itself: 15 million symbol occurrences as a
-  // tree, a few thousand nodes shared. Those values now keep their inputs as temporaries.
+  // tree, a few thousand nodes shared. Such values keep their inputs as temporaries.
   const std::string path = std::string(CGA_SOURCE_DIR) + "/tests/gen/gaalop/gps_trilateration.clu";
   const std::string in =
       " s1x=10 s1y=0.5 s1z=0 s2x=0 s2y=10 s2z=1 s3x=2 s3y=0 s3z=10 d1=9.7 d2=8.6 d3=8.1";

@@ -1,4 +1,4 @@
-// Staging tests (issue 19, opt/stage.hpp): the op-count targets docs/generator.md and the README state,
+// Staging tests (opt/stage.hpp): the op-count targets docs/generator.md and the README state,
 // prepare then body equal to the unstaged kernel on 1000 random inputs for every bundled script, located
 // errors for bad uniforms, and the CLI's --stats / --eval / --diff / every target for a staged kernel.
 // (The compiled C++ of the staged kernels against the oracle: tests/kernels/test_kernels.cpp.)
@@ -147,7 +147,7 @@ TEST_CASE("staged paper A.1: the prepare against the best hand-written per-bone 
   INFO("staged prepare " << opt::format_counts(prepare) << "; hand " << hand.add << " add, " << hand.mul << " mul, "
                          << hand.div << " div; ratio mul " << ratio_mul << ", add " << ratio_add);
   // The figures docs/generator.md gives: hand 96 mul + 81 add + 2 div, staged 135 + 125 + 2 (1.41x, 1.54x:
-  // the issue's 1.2x is not met). A change to either side shows here.
+  // a 1.2x target is not met). A change to either side shows here.
   CHECK(hand.mul == 96);
   CHECK(hand.add == 81);
   CHECK(hand.div == 2);

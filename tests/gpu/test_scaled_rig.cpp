@@ -1,8 +1,8 @@
-// Issue 11 item 4 on the GL paths: on rigs whose joints carry scales 100 and 0.01 (the synthetic centimetre
+// Scaled rigs on the GL paths: on rigs whose joints carry scales 100 and 0.01 (the synthetic centimetre
 // rig of tests/runtime/scaled_rig.hpp and huesitos.fbx), every method on the vertex shader + transform
 // feedback path and on the compute path is within 1e-5 of the character's size of the double-precision
-// reference of the same method. Before the shaders computed the motor's matrix in split form they were 1e-4
-// (cga-points) to 6e-4 (cga-motors) of the size away on huesitos.fbx.
+// reference of the same method. The shaders compute the motor's matrix in split form for this: in blade
+// form they are 1e-4 (cga-points) to 6e-4 (cga-motors) of the size away on huesitos.fbx.
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -59,7 +59,7 @@ namespace cuh {
 #undef __forceinline__
 }  // namespace cuh
 
-// The staged forms (issue 19, built by tests/kernels/CMakeLists.txt): NAME_prepare and NAME, named as the
+// The staged forms (built by tests/kernels/CMakeLists.txt): NAME_prepare and NAME, named as the
 // unstaged kernels, so in their own namespace (the headers' standard includes are already done above).
 namespace staged {
 #include STAGED_TRANSFORM_POINT
@@ -612,7 +612,7 @@ TEST_CASE("cgagen --eval agrees with the compiled kernel", "[kernels][cli]") {
   }
 }
 
-// ---- staged kernels (issue 19): prepare once, then the per-element body --------------------------------
+// ---- staged kernels: prepare once, then the per-element body ------------------------------------------
 
 
 TEMPLATE_TEST_CASE("staged transform_point: prepare(M) then body = the unstaged kernel = the oracle",

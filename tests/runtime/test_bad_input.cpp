@@ -1,4 +1,4 @@
-// Bad input to the runtime (issue 7 item 5): truncated and corrupt model files, skin weights that are NaN,
+// Bad input to the runtime: truncated and corrupt model files, skin weights that are NaN,
 // negative, all zero or do not sum to 1 (in a file: the loader repairs them and says so; in a hand-made mesh:
 // SkinningJob refuses them), joint indices outside the palette, clips with zero or one key, and times outside
 // the clip or not finite. Each must end in a clear error or a documented repair, never a crash or a silent

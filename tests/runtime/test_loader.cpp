@@ -101,7 +101,7 @@ std::string temp_file(const std::string& name, const std::string& bytes) {
 TEST_CASE("BCN_Epileptic.X: 54 bones, three skinned meshes, one clip") {
   const Character ch = load_character(model("X/BCN_Epileptic.X"));
   check_character(ch);
-  CHECK(mesh_bones(ch).size() == 54);  // the bone count
+  CHECK(mesh_bones(ch).size() == 54);  // BCN_Epileptic's 54 skinned bones
   CHECK(ch.meshes.size() == 3);
   REQUIRE(ch.clips.size() == 1);
   CHECK(ch.clips[0].duration > 0.0f);

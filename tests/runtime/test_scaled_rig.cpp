@@ -1,8 +1,8 @@
-// Issue 11 item 4: on rigs whose joints carry scales 100 and 0.01 (centimetre exports), every CPU skinning
+// Scaled rigs: on rigs whose joints carry scales 100 and 0.01 (centimetre exports), every CPU skinning
 // method stays within 1e-5 of the character's size of a double-precision reference of the same method
-// (scaled_rig.hpp). Before the motors were composed and turned into matrices in split form, cga-points was
-// 4e-4 and cga-motors 1e-5..4e-4 of the size away on these rigs (the blade form's weight a^2 + b^2 + 2ab and
-// its products cancel at scale 100).
+// (scaled_rig.hpp). The motors are composed and turned into matrices in split form for this: in blade form
+// cga-points is 4e-4 and cga-motors 1e-5..4e-4 of the size away on these rigs (the blade form's weight
+// a^2 + b^2 + 2ab and its products cancel at scale 100).
 #include <catch2/catch.hpp>
 
 #include <cstdio>

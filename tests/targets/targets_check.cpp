@@ -19,7 +19,7 @@
 // wgsl and glsl-es run in headless Chromium (WebGPU, WebGL 2): one page per language with every script,
 // written here, run by browser_run.py, the page's half in browser_harness.js.
 //
-// Staged kernels (issue 19): a script with `#pragma uniform`, or an argument PATH@NAME@U1,U2 (the script
+// Staged kernels: a script with `#pragma uniform`, or an argument PATH@NAME@U1,U2 (the script
 // generated as NAME with --uniform U1,U2, see CMakeLists.txt), is emitted as NAME_prepare(uniforms) ->
 // prepared[K] and NAME(prepared, per-element inputs). Every driver then calls the two in a row in the
 // language itself (the prepared values stay in the language's precision) and the outputs are held to the

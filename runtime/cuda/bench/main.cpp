@@ -1,5 +1,5 @@
 // cga-cuda-bench: crowd skinning throughput on one CUDA device, per method and vertex layout, against the
-// device's measured copy bandwidth (issue 5 "Targets"). Each instance has its own copy of the rest mesh
+// device's measured copy bandwidth (its bound). Each instance has its own copy of the rest mesh
 // (a crowd streams distinct vertices), 64 bones by default, >= 10^7 vertices in all. For every row it
 // prints vertices/s, bytes moved per vertex, the bandwidth bound (copy bandwidth / bytes per vertex) and
 // the fraction of it reached, and checks two instances against the CPU SkinningJob (exit status 1 when a

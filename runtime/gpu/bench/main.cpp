@@ -1,13 +1,13 @@
 // cga-gl-bench: crowd skinning throughput on the OpenGL backend (cga::gpu), per method and GL path (vertex
-// shader + transform feedback, compute shader), against the device's measured buffer copy bandwidth (issue 5
-// item 6; the GL counterpart of cga-cuda-bench, same table). Many instances of one random mesh, 64 bones by
+// shader + transform feedback, compute shader), against the device's measured buffer copy bandwidth (the
+// GL counterpart of cga-cuda-bench, same table). Many instances of one random mesh, 64 bones by
 // default, >= 10^7 vertices in all. Two input layouts:
 //   shared        every instance reads the one rest mesh (what cga::gpu::Skinner::set_mesh does): the rest
 //                 vertices are read once per dispatch and stay in cache, so the bytes streamed per skinned
 //                 vertex are its outputs (12 B, 24 with normals) plus the rest mesh spread over the instances
 //                 (36 B, 48 with normals, / instances);
 //   per-instance  each instance reads its own copy of the rest mesh (Skinner::set_mesh_per_instance): the
-//                 issue's crowd layout, 48 B per vertex (12 position + 8 joints u16x4 + 16 weights f32x4 in,
+//                 crowd layout, 48 B per vertex (12 position + 8 joints u16x4 + 16 weights f32x4 in,
 //                 12 position out; 72 with normals), as cga-cuda-bench's "standard" layout.
 // Palettes (bones x 32 or 48 B per instance) are not counted in either. Each dispatch is timed on the GPU with
 // a GL_TIME_ELAPSED query around the draw / dispatch alone (uniforms and buffers are set up by a warm-up

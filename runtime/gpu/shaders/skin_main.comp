@@ -1,5 +1,5 @@
 // Crowd-skinning compute shader: invocation (v, i) skins vertex v of the shared rest mesh for instance i
-// with instance i's palette. Layout per vertex (issue 5): position 3 floats in, joints as ushort4 (read as
+// with instance i's palette. Layout per vertex: position 3 floats in, joints as ushort4 (read as
 // a uvec2), weights vec4, position 3 floats out; normals (3 floats in and out) only when u_normals.
 // Instance i's outputs are vertices [i * u_vertex_count, (i + 1) * u_vertex_count). With
 // u_per_instance_inputs the inputs hold one copy of the rest mesh per instance, laid out the same way, and

@@ -83,7 +83,7 @@ inline glm::vec3 motor_transform_point(const Motor& m, const glm::vec3& p) {
   return glm::vec3(out[0], out[1], out[2]) / out[3];
 }
 
-// The staged point transform (issue 19): runtime/scripts/transform_point.clu generated once more with M
+// The staged point transform: runtime/scripts/transform_point.clu generated once more with M
 // uniform (generated/CMakeLists.txt, NAME transform_point_staged), so cgagen splits M X ~M into
 // transform_point_staged_prepare(M) -> 13 values (the 3x4 matrix of P = (x', y', z') and the weight w, which
 // does not depend on the point) and the per-point body (9 mul + 9 add). P is homogeneous and the body is

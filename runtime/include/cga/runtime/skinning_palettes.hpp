@@ -72,7 +72,7 @@ static_assert(prepared_split_layout(), "transform_point_split's prepared values 
 
 // The weight-normalized point transform of a (possibly blended, unnormalized) motor in split form as a
 // row-major 3x4 matrix (x, y, z, translation per row): the generated prepare of the staged
-// transform_point_split (issue 19), its rows rotated from (translation, x, y, z).
+// transform_point_split, its rows rotated from (translation, x, y, z).
 inline void motor_split_matrix(const float g[4], const float h[4], const float u[4], float out[12]) {
   float prepared[12];
   cga::kernels::transform_point_split_prepare(g, h, u, prepared);

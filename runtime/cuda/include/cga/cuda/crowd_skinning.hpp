@@ -3,7 +3,7 @@
 // (transform_point_split.cuh). Plain C++ header (no CUDA types) so host code built by the
 // C++ compiler can call it; the kernels live in crowd_skinning.cu.
 //
-// Layouts (issue 5 "Targets"): positions 3 floats packed, joints 4 x uint16 (or 4 x uint8 in the compact
+// Layouts: positions 3 floats packed, joints 4 x uint16 (or 4 x uint8 in the compact
 // layout), weights 4 x float (or 4 x unorm16), output positions 3 floats; normals 3 floats in and out.
 // Instance i reads palette entries [i * bones, (i + 1) * bones) and writes vertices
 // [i * vertex_count, (i + 1) * vertex_count); its inputs are either its own copy of the mesh (vertex

@@ -62,7 +62,7 @@ class Skinner {
   // reads this one copy (shared inputs).
   void set_mesh(const SkinnedMesh& mesh);
   // Uploads `copies` copies of the mesh one after the other (replicated on the GPU): instance i reads copy i,
-  // as when each instance streams its own vertices (the crowd layout). Then at most `copies`
+  // as when each instance streams its own vertices (a crowd of distinct characters). Then at most `copies`
   // instances can be skinned. copies == 0 is an error.
   void set_mesh_per_instance(const SkinnedMesh& mesh, std::size_t copies);
   std::size_t vertex_count() const { return vertex_count_; }
