@@ -13,6 +13,7 @@
 
 #include "algebra/algebra.hpp"
 #include "emit/emit.hpp"
+#include "emit/names.hpp"
 #include "expand/expand.hpp"
 #include "front/diagnostics.hpp"
 #include "front/parser.hpp"
@@ -33,11 +34,14 @@ standard input (diagnostics then name <stdin>, the function is named kernel unle
 options:
   --algebra NAME|FILE     the geometric algebra (default cga): 2d 3d 2dpga 3dpga cra sta cga gac qga
                           dcga ccga, or a Gaalop definition.csv file
-  --target NAME           output language (default cpp); --target list prints the targets
+  --target NAME           output language (default cpp); --target list prints the targets,
+                          --target list -v one line each with extension, toolchain and summary
   --target-extension NAME print the file extension of target NAME
   -O0 | -O1 | -O2         optimization level (default -O2)
   -o FILE                 write the output to FILE (default: standard output)
-  --name NAME             function name (default: the script's file stem)
+  --name NAME             function name: letters, digits and _, not starting with a digit (default:
+                          the script's file stem, other bytes as _, a leading digit after a _); a
+                          target's reserved word gets a trailing _ in that target
   --templates DIR         emitter templates (default: ../share/cgagen/templates next to the cgagen
                           executable when installed, else the source tree's templates/)
   --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float; a staged
@@ -123,8 +127,17 @@ Options parse_args(int argc, char** argv) {
         std::exit(0);
       } else if (a == "--target") {
         std::string t = value(i, a);
-        if (t == "list") {  // the table of targets (gen/emit/targets.cpp), one name per line
-          for (const auto& s : emit::targets()) std::cout << s.name << "\n";
+        if (t == "list") {  // the table of targets (gen/emit/targets.cpp), one name per line; -v: details
+          const bool verbose = i + 1 < args.size() && args[i + 1] == "-v";
+          for (const auto& s : emit::targets()) {
+            std::cout << s.name;
+            if (verbose) {
+              std::cout << std::string(s.name.size() < 11 ? 11 - s.name.size() : 1, ' ') << s.extension
+                        << std::string(s.extension.size() < 6 ? 6 - s.extension.size() : 1, ' ') << s.summary
+                        << "; checked with " << s.toolchain;
+            }
+            std::cout << "\n";
+          }
           std::exit(0);
         }
         o.emit.target = emit::parse_target(t);
@@ -137,6 +150,8 @@ Options parse_args(int argc, char** argv) {
         o.output = value(i, a);
       } else if (a == "--name") {
         o.name = value(i, a);
+        if (!emit::is_identifier(o.name))
+          throw UsageError("--name '" + o.name + "' is not a name: use letters, digits and _, not starting with a digit");
       } else if (a == "--templates") {
         o.emit.template_dir = value(i, a);
       } else if (a == "--pack") {
@@ -346,7 +361,8 @@ int run(const Options& o) {
       write_text(o.output, out);
       return 0;
     }
-    std::string name = !o.name.empty() ? o.name : from_stdin ? "kernel" : std::filesystem::path(o.script).stem().string();
+    std::string name = !o.name.empty() ? o.name : from_stdin ? "kernel"
+                                                       : emit::c_identifier(std::filesystem::path(o.script).stem().string());
     Kernel kernel = expand(script, name);
     for (const auto& w : kernel.warnings)
       std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),
