@@ -16,9 +16,9 @@
 #                   [NO_WERROR])                # warnings stay warnings (default: --Werror, so a misspelt
 #                                               # name that silently became an input fails the build)
 #
-# For each script NAME.clu and each target it writes OUTPUT_DIR/NAME<ext> (NAME: the stem as an identifier,
-# `my-kernel.clu` -> my_kernel, `2pga.clu` -> _2pga, the function's name too; docs/generator.md, "Names") (.hpp, .glsl, .cuh, .py, ...: the
-# target's extension from cmake/CgagenTargets.cmake, the table `cgagen --target list` prints), plus
+# For each script NAME.clu and each target it writes OUTPUT_DIR/NAME<ext> (.hpp, .glsl, .cuh, .py, ...: the
+# target's extension from cmake/CgagenTargets.cmake, the table `cgagen --target list` prints; NAME: the stem
+# as an identifier, `my-kernel.clu` -> my_kernel, `2pga.clu` -> _2pga, also the function's name), plus
 # OUTPUT_DIR/NAME.stats (the --stats text), with dependencies on the script, the templates and the cgagen
 # tool. <target> is an INTERFACE library whose include directory is OUTPUT_DIR; linking it builds the files
 # first. Call it several times with the same <target> to give scripts different options (packing differs

@@ -539,15 +539,9 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     for (size_t k = 0; k < o.slots.size(); ++k)
       list += std::string(k ? ", " : "") + sx.blade_quote + as_text(sx, label(o.name, k, o.slots[k].blade)) +
               sx.blade_quote;
-    // NAME_OUT_blades: the parts without a trailing _ (an escaped word), so that no "__" forms.
-    auto part = [&](const std::string& name) {
-      if (sx.ident) return name == program.name ? fn_name(name) : id(name);
-      std::string p = id(name);
-      while (p.size() > 1 && p.back() == '_') p.pop_back();
-      return p;
-    };
-    blade_lists += fill_pattern(sx.blade_list, {{"fn", part(program.name)},
-                                                {"out", part(o.name)},
+    // NAME_OUT_blades from the spelt names: distinct outputs give distinct lists.
+    blade_lists += fill_pattern(sx.blade_list, {{"fn", fn_name(program.name)},
+                                                {"out", id(o.name)},
                                                 {"n", std::to_string(o.slots.size())},
                                                 {"list", list},
                                                 {"c", sx.comment}}) +

@@ -28,6 +28,41 @@ const char* kC =
     "M_E M_LOG2E M_LOG10E M_LN2 M_LN10 M_PI M_PI_2 M_PI_4 M_1_PI M_2_PI M_2_SQRTPI M_SQRT2 M_SQRT1_2 "
     "INFINITY NAN HUGE_VAL HUGE_VALF HUGE_VALL FP_NAN FP_INFINITE FP_ZERO FP_SUBNORMAL FP_NORMAL "
     "FP_ILOGB0 FP_ILOGBNAN MATH_ERRNO MATH_ERREXCEPT math_errhandling errno assert EOF";
+// The macros g++ 12 / glibc 2.36 (Debian 12) define for <cmath>, <array> and <string_view>, the headers of
+// the cpp and cuda files: `g++ -std=c++17 -dM -E` over them, names not starting with _.
+const char* kGlibcMacros =
+    "BIG_ENDIAN BYTE_ORDER EXIT_FAILURE EXIT_SUCCESS FD_CLR FD_ISSET FD_SET FD_SETSIZE FD_ZERO FP_ILOGB0  "
+    "FP_ILOGBNAN FP_INFINITE FP_INT_DOWNWARD FP_INT_TONEAREST FP_INT_TONEARESTFROMZERO FP_INT_TOWARDZERO  "
+    "FP_INT_UPWARD FP_LLOGB0 FP_LLOGBNAN FP_NAN FP_NORMAL FP_SUBNORMAL FP_ZERO HUGE_VAL HUGE_VALF HUGE_VALL  "
+    "HUGE_VAL_F128 HUGE_VAL_F32 HUGE_VAL_F32X HUGE_VAL_F64 HUGE_VAL_F64X INFINITY INT16_C INT16_MAX  "
+    "INT16_MIN INT16_WIDTH INT32_C INT32_MAX INT32_MIN INT32_WIDTH INT64_C INT64_MAX INT64_MIN INT64_WIDTH  "
+    "INT8_C INT8_MAX INT8_MIN INT8_WIDTH INTMAX_C INTMAX_MAX INTMAX_MIN INTMAX_WIDTH INTPTR_MAX INTPTR_MIN  "
+    "INTPTR_WIDTH INT_FAST16_MAX INT_FAST16_MIN INT_FAST16_WIDTH INT_FAST32_MAX INT_FAST32_MIN  "
+    "INT_FAST32_WIDTH INT_FAST64_MAX INT_FAST64_MIN INT_FAST64_WIDTH INT_FAST8_MAX INT_FAST8_MIN  "
+    "INT_FAST8_WIDTH INT_LEAST16_MAX INT_LEAST16_MIN INT_LEAST16_WIDTH INT_LEAST32_MAX INT_LEAST32_MIN  "
+    "INT_LEAST32_WIDTH INT_LEAST64_MAX INT_LEAST64_MIN INT_LEAST64_WIDTH INT_LEAST8_MAX INT_LEAST8_MIN  "
+    "INT_LEAST8_WIDTH LITTLE_ENDIAN MATH_ERREXCEPT MATH_ERRNO MAXFLOAT MB_CUR_MAX M_1_PI M_1_PIf M_1_PIf128  "
+    "M_1_PIf32 M_1_PIf32x M_1_PIf64 M_1_PIf64x M_1_PIl M_2_PI M_2_PIf M_2_PIf128 M_2_PIf32 M_2_PIf32x  "
+    "M_2_PIf64 M_2_PIf64x M_2_PIl M_2_SQRTPI M_2_SQRTPIf M_2_SQRTPIf128 M_2_SQRTPIf32 M_2_SQRTPIf32x  "
+    "M_2_SQRTPIf64 M_2_SQRTPIf64x M_2_SQRTPIl M_E M_Ef M_Ef128 M_Ef32 M_Ef32x M_Ef64 M_Ef64x M_El M_LN10  "
+    "M_LN10f M_LN10f128 M_LN10f32 M_LN10f32x M_LN10f64 M_LN10f64x M_LN10l M_LN2 M_LN2f M_LN2f128 M_LN2f32  "
+    "M_LN2f32x M_LN2f64 M_LN2f64x M_LN2l M_LOG10E M_LOG10Ef M_LOG10Ef128 M_LOG10Ef32 M_LOG10Ef32x  "
+    "M_LOG10Ef64 M_LOG10Ef64x M_LOG10El M_LOG2E M_LOG2Ef M_LOG2Ef128 M_LOG2Ef32 M_LOG2Ef32x M_LOG2Ef64  "
+    "M_LOG2Ef64x M_LOG2El M_PI M_PI_2 M_PI_2f M_PI_2f128 M_PI_2f32 M_PI_2f32x M_PI_2f64 M_PI_2f64x M_PI_2l  "
+    "M_PI_4 M_PI_4f M_PI_4f128 M_PI_4f32 M_PI_4f32x M_PI_4f64 M_PI_4f64x M_PI_4l M_PIf M_PIf128 M_PIf32  "
+    "M_PIf32x M_PIf64 M_PIf64x M_PIl M_SQRT1_2 M_SQRT1_2f M_SQRT1_2f128 M_SQRT1_2f32 M_SQRT1_2f32x  "
+    "M_SQRT1_2f64 M_SQRT1_2f64x M_SQRT1_2l M_SQRT2 M_SQRT2f M_SQRT2f128 M_SQRT2f32 M_SQRT2f32x M_SQRT2f64  "
+    "M_SQRT2f64x M_SQRT2l NAN NFDBITS NULL PDP_ENDIAN PTRDIFF_MAX PTRDIFF_MIN PTRDIFF_WIDTH RAND_MAX  "
+    "SIG_ATOMIC_MAX SIG_ATOMIC_MIN SIG_ATOMIC_WIDTH SIZE_MAX SIZE_WIDTH SNAN SNANF SNANF128 SNANF32 SNANF32X  "
+    "SNANF64 SNANF64X SNANL UINT16_C UINT16_MAX UINT16_WIDTH UINT32_C UINT32_MAX UINT32_WIDTH UINT64_C  "
+    "UINT64_MAX UINT64_WIDTH UINT8_C UINT8_MAX UINT8_WIDTH UINTMAX_C UINTMAX_MAX UINTMAX_WIDTH UINTPTR_MAX  "
+    "UINTPTR_WIDTH UINT_FAST16_MAX UINT_FAST16_WIDTH UINT_FAST32_MAX UINT_FAST32_WIDTH UINT_FAST64_MAX  "
+    "UINT_FAST64_WIDTH UINT_FAST8_MAX UINT_FAST8_WIDTH UINT_LEAST16_MAX UINT_LEAST16_WIDTH UINT_LEAST32_MAX  "
+    "UINT_LEAST32_WIDTH UINT_LEAST64_MAX UINT_LEAST64_WIDTH UINT_LEAST8_MAX UINT_LEAST8_WIDTH WCHAR_MAX  "
+    "WCHAR_MIN WCHAR_WIDTH WCONTINUED WEOF WEXITED WEXITSTATUS WIFCONTINUED WIFEXITED WIFSIGNALED WIFSTOPPED  "
+    "WINT_MAX WINT_MIN WINT_WIDTH WNOHANG WNOWAIT WSTOPPED WSTOPSIG WTERMSIG WUNTRACED alloca be16toh  "
+    "be32toh be64toh htobe16 htobe32 htobe64 htole16 htole32 htole64 issubnormal le16toh le32toh le64toh  "
+    "math_errhandling";
 // Math functions a target may call unqualified; a parameter of the same name would hide them.
 const char* kMath =
     "sqrt pow sin cos tan asin acos atan atan2 exp log abs fabs sinh cosh tanh floor ceil min max select "
@@ -42,7 +77,8 @@ const char* kGlsl =
     "else subroutine in out inout float double int void bool true false invariant precise discard return "
     "lowp mediump highp precision struct common partition active asm class union enum typedef template this "
     "resource goto inline noinline public static extern external interface long short half fixed unsigned "
-    "superp input output filter sizeof cast namespace using sampler3DRect main gl_Position";
+    "superp input output filter sizeof cast namespace using sampler3DRect main gl_Position uint row_major "
+    "column_major packed std140 std430 shared demote";
 const char* kHlsl =
     "AppendStructuredBuffer asm asm_fragment BlendState bool break Buffer ByteAddressBuffer case cbuffer "
     "centroid class column_major compile compile_fragment CompileShader const continue ComputeShader "
@@ -58,7 +94,11 @@ const char* kHlsl =
     "TextureCubeArray true typedef triangle triangleadj TriangleStream uint uniform unorm unsigned vector "
     "vertexfragment VertexShader void volatile while auto case catch char const_cast delete dynamic_cast enum "
     "explicit friend goto long mutable new operator private protected public reinterpret_cast short signed "
-    "sizeof static_cast template this throw try typename union using virtual";
+    "sizeof static_cast template this throw try typename union using virtual layout sampler1D sampler2D "
+    "sampler3D samplerCUBE sampler_state texture1D texture2D texture3D textureCUBE ConstantBuffer TextureBuffer "
+    "RasterizerOrderedBuffer RasterizerOrderedByteAddressBuffer RasterizerOrderedStructuredBuffer "
+    "RasterizerOrderedTexture1D RasterizerOrderedTexture1DArray RasterizerOrderedTexture2D "
+    "RasterizerOrderedTexture2DArray RasterizerOrderedTexture3D SubpassInput SubpassInputMS globallycoherent";
 const char* kOpenCl =
     "__kernel kernel __global global __local local __constant constant __private private __read_only read_only "
     "__write_only write_only __read_write read_write uchar ushort uint ulong half quad bool image2d_t image3d_t "
@@ -77,7 +117,10 @@ const char* kJs =
 const char* kRust =
     "as async await break const continue crate dyn else enum extern false fn for if impl in let loop match mod "
     "move mut pub ref return self Self static struct super trait true type unsafe use where while abstract "
-    "become box do final macro override priv try typeof unsized virtual yield union _ f32 f64";
+    "become box do final macro override priv try typeof unsized virtual yield union _ f32 f64 "
+    // The prelude: a variant or constant as a parameter name is a pattern, not a new binding.
+    "None Some Ok Err Option Result Box String Vec ToString ToOwned Copy Clone Default Drop Eq PartialEq Ord "
+    "PartialOrd Fn FnMut FnOnce Send Sized Sync Unpin Iterator IntoIterator Extend From Into AsRef AsMut";
 
 // WGSL keywords and reserved words (WGSL spec, sections 15.1 and 15.2).
 const char* kWgslReserved =
@@ -113,6 +156,7 @@ void add_vectors(std::set<std::string>& s, const char* prefixes, bool matrices) 
 std::set<std::string> reserved_words(const std::string& target) {
   std::set<std::string> s;
   if (target == "cpp" || target == "cuda" || target == "opencl") add(s, kC);
+  if (target == "cpp" || target == "cuda") add(s, kGlibcMacros);
   if (target == "cuda") add(s, kCuda);
   if (target == "glsl" || target == "glsl-es") {
     add(s, kGlsl);
