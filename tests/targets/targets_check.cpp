@@ -984,9 +984,13 @@ void run_dot(const std::vector<Case>& cases, const std::string& gendir, const st
 // Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
 void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::string src = "use std::io::{self, BufRead, Write};\n\n";
-  for (const auto& c : cases) src += "#[path = \"" + gendir + "/" + c.name + ".rs\"]\nmod k_" + c.name + ";\n";
-  for (const auto& c : cases) {
-    src += "\nfn run_" + c.name + "(single: bool, a: &[f64]) -> Vec<f64> {\n  let mut r = Vec::new();\n";
+  // Modules and functions by index: a script's name may start with _ (a stem with a leading digit).
+  for (size_t i = 0; i < cases.size(); ++i)
+    src += "#[path = \"" + gendir + "/" + cases[i].name + ".rs\"]\nmod k" + std::to_string(i) + ";\n";
+  for (size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    const std::string mod = "k" + std::to_string(ci);
+    src += "\nfn run" + std::to_string(ci) + "(single: bool, a: &[f64]) -> Vec<f64> {\n  let mut r = Vec::new();\n";
     for (std::string T : {"f32", "f64"}) {
       src += std::string(T == "f32" ? "  if single {\n" : "  } else {\n");
       std::string args, uargs;
@@ -1005,7 +1009,7 @@ void run_rust(const std::vector<Case>& cases, const std::string& gendir, const s
         list += (list.empty() ? "" : ", ") + std::string("&") + v;
       }
       if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
-        src += "    let mut prep = [0.0 as " + T + "; " + std::to_string(c.prepared) + "];\n    k_" + c.name +
+        src += "    let mut prep = [0.0 as " + T + "; " + std::to_string(c.prepared) + "];\n    " + mod +
                "::" + spelt(c, "rust", c.name + "_prepare") + "_" + T + "(" + uargs + ", &mut prep);\n";
         args = "&prep" + (args.empty() ? "" : ", " + args);
       }
@@ -1016,13 +1020,13 @@ void run_rust(const std::vector<Case>& cases, const std::string& gendir, const s
         args += ", &mut " + v;
         outs += "    r.extend(" + v + ".iter().map(|&v| v as f64));\n";
       }
-      src += "    k_" + c.name + "::" + spelt(c, "rust", c.name) + "_" + T + "(" + args + ");\n" + outs;
+      src += "    " + mod + "::" + spelt(c, "rust", c.name) + "_" + T + "(" + args + ");\n" + outs;
     }
     src += "  }\n  r\n}\n";
   }
   src += "\nfn main() {\n  let args: Vec<String> = std::env::args().collect();\n  let single = args[2] == \"f32\";\n"
          "  let f: fn(bool, &[f64]) -> Vec<f64> = match args[1].as_str() {\n";
-  for (const auto& c : cases) src += "    \"" + c.name + "\" => run_" + c.name + ",\n";
+  for (size_t i = 0; i < cases.size(); ++i) src += "    \"" + cases[i].name + "\" => run" + std::to_string(i) + ",\n";
   src += "    _ => panic!(\"unknown kernel\"),\n  };\n  let stdin = io::stdin();\n"
          "  let mut out = io::BufWriter::new(io::stdout());\n  for line in stdin.lock().lines() {\n"
          "    let line = line.unwrap();\n    if line.is_empty() { continue; }\n"

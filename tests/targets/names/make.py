@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes keywords_K.clu: every reserved word of every target (one per line on stdin, as printed by
-`gen_test_names "[print-words]"`) is an input of one script and an output of the next. scripts of at most 52
+`gen_test_names "[.print-words]"`) is an input of one script and an output of the next. scripts of at most 52
 words each: WebGL 2 captures at most 15 vec4 varyings, so a script has at most 60 output blades."""
 import sys
 
