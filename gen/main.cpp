@@ -295,7 +295,9 @@ front::SourceFile load_script(const std::string& path) {
   if (path != "-") return front::SourceFile::load(path);
   std::ostringstream text;
   text << std::cin.rdbuf();
-  return front::SourceFile("<stdin>", text.str());
+  front::SourceFile file("<stdin>", text.str());
+  file.check();
+  return file;
 }
 
 // A kernel with uniform inputs: the staged form (opt/stage.hpp) in every mode.
@@ -350,7 +352,14 @@ int run(const Options& o) {
     std::cerr << (m.find(": error: ") != std::string::npos ? "" : "cgagen: error: ") << m << "\n";
     return 1;
   }
-  front::SourceFile file = load_script(o.script);
+  std::optional<front::SourceFile> loaded;
+  try {
+    loaded.emplace(load_script(o.script));
+  } catch (const front::FileError& e) {  // a directory, a binary file, an over-long line: one located line
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  const front::SourceFile& file = *loaded;
   const bool from_stdin = o.script == "-";
   try {
     symbolic::NodeCacheScope caches;  // shared by the expander and every optimization of this script

@@ -1030,7 +1030,9 @@ class Expander {
           case front::BinaryOp::Add: return a + b;
           case front::BinaryOp::Sub: return a - b;
           case front::BinaryOp::Geo: return a * b;
-          case front::BinaryOp::Outer: return a ^ b;
+          case front::BinaryOp::Outer:
+            if (auto w = hints::outer_with_number(e)) hints::warn_once(kernel_.warnings, e.loc, *w);
+            return a ^ b;
           case front::BinaryOp::Inner: return inner(a, b);
           case front::BinaryOp::Div: return divide(a, b, *e.args.at(1));
         }

@@ -111,4 +111,33 @@ std::string for_call(const std::string& name, const std::vector<std::string>& fu
   return "";
 }
 
+namespace {
+// The number an operand is as written ("2", "-0.5"), or "".
+std::string number_text(const front::Expr& e) {
+  if (e.kind == front::Expr::Kind::Number) return e.text;
+  if (e.kind == front::Expr::Kind::Unary && e.unary_op == front::UnaryOp::Negate && !e.args.empty() &&
+      e.args[0]->kind == front::Expr::Kind::Number)
+    return "-" + e.args[0]->text;
+  return "";
+}
+}  // namespace
+
+std::optional<std::string> outer_with_number(const front::Expr& e) {
+  if (e.kind != front::Expr::Kind::Binary || e.binary_op != front::BinaryOp::Outer || e.args.size() != 2)
+    return std::nullopt;
+  // Only a number on the right: Gaalop's scripts scale on the left on purpose (1 - 0.5^t^einf).
+  const std::string n = number_text(*e.args[1]);
+  if (n.empty()) return std::nullopt;
+  const front::Expr& other = *e.args[0];
+  const std::string x = other.kind == front::Expr::Kind::Name ? other.text : "X";
+  return "'" + x + "^" + n + "' is the outer product with the number " + n + ", i.e. " + n + "*" + x +
+         "; for a power write " + x + "*" + x + (n == "2" ? "" : "*...");
+}
+
+void warn_once(std::vector<front::Warning>& warnings, front::SourceLoc loc, const std::string& message) {
+  for (const auto& w : warnings)
+    if (w.loc.line == loc.line && w.loc.col == loc.col && w.message == message) return;
+  warnings.push_back({loc, message});
+}
+
 }  // namespace cgagen::hints

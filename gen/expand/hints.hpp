@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "front/ast.hpp"
+#include "front/diagnostics.hpp"
+
 namespace cgagen::hints {
 
 // Optimal string alignment distance (Levenshtein plus adjacent transpositions).
@@ -30,5 +33,13 @@ std::optional<std::string> for_read(const std::string& name, const std::vector<s
 // An unknown function: "; did you mean 'X'?" for a misspelt function, or what cgagen writes for another
 // library's name ("; cgagen writes the reverse as ~X"), or "" when nothing fits.
 std::string for_call(const std::string& name, const std::vector<std::string>& functions);
+
+// `X ^ 2`: the outer product with a number scales (R^2 is 2R), where a power R*R was likely meant. The
+// warning's text, or none when the right operand of the ^ expression E is no number (`0.5^t` on the left
+// is Gaalop's way to scale).
+std::optional<std::string> outer_with_number(const front::Expr& e);
+
+// Adds a warning unless one with the same location and text is there (a macro body runs once per call).
+void warn_once(std::vector<front::Warning>& warnings, front::SourceLoc loc, const std::string& message);
 
 }  // namespace cgagen::hints

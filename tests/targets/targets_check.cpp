@@ -981,7 +981,9 @@ void run_dot(const std::vector<Case>& cases, const std::string& gendir, const st
   }
 }
 
-// Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
+// Rust: one crate over every script's module (#[path]), one rustc run at -C opt-level=0 (the names scripts' many
+// parameters take rustc minutes to optimize; the numbers do not depend on the level); `drive NAME f32|f64` reads
+// rows on stdin.
 void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::string src = "use std::io::{self, BufRead, Write};\n\n";
   // Modules and functions by index: a script's name may start with _ (a stem with a leading digit).
@@ -1035,7 +1037,7 @@ void run_rust(const std::vector<Case>& cases, const std::string& gendir, const s
          "    writeln!(out, \"{}\", v.join(\" \")).unwrap();\n  }\n}\n";
   std::ofstream(work + "/drive.rs") << src;
   auto t0 = std::chrono::steady_clock::now();
-  std::string cmd = std::string(RUSTC) + " --edition 2021 -C opt-level=1 -o " + work + "/drive " + work +
+  std::string cmd = std::string(RUSTC) + " --edition 2021 -C opt-level=0 -o " + work + "/drive " + work +
                     "/drive.rs 2> " + work + "/rustc.log";
   int rc = sh(cmd);
   std::string log = slurp(work + "/rustc.log");
