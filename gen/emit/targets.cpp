@@ -22,7 +22,7 @@ std::string latex_text(const std::string& s) {
   return out;
 }
 std::string latex_ident(const std::string& s) {
-  if (s.size() == 1) return s;
+  if (s.size() == 1 && s != "_") return s;  // a one-letter name in math italics; "_" would start a subscript
   return "\\mathit{" + latex_text(s) + "}";
 }
 
