@@ -23,7 +23,7 @@ std::string located(const std::string& path, size_t line, size_t col, const std:
 }
 
 std::string hex_byte(unsigned char c) {
-  static const char* digits = "0123456789abcdef";
+  static const char* digits = "0123456789ABCDEF";  // as the lexer prints a byte
   return std::string("\\x") + digits[c >> 4] + digits[c & 15];
 }
 
@@ -43,19 +43,34 @@ size_t utf8_length(const std::string& text, size_t i) {
 
 }  // namespace
 
+// A NUL byte anywhere, or a byte that is no UTF-8 outside a comment (scripts from other tools may have
+// Latin-1 in their comments, which the lexer skips), makes a binary file.
 void SourceFile::check() const {
   size_t line = 1, line_start = 0;
+  enum { Code, LineComment, BlockComment } state = Code;
   for (size_t i = 0; i < text_.size();) {
     const unsigned char c = static_cast<unsigned char>(text_[i]);
     if (c == '\n') {
       ++line, line_start = ++i;
+      if (state == LineComment) state = Code;
+      continue;
+    }
+    if (state == Code && c == '/' && i + 1 < text_.size() && (text_[i + 1] == '/' || text_[i + 1] == '*')) {
+      state = text_[i + 1] == '/' ? LineComment : BlockComment;
+      i += 2;
+      continue;
+    }
+    if (state == BlockComment && c == '*' && i + 1 < text_.size() && text_[i + 1] == '/') {
+      state = Code;
+      i += 2;
       continue;
     }
     if (i - line_start >= kMaxLineBytes)
       throw FileError(located(path_, line, i - line_start + 1, "line " + std::to_string(line) + " is longer than " +
                                                                    std::to_string(kMaxLineBytes) +
                                                                    " bytes; a script's lines are shorter"));
-    const size_t n = c == 0 ? 0 : utf8_length(text_, i);
+    size_t n = c == 0 ? 0 : utf8_length(text_, i);
+    if (n == 0 && c != 0 && state != Code) n = 1;
     if (n == 0)
       throw FileError(located(path_, line, i - line_start + 1,
                               "not a text file: byte " + hex_byte(c) + (c == 0 ? "" : ", which is not UTF-8") +

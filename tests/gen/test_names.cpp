@@ -66,7 +66,7 @@ TEST_CASE("a changed name never meets another name of the file", "[names]") {
   CHECK(distinct.size() == m.size());
 }
 
-TEST_CASE("--name takes an identifier, the stem is made one", "[names][cli]") {
+TEST_CASE("the --name value must be an identifier, the stem is made one", "[names][cli]") {
   const std::string dir = std::string(CGA_BINARY_DIR) + "/names";
   std::filesystem::create_directories(dir);
   const std::string text = "?new = float + int * double;\n?default = this;\n";
