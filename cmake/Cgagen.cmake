@@ -17,7 +17,8 @@
 #                                               # name that silently became an input fails the build)
 #
 # For each script NAME.clu and each target it writes OUTPUT_DIR/NAME<ext> (.hpp, .glsl, .cuh, .py, ...: the
-# target's extension from cmake/CgagenTargets.cmake, the table `cgagen --target list` prints), plus
+# target's extension from cmake/CgagenTargets.cmake, the table `cgagen --target list` prints; NAME: the stem
+# as an identifier, `my-kernel.clu` -> my_kernel, `2pga.clu` -> _2pga, also the function's name), plus
 # OUTPUT_DIR/NAME.stats (the --stats text), with dependencies on the script, the templates and the cgagen
 # tool. <target> is an INTERFACE library whose include directory is OUTPUT_DIR; linking it builds the files
 # first. Call it several times with the same <target> to give scripts different options (packing differs
@@ -95,7 +96,10 @@ function(cgagen_generate target)
   set(_outputs)
   foreach(_script ${CG_SCRIPTS})
     get_filename_component(_script ${_script} ABSOLUTE)
+    # The function and file name: the stem as cgagen spells it (a byte other than a letter, digit or _
+    # becomes _, a leading digit gets a _ in front: my-kernel.clu -> my_kernel.hpp, my_kernel()).
     get_filename_component(_name ${_script} NAME_WE)
+    string(MAKE_C_IDENTIFIER "${_name}" _name)
     if(CG_NAME)
       set(_name ${CG_NAME})
     endif()

@@ -13,6 +13,7 @@
 
 #include "algebra/algebra.hpp"
 #include "emit/emit.hpp"
+#include "emit/names.hpp"
 #include "expand/expand.hpp"
 #include "front/diagnostics.hpp"
 #include "front/parser.hpp"
@@ -33,11 +34,14 @@ standard input (diagnostics then name <stdin>, the function is named kernel unle
 options:
   --algebra NAME|FILE     the geometric algebra (default cga): 2d 3d 2dpga 3dpga cra sta cga gac qga
                           dcga ccga, or a Gaalop definition.csv file
-  --target NAME           output language (default cpp); --target list prints the targets
+  --target NAME           output language (default cpp); --target list prints the targets,
+                          --target list -v one line each with extension, toolchain and summary
   --target-extension NAME print the file extension of target NAME
   -O0 | -O1 | -O2         optimization level (default -O2)
   -o FILE                 write the output to FILE (default: standard output)
-  --name NAME             function name (default: the script's file stem)
+  --name NAME             function name: letters, digits and _, not starting with a digit (default:
+                          the script's file stem, other bytes as _, a leading digit after a _); a
+                          target's reserved word gets a trailing _ in that target
   --templates DIR         emitter templates (default: ../share/cgagen/templates next to the cgagen
                           executable when installed, else the source tree's templates/)
   --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float; a staged
@@ -123,8 +127,17 @@ Options parse_args(int argc, char** argv) {
         std::exit(0);
       } else if (a == "--target") {
         std::string t = value(i, a);
-        if (t == "list") {  // the table of targets (gen/emit/targets.cpp), one name per line
-          for (const auto& s : emit::targets()) std::cout << s.name << "\n";
+        if (t == "list") {  // the table of targets (gen/emit/targets.cpp), one name per line; -v: details
+          const bool verbose = i + 1 < args.size() && args[i + 1] == "-v";
+          for (const auto& s : emit::targets()) {
+            std::cout << s.name;
+            if (verbose) {
+              std::cout << std::string(s.name.size() < 11 ? 11 - s.name.size() : 1, ' ') << s.extension
+                        << std::string(s.extension.size() < 6 ? 6 - s.extension.size() : 1, ' ') << s.summary
+                        << "; checked with " << s.toolchain;
+            }
+            std::cout << "\n";
+          }
           std::exit(0);
         }
         o.emit.target = emit::parse_target(t);
@@ -137,6 +150,8 @@ Options parse_args(int argc, char** argv) {
         o.output = value(i, a);
       } else if (a == "--name") {
         o.name = value(i, a);
+        if (!emit::is_identifier(o.name))
+          throw UsageError("--name '" + o.name + "' is not a name: use letters, digits and _, not starting with a digit");
       } else if (a == "--templates") {
         o.emit.template_dir = value(i, a);
       } else if (a == "--pack") {
@@ -280,7 +295,9 @@ front::SourceFile load_script(const std::string& path) {
   if (path != "-") return front::SourceFile::load(path);
   std::ostringstream text;
   text << std::cin.rdbuf();
-  return front::SourceFile("<stdin>", text.str());
+  front::SourceFile file("<stdin>", text.str());
+  file.check();
+  return file;
 }
 
 // A kernel with uniform inputs: the staged form (opt/stage.hpp) in every mode.
@@ -335,7 +352,14 @@ int run(const Options& o) {
     std::cerr << (m.find(": error: ") != std::string::npos ? "" : "cgagen: error: ") << m << "\n";
     return 1;
   }
-  front::SourceFile file = load_script(o.script);
+  std::optional<front::SourceFile> loaded;
+  try {
+    loaded.emplace(load_script(o.script));
+  } catch (const front::FileError& e) {  // a directory, a binary file, an over-long line: one located line
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  const front::SourceFile& file = *loaded;
   const bool from_stdin = o.script == "-";
   try {
     symbolic::NodeCacheScope caches;  // shared by the expander and every optimization of this script
@@ -346,7 +370,8 @@ int run(const Options& o) {
       write_text(o.output, out);
       return 0;
     }
-    std::string name = !o.name.empty() ? o.name : from_stdin ? "kernel" : std::filesystem::path(o.script).stem().string();
+    std::string name = !o.name.empty() ? o.name : from_stdin ? "kernel"
+                                                       : emit::c_identifier(std::filesystem::path(o.script).stem().string());
     Kernel kernel = expand(script, name);
     for (const auto& w : kernel.warnings)
       std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),

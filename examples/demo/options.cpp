@@ -76,6 +76,11 @@ Options parse_options(int argc, const char* const* argv, const std::string& defa
     auto value = [&]() -> std::string {
       if (has_inline) return inline_value;
       if (i + 1 >= argc) throw UsageError(name + " needs a value");
+      // "--model --no-pictures": the next word is an option, not the value (a value that starts with "--"
+      // can still be given as --opt=--value).
+      const std::string next = argv[i + 1];
+      if (next.rfind("--", 0) == 0 && next.size() > 2)
+        throw UsageError(name + " needs a value, got the option '" + next + "' (write " + name + "=VALUE)");
       return argv[++i];
     };
     auto no_value = [&]() {

@@ -1,6 +1,7 @@
 // The emitter (see emit.hpp): one code path driven by the target's Syntax record (gen/emit/targets.cpp); GLSL packing
 // and the dot dataflow graph are the only target-specific branches. Expressions are printed by opt/lower.hpp's rules.
 #include "emit/emit.hpp"
+#include "emit/names.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -295,7 +296,6 @@ std::string indent(const std::string& body) { return body; }
 
 namespace {
 
-std::string as_ident(const Syntax& sx, const std::string& s) { return sx.ident ? sx.ident(s) : s; }
 std::string as_text(const Syntax& sx, const std::string& s) { return sx.text ? sx.text(s) : s; }
 
 // The dot target: the program's dataflow, one node per input blade, temporary and output blade, an edge
@@ -383,6 +383,22 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     if (!found) throw std::runtime_error("--return names '" + options.return_output + "', which is not an output");
   }
 
+  // Every name of the file spelt once (emit/names.hpp), so that a prepare function and its body agree and a
+  // changed name cannot meet another.
+  std::set<std::string> raw_names;
+  for (const opt::Program* pr : programs) {
+    raw_names.insert(pr->name);
+    for (const auto& in : pr->inputs) raw_names.insert(in.name);
+    for (const auto& o : pr->outputs) raw_names.insert(o.name);
+    for (const auto& t : pr->temps) raw_names.insert(t.name);
+  }
+  const std::map<std::string, std::string> spelt = spellings(sx, raw_names);
+  auto id = [&](const std::string& name) { return spelt.at(name); };
+  // The function's name (with a precision's suffix); LaTeX prints it as text.
+  auto fn_name = [&](const std::string& name, const std::string& suffix = "") {
+    return sx.ident ? as_text(sx, name + suffix) : id(name) + suffix;
+  };
+
   // One program's functions (one per precision), blade lists and input comments.
   struct Piece {
     std::string functions, blade_lists, inputs_doc;
@@ -397,7 +413,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   CanonicalKeys keys(canon);
 
   // The block / buffer that holds the prepared values (Pack::Block, Pack::Buffer), named after the body.
-  const std::string prepared_store = program.name + "_prepared";
+  const std::string prepared_store = spell(sx, id(program.name) + "_prepared");
   size_t prepared_k = 0;
   for (const auto& in : program.inputs)
     if (in.name == "prepared") prepared_k = in.symbols.size();
@@ -406,22 +422,22 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     if (p == Pack::Block) return prepared_store + "[" + std::to_string(k / 4) + "][" + std::to_string(k % 4) + "]";
     if (p == Pack::Buffer)
       return prepared_store + "[prepared_index * " + std::to_string(prepared_k) + " + " + std::to_string(k) + "]";
-    if (p != Pack::Array) return element(name, k, p);
+    if (p != Pack::Array) return element(id(name), k, p);
     const std::string& pattern = output && !sx.out_element.empty() ? sx.out_element : sx.element;
-    return fill_pattern(pattern, {{"name", as_ident(sx, name)}, {"k", std::to_string(k)}});
+    return fill_pattern(pattern, {{"name", id(name)}, {"k", std::to_string(k)}});
   };
 
   // Code names of the symbols.
   opt::SymbolNames code;
   for (const auto& in : program.inputs) {
     if (!in.is_multivector) {
-      code[in.symbols.at(0)] = as_ident(sx, in.name);
+      code[in.symbols.at(0)] = id(in.name);
       continue;
     }
     Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
     for (size_t k = 0; k < in.symbols.size(); ++k) code[in.symbols[k]] = elem(in.name, k, p);
   }
-  for (const auto& t : program.temps) code[t.sym] = as_ident(sx, t.name);
+  for (const auto& t : program.temps) code[t.sym] = id(t.name);
 
   auto function_text = [&](const Precision& prec) {
     const std::string& T = prec.type;
@@ -432,7 +448,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     std::string splat;
     for (const auto& in : program.inputs) {
       std::map<std::string, std::string> v{
-          {"T", T}, {"name", as_ident(sx, in.name)}, {"n", std::to_string(in.symbols.size())}};
+          {"T", T}, {"name", id(in.name)}, {"n", std::to_string(in.symbols.size())}};
       splat += (splat.empty() ? "" : ", ") + fill_pattern(in.is_multivector ? sx.splat_mv : sx.splat_scalar, v);
       if (!in.is_multivector) {
         add_param(fill_pattern(sx.scalar_param, v));
@@ -444,7 +460,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
         add_param("int prepared_index");
         continue;
       }
-      add_param(p == Pack::Array ? fill_pattern(sx.mv_param, v) : std::string("in ") + pack_type(p) + " " + in.name);
+      add_param(p == Pack::Array ? fill_pattern(sx.mv_param, v) : std::string("in ") + pack_type(p) + " " + id(in.name));
     }
     std::string return_type = "void";
     std::string body;
@@ -454,25 +470,25 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
       Pack p = sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array;
-      std::map<std::string, std::string> v{{"T", T}, {"name", as_ident(sx, o.name)}, {"n", std::to_string(n)}};
+      std::map<std::string, std::string> v{{"T", T}, {"name", id(o.name)}, {"n", std::to_string(n)}};
       if (sx.out_param.empty()) {
         body += line(fill_pattern(sx.out_decl, v));
         items += (items.empty() ? "" : ", ") + fill_pattern(sx.return_item, v);
       } else if (sx.glsl_pack && o.name == options.return_output) {
-        std::string decl = p == Pack::Array ? T + " " + o.name + "[" + std::to_string(n) + "]"
-                                            : std::string(pack_type(p)) + " " + o.name;
+        std::string decl = p == Pack::Array ? T + " " + id(o.name) + "[" + std::to_string(n) + "]"
+                                            : std::string(pack_type(p)) + " " + id(o.name);
         return_type = p == Pack::Array ? "float[" + std::to_string(n) + "]" : pack_type(p);
         body += line(decl + ";");
-        ret_line = line("return " + o.name + ";");
+        ret_line = line("return " + id(o.name) + ";");
       } else if (p != Pack::Array) {
-        add_param(std::string("out ") + pack_type(p) + " " + o.name);
+        add_param(std::string("out ") + pack_type(p) + " " + id(o.name));
       } else {
         add_param(fill_pattern(sx.out_param, v));
       }
     }
     if (!items.empty()) ret_line = line(fill_pattern(sx.return_stmt, {{"items", items}}));
     for (const auto& t : program.temps)
-      body += line(fill_pattern(sx.temp, {{"T", T}, {"name", as_ident(sx, t.name)}, {"value", pr.print(t.value)}}));
+      body += line(fill_pattern(sx.temp, {{"T", T}, {"name", id(t.name)}, {"value", pr.print(t.value)}}));
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
       Pack p = sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array;
@@ -482,7 +498,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
                                               {"blade", as_text(sx, label(o.name, k, o.slots[k].blade))},
                                               {"c", sx.comment}}));
       for (size_t k = n; p != Pack::Array && p != Pack::Float && k < pack_capacity(p); ++k)
-        body += line(element(o.name, k, p) + " = 0.0;  // (padding)");
+        body += line(element(id(o.name), k, p) + " = 0.0;  // (padding)");
     }
     body += ret_line;
     if (!body.empty() && body.back() == '\n') body.pop_back();
@@ -500,7 +516,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     }
     return prec.before + store + fill_template(fn_tmpl,
                                        {{"return_type", return_type},
-                                        {"name", as_text(sx, program.name + prec.fn_suffix)},
+                                        {"name", fn_name(program.name, prec.fn_suffix)},
                                         {"params", params},
                                         {"body", indent(body)},
                                         {"type", T},
@@ -523,8 +539,9 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     for (size_t k = 0; k < o.slots.size(); ++k)
       list += std::string(k ? ", " : "") + sx.blade_quote + as_text(sx, label(o.name, k, o.slots[k].blade)) +
               sx.blade_quote;
-    blade_lists += fill_pattern(sx.blade_list, {{"fn", as_text(sx, program.name)},
-                                                {"out", as_ident(sx, o.name)},
+    // NAME_OUT_blades from the spelt names: distinct outputs give distinct lists.
+    blade_lists += fill_pattern(sx.blade_list, {{"fn", fn_name(program.name)},
+                                                {"out", id(o.name)},
                                                 {"n", std::to_string(o.slots.size())},
                                                 {"list", list},
                                                 {"c", sx.comment}}) +
@@ -555,7 +572,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   return fill_template(file_tmpl,
                        {{"script", as_text(sx, options.script_name)},
                         {"level", std::to_string(static_cast<int>(program.level))},
-                        {"name", as_text(sx, program.name)},
+                        {"name", fn_name(program.name)},
                         {"inputs", inputs_doc},
                         {"blade_lists", blade_lists},
                         {"functions", functions}},

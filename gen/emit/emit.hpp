@@ -9,6 +9,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@ struct Syntax {
   std::string name;                    // --target NAME, the folder under templates/
   std::string extension;               // ".hpp"; the file template is templates/NAME/file<ext>.in
   std::string summary;                 // one line for `--target list -v` and the docs
+  std::string toolchain;               // what tests/targets compiles or runs it with (`--target list -v`)
   Kind kind = Kind::Code;
   std::vector<Precision> precisions;   // one function per entry, in this order, joined by a blank line
   std::string single_suffix;           // literal suffix in single precision ("f")
@@ -63,7 +65,12 @@ struct Syntax {
   std::string blade_list;              // one line per output: ${fn} ${out} ${n} ${list}
   std::string blade_quote = "\"";      // around each blade name in ${list}
   bool glsl_pack = false;              // --pack / --return apply
-  std::string (*ident)(const std::string&) = nullptr;  // identifier spelling (LaTeX), null: as is
+  // Identifiers (emit/names.hpp): words a name must not be, prefixes it must not start with, and whether
+  // "__" is reserved anywhere in a name (then a run of underscores is spelt as one).
+  std::set<std::string> reserved;
+  std::vector<std::string> reserved_prefixes;
+  bool single_underscores = false;
+  std::string (*ident)(const std::string&) = nullptr;  // identifier spelling (LaTeX), null: names.hpp's
   std::string (*text)(const std::string&) = nullptr;   // escaping of blade names in text, null: as is
 };
 

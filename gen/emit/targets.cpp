@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "emit/emit.hpp"
+#include "emit/names.hpp"
 
 namespace cgagen::emit {
 
@@ -21,33 +22,8 @@ std::string latex_text(const std::string& s) {
   return out;
 }
 std::string latex_ident(const std::string& s) {
-  if (s.size() == 1) return s;
+  if (s.size() == 1 && s != "_") return s;  // a one-letter name in math italics; "_" would start a subscript
   return "\\mathit{" + latex_text(s) + "}";
-}
-
-// WGSL: its keywords and reserved words (WGSL spec, sections 15.1 and 15.2) cannot name a variable or a
-// function; a script identifier that is one gets a trailing underscore. Other names pass unchanged.
-std::string wgsl_ident(const std::string& s) {
-  static const std::set<std::string> reserved = {
-      "alias", "break", "case", "const", "const_assert", "continue", "continuing", "default", "diagnostic",
-      "discard", "else", "enable", "false", "fn", "for", "if", "let", "loop", "override", "requires", "return",
-      "struct", "switch", "true", "var", "while", "NULL", "Self", "abstract", "active", "alignas", "alignof", "as",
-      "asm", "asm_fragment", "async", "attribute", "auto", "await", "become", "binding_array", "cast", "catch",
-      "class", "co_await", "co_return", "co_yield", "coherent", "column_major", "common", "compile",
-      "compile_fragment", "concept", "const_cast", "consteval", "constexpr", "constinit", "crate", "debugger",
-      "decltype", "delete", "demote", "demote_to_helper", "do", "dynamic_cast", "enum", "explicit", "export",
-      "extends", "extern", "external", "fallthrough", "filter", "final", "finally", "friend", "from", "fxgroup",
-      "get", "goto", "groupshared", "highp", "impl", "implements", "import", "inline", "instanceof", "interface",
-      "layout", "lowp", "macro", "macro_rules", "match", "mediump", "meta", "mod", "module", "move", "mut",
-      "mutable", "namespace", "new", "nil", "noexcept", "noinline", "nointerpolation", "non_coherent",
-      "noncoherent", "noperspective", "null", "nullptr", "of", "operator", "package", "packoffset", "partition",
-      "pass", "patch", "pixelfragment", "precise", "precision", "premerge", "priv", "protected", "pub", "public",
-      "readonly", "ref", "regardless", "register", "reinterpret_cast", "require", "resource", "restrict", "self",
-      "set", "shared", "sizeof", "smooth", "snorm", "static", "static_assert", "static_cast", "std", "subroutine",
-      "super", "target", "template", "this", "thread_local", "throw", "trait", "try", "type", "typedef", "typeid",
-      "typename", "typeof", "union", "unless", "unorm", "unsafe", "unsized", "use", "using", "varying", "virtual",
-      "volatile", "wgsl", "where", "with", "writeonly", "yield"};
-  return reserved.count(s) ? s + "_" : s;
 }
 
 Precision prec(std::string type, bool single, std::string suffix = "", std::string before = "",
@@ -140,8 +116,6 @@ std::vector<Syntax> make_targets() {
   wgsl.blade_list = "${c} ${out}: ${list}";  // WGSL has no strings: the blade lists are comments
   wgsl.blade_quote = "";
   wgsl.select = "select(${y}, ${x}, ${a} ${op} ${b})";  // WGSL: select(false value, true value, condition)
-  wgsl.ident = wgsl_ident;
-  wgsl.text = wgsl_ident;  // the function's name is the script's; blade names and file names pass unchanged
   t.push_back(wgsl);
 
   Syntax opencl = c_family();
@@ -239,6 +213,37 @@ std::vector<Syntax> make_targets() {
   dot.blade_list = "${c} ${out}: ${list}";
   dot.blade_quote = "";
   t.push_back(dot);
+
+  // Identifier rules (emit/names.hpp). C and C++ reserve "__" anywhere and "_X" at the start, GLSL "__"
+  // and "gl_", WGSL "__" at the start (a run of underscores is spelt as one there too).
+  std::vector<std::string> underscore_upper;
+  for (char c = 'A'; c <= 'Z'; ++c) underscore_upper.push_back(std::string("_") + c);
+  for (Syntax& x : t) {
+    x.reserved = reserved_words(x.name);
+    if (x.name == "cpp" || x.name == "cuda" || x.name == "opencl" || x.name == "hlsl") {
+      x.single_underscores = true;
+      x.reserved_prefixes = underscore_upper;
+    } else if (x.name == "glsl" || x.name == "glsl-es") {
+      x.single_underscores = true;
+      x.reserved_prefixes = {"gl_", "webgl_", "_webgl_"};
+    } else if (x.name == "wgsl") {
+      x.single_underscores = true;
+    }
+  }
+  const std::map<std::string, std::string> toolchains = {
+      {"cpp", "g++ (tests/kernels, tests/targets)"},
+      {"glsl", "glslangValidator, Mesa GL 4.5 (tests/gpu, tests/targets)"},
+      {"cuda", "nvcc when found; g++ with the qualifiers defined away (tests/targets)"},
+      {"hlsl", "glslangValidator -D -> SPIR-V -> spirv-cross -> Mesa GL"},
+      {"glsl-es", "glslangValidator, Chromium WebGL 2 (SwiftShader)"},
+      {"wgsl", "Chromium WebGPU (Tint, SwiftShader)"},
+      {"opencl", "PoCL (CPU) through the ICD loader"},
+      {"python", "python3 with NumPy"},
+      {"javascript", "node"},
+      {"rust", "rustc (no cargo)"},
+      {"latex", "pdflatex"},
+      {"dot", "Graphviz dot"}};
+  for (Syntax& x : t) x.toolchain = toolchains.at(x.name);
   return t;
 }
 

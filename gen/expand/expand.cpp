@@ -19,6 +19,7 @@
 #include "algebra/algebra.hpp"
 #include "expand/algebra_builtins.hpp"
 #include "expand/cost.hpp"
+#include "expand/hints.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
 #include "symbolic/node_cache.hpp"
@@ -168,29 +169,6 @@ const std::map<std::string, size_t>& builtin_arity() {
       {"coefficient", 2},  {"invert", 1},  {"Normalize", 1}, {"ExtractFirstPoint", 1}, {"ExtractSecondPoint", 1},
       {"Dual", 1}};
   return arity;
-}
-
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (size_t i = 1; i <= a.size(); ++i)
-    for (size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
-}
-
-// Is `name` close enough to `known` to be a typo of it? Names of one or two characters (x1, e1, p2) are
-// too short to tell a typo from a different variable; longer ones may differ in one edit, from 8
-// characters on in two.
-bool looks_like_typo(const std::string& name, const std::string& known) {
-  if (name == known || name.size() < 3 || known.size() < 3) return false;
-  const size_t allowed = std::min(name.size(), known.size()) >= 8 ? 2 : 1;
-  const size_t lengths = name.size() > known.size() ? name.size() - known.size() : known.size() - name.size();
-  return lengths <= allowed && edit_distance(name, known) <= allowed;
 }
 
 Multivector basis(const std::string& n) {
@@ -871,27 +849,16 @@ class Expander {
 
   // A free name becomes an input; when it is one edit from a name the script or the language knows, that
   // is more likely a typo (eiof for einf) than a new input, and silently wrong code: warn.
+  // Variables first (short ones too: Tt for T), then functions (expand/hints.hpp).
   void warn_if_typo(const std::string& n, SourceLoc loc) {
     std::vector<std::string> known = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
     known.insert(known.end(), script_names_.begin(), script_names_.end());
-    for (const auto& f : scalar_functions()) known.push_back(f.first);
-    for (const auto& f : builtin_arity()) known.push_back(f.first);
-    if (auto k = closest(n, known))
+    std::vector<std::string> functions;
+    for (const auto& f : scalar_functions()) functions.push_back(f.first);
+    for (const auto& f : builtin_arity()) functions.push_back(f.first);
+    if (auto k = hints::for_read(n, known, functions))
       kernel_.warnings.push_back({loc, "'" + n + "' is used before it is assigned and becomes an input; did you mean '" +
                                            *k + "'?"});
-  }
-
-  // Of the names in `known` that look like a typo of n, the closest: fewest edits, then the nearest length
-  // (translationCGA4 is translationCGA2 mistyped rather than translationCGA extended), then the first.
-  static std::optional<std::string> closest(const std::string& n, const std::vector<std::string>& known) {
-    std::optional<std::string> best;
-    std::pair<size_t, size_t> best_rank;
-    for (const std::string& k : known)
-      if (looks_like_typo(n, k)) {
-        std::pair<size_t, size_t> rank{edit_distance(n, k), k.size() > n.size() ? k.size() - n.size() : n.size() - k.size()};
-        if (!best || rank < best_rank) best = k, best_rank = rank;
-      }
-    return best;
   }
 
   Multivector eval(const Expr& e) {
@@ -928,7 +895,9 @@ class Expander {
           case front::BinaryOp::Add: return a + b;
           case front::BinaryOp::Sub: return a - b;
           case front::BinaryOp::Geo: return product(algebra::ProductKind::Geometric, a, b, e.loc);
-          case front::BinaryOp::Outer: return product(algebra::ProductKind::Outer, a, b, e.loc);
+          case front::BinaryOp::Outer:
+            if (auto w = hints::outer_with_number(e)) hints::warn_once(kernel_.warnings, e.loc, *w);
+            return product(algebra::ProductKind::Outer, a, b, e.loc);
           case front::BinaryOp::Inner: return product(algebra::ProductKind::Inner, a, b, e.loc);
           case front::BinaryOp::Div: return divide(a, b, *e.args.at(1));
         }
@@ -1010,11 +979,11 @@ class Expander {
     auto f1 = scalar1.find(fn);
     auto ar = arity.find(fn);
     if (f1 == scalar1.end() && ar == arity.end()) {
-      std::vector<std::string> known(script_names_.begin(), script_names_.end());
+      std::vector<std::string> known;  // functions: macros, built-ins (expand/hints.hpp)
+      for (const auto& m : macros_) known.push_back(m.first);
       for (const auto& f : scalar1) known.push_back(f.first);
       for (const auto& f : arity) known.push_back(f.first);
-      auto k = closest(fn, known);
-      throw CompileError(e.loc, "unknown function '" + fn + "'" + (k ? "; did you mean '" + *k + "'?" : ""));
+      throw CompileError(e.loc, "unknown function '" + fn + "'" + hints::for_call(fn, known));
     }
     if (!(fn == "SphereN3" && e.args.size() == 2)) check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
     for (const auto& a : e.args) args.push_back(eval(*a));

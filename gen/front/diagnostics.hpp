@@ -12,11 +12,20 @@
 
 namespace cgagen::front {
 
+// A file that is no script: a directory, a binary file (a NUL byte, invalid UTF-8), a line longer than
+// kMaxLineBytes. what() is the whole one-line diagnostic, "path:line:col: error: message".
+struct FileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+constexpr size_t kMaxLineBytes = 65536;
+
 // A script's text, kept so that diagnostics can quote the offending line.
 class SourceFile {
  public:
   SourceFile(std::string path, std::string text);
-  static SourceFile load(const std::string& path);  // throws std::runtime_error("cannot read PATH: reason")
+  // Throws std::runtime_error("cannot read PATH: reason"), or FileError for a directory or what check() refuses.
+  static SourceFile load(const std::string& path);
+  void check() const;  // throws FileError for a binary file or an over-long line
   const std::string& path() const { return path_; }
   const std::string& text() const { return text_; }
   std::string line(int line_number) const;  // 1-based, without the newline; "" when out of range
@@ -40,7 +49,10 @@ struct Warning {
   std::string message;
 };
 
-// "path:line:col: error: message\n<the source line>\n<spaces>^\n" (or "warning:" for severity "warning")
+// "path:line:col: error: message\n<the source line>\n<spaces>^\n" (or "warning:" for severity "warning").
+// The quoted line is cut to kQuoteColumns around the column ("..." marks a cut) and a control byte or a byte
+// that is no UTF-8 is printed as \xNN, so the caret stays under the column.
+constexpr size_t kQuoteColumns = 120;
 std::string format_diagnostic(const SourceFile& file, SourceLoc loc, const std::string& message,
                               const std::string& severity = "error");
 

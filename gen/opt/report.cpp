@@ -171,7 +171,9 @@ std::string format_eval(const std::vector<EvalLine>& lines) {
   char buf[64];
   for (const auto& l : lines) {
     // -0 prints as 0: the sign of a zero depends on GiNaC's term order, which varies between processes.
-    std::snprintf(buf, sizeof buf, "%.17g", l.value == 0.0 ? 0.0 : l.value);
+    // A NaN prints as nan: its sign bit is as arbitrary as a zero's (printf would say -nan for some).
+    if (std::isnan(l.value)) std::snprintf(buf, sizeof buf, "nan");
+    else std::snprintf(buf, sizeof buf, "%.17g", l.value == 0.0 ? 0.0 : l.value);
     s += l.output + " " + l.blade_name + " " + buf + "\n";
   }
   return s;

@@ -139,8 +139,12 @@ Character load_character(const std::string& path, const LoadOptions& options) {
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals;
   const aiScene* scene = importer.ReadFile(path, flags);
   if (!scene) throw LoadError(fmt::format("{}: Assimp cannot read it: {}", path, ai_error(importer)));
-  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
-    throw LoadError(fmt::format("{}: Assimp read an incomplete scene: {}", path, ai_error(importer)));
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode) {
+    // Assimp's catch-all importers take many text files (a README) for an empty scene without a word.
+    const char* e = importer.GetErrorString();
+    if (!e || !*e) throw LoadError(fmt::format("{}: not a model file Assimp can read (it found no scene in it)", path));
+    throw LoadError(fmt::format("{}: Assimp read an incomplete scene: {}", path, e));
+  }
 
   Character ch;
   ch.path = path;

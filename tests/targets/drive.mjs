@@ -8,12 +8,12 @@ import { pathToFileURL } from "node:url";
 const [meta_path, module_path, in_path, out_path] = process.argv.slice(2);
 const meta = JSON.parse(readFileSync(meta_path, "utf8"));
 const mod = await import(pathToFileURL(module_path).href);
-const body = mod[meta.name];
-if (typeof body !== "function") throw new Error(`no function ${meta.name}`);
+const body = mod[meta.fn];  // the function as JavaScript spells it (a reserved word gets a trailing _)
+if (typeof body !== "function") throw new Error(`no function ${meta.fn}`);
 // A staged kernel (meta.prepared = K > 0): NAME_prepare(uniform inputs) -> [prepared (K values)], then
 // NAME(prepared, other inputs).
-const prepare = meta.prepared ? mod[`${meta.name}_prepare`] : null;
-if (meta.prepared && typeof prepare !== "function") throw new Error(`no function ${meta.name}_prepare`);
+const prepare = meta.prepared ? mod[meta.prepare] : null;
+if (meta.prepared && typeof prepare !== "function") throw new Error(`no function ${meta.prepare}`);
 const fn = !meta.prepared ? body : (...args) => {
   const p = prepare(...args.filter((_, i) => meta.uniform[i]));
   if (!Array.isArray(p) || p.length !== 1 || p[0].length !== meta.prepared) throw new Error("bad prepare output");

@@ -1,6 +1,6 @@
 """Runs a cgagen python kernel: drive.py META MODULE IN OUT64 OUT32 OUTSCALAR, or --bench N META MODULE.
 
-META: {"name", "inputs": [0 for a scalar, else the blade count], "uniform": [0/1 per input], "prepared": K,
+META: {"name", "fn" and "prepare" (the functions as Python spells them), "inputs": [0 for a scalar, else the blade count], "uniform": [0/1 per input], "prepared": K,
 "outputs": [blade counts]}; K > 0: a staged kernel, called as NAME(NAME_prepare(uniform inputs)[0], the
 other inputs), NAME_prepare checked to return a tuple of one output of K values. IN has one
 flat input row per line. The kernel is called once on whole arrays (float64, then float32: one call each, no
@@ -21,10 +21,10 @@ def load(meta_path, module_path):
     spec = importlib.util.spec_from_file_location(meta["name"], module_path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    fn = getattr(mod, meta["name"])
+    fn = getattr(mod, meta["fn"])
     if not meta.get("prepared"):
         return meta, fn
-    prepare = getattr(mod, meta["name"] + "_prepare")
+    prepare = getattr(mod, meta["prepare"])
 
     def staged(*args):
         uniform = [a for a, u in zip(args, meta["uniform"]) if u]

@@ -35,6 +35,7 @@
 #include <map>
 #include <random>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -43,6 +44,7 @@
 
 #include "algebra/blade.hpp"
 #include "emit/emit.hpp"
+#include "emit/names.hpp"
 #include "expand/expand.hpp"
 #include "front/parser.hpp"
 #include "opt/program.hpp"
@@ -68,6 +70,8 @@ struct Case {
                                       // (staged: both programs', the prepared values once)
   opt::Program prog;  // -O2: the interface the targets print
   opt::Program ref;   // -O0: the reference
+  std::set<std::string> names;    // every name the emitted file spells (emit/names.hpp): its programs' own
+  int samples = 0;                // random inputs: 1000, 100 for the names scripts (tests/targets/names)
   std::vector<size_t> in_sizes;   // 0: scalar
   std::vector<size_t> out_sizes;
   size_t nin = 0, nout = 0;
@@ -111,13 +115,21 @@ double max_error(const Case& c, const std::vector<double>& got, const std::vecto
   return worst;
 }
 
+// How target LANG spells name RAW of case c (the function NAME, NAME_prepare): as the emitter does.
+std::string spelt(const Case& c, const std::string& lang, const std::string& raw) {
+  std::set<std::string> names = c.names;
+  names.insert(raw);
+  return emit::spellings(emit::syntax(lang), names).at(raw);
+}
+
 // PATH, or PATH@NAME@U1,U2,... for a script generated under another name with --uniform U1,U2,...
 Case load(const std::string& arg, bool numeric) {
   Case c;
   std::vector<std::string> cli_uniforms;
   const size_t at = arg.find('@');
   c.path = arg.substr(0, at);
-  c.name = fs::path(c.path).stem().string();
+  c.name = emit::c_identifier(fs::path(c.path).stem().string());  // as cgagen_generate() names it
+  c.samples = c.path.find("/names/") != std::string::npos ? 100 : kSamples;
   if (at != std::string::npos) {
     const size_t at2 = arg.find('@', at + 1);
     if (at2 == std::string::npos) throw std::runtime_error("bad script argument " + arg + " (PATH@NAME@U1,U2)");
@@ -130,10 +142,19 @@ Case load(const std::string& arg, bool numeric) {
   c.prog = opt::optimize(k, opt::Level::O2);
   c.ref = opt::optimize(k, opt::Level::O0);
   c.uniforms = opt::uniform_inputs(k, cli_uniforms);
+  auto add_names = [&c](const opt::Program& p) {
+    c.names.insert(p.name);
+    for (const auto& in : p.inputs) c.names.insert(in.name);
+    for (const auto& o : p.outputs) c.names.insert(o.name);
+    for (const auto& t : p.temps) c.names.insert(t.name);
+  };
+  if (c.uniforms.empty()) add_names(c.prog);
   for (const auto& in : c.prog.inputs)
     c.is_uniform.push_back(std::find(c.uniforms.begin(), c.uniforms.end(), in.name) != c.uniforms.end());
   if (!c.uniforms.empty()) {
     const opt::StagedProgram st = opt::stage(c.prog, c.uniforms);
+    add_names(st.prepare);
+    add_names(st.body);
     c.prepared = st.prepare.outputs.at(0).slots.size();
     for (const opt::Program* p : {&st.prepare, &st.body}) {
       for (const auto& in : p->inputs)
@@ -169,8 +190,8 @@ Case load(const std::string& arg, bool numeric) {
   std::uniform_real_distribution<double> u(-1, 1);
   std::bernoulli_distribution coin;
   int attempts = 0;
-  while (numeric && static_cast<int>(c.inputs.size()) < kSamples) {
-    if (++attempts > 50 * kSamples) throw std::runtime_error(c.name + ": too few well-conditioned samples");
+  while (numeric && static_cast<int>(c.inputs.size()) < c.samples) {
+    if (++attempts > 50 * c.samples) throw std::runtime_error(c.name + ": too few well-conditioned samples");
     std::vector<double> x(c.nin);
     for (auto& v : x) v = static_cast<float>(u(rng));
     std::vector<double> r = reference(c, x);
@@ -324,8 +345,10 @@ void check(const Case& c, const std::string& what, const std::string& path, doub
               c.name.c_str(), what.c_str(), n, c.redrawn, worst, tol);
 }
 
-std::string meta_json(const Case& c) {
-  std::string s = "{\"name\": \"" + c.name + "\", \"inputs\": [";
+// fn, prepare: the functions as LANG spells them.
+std::string meta_json(const Case& c, const std::string& lang) {
+  std::string s = "{\"name\": \"" + c.name + "\", \"fn\": \"" + spelt(c, lang, c.name) + "\", \"prepare\": \"" +
+                  spelt(c, lang, c.name + "_prepare") + "\", \"inputs\": [";
   for (size_t i = 0; i < c.in_sizes.size(); ++i) s += (i ? ", " : "") + std::to_string(c.in_sizes[i]);
   // Staged: which inputs go to NAME_prepare, and K (the drivers call NAME_prepare, then NAME).
   s += "], \"uniform\": [";
@@ -340,15 +363,11 @@ std::string meta_json(const Case& c) {
 struct CCall {
   std::string decls, call, copy_out;
 };
-// The name of a staged case's prepare function for the body's name fn (NAME_prepare inside any prefix/suffix).
-std::string prepare_name(const Case& c, const std::string& fn) {
-  std::string p = fn;
-  return p.insert(fn.rfind(c.name) + c.name.size(), "_prepare");
-}
-
 // A staged case's call: NAME_prepare(uniform args, prepared) then NAME(prepared, per-element args, outputs).
-CCall c_call(const Case& c, const std::string& T, const std::string& fn, const std::string& src,
-             const std::string& dst, bool arrays_by_ref = false) {
+// fn: the function as LANG spells it, with PREFIX before and SUFFIX after (a namespace, _f32).
+CCall c_call(const Case& c, const std::string& T, const std::string& lang, const std::string& prefix,
+             const std::string& suffix, const std::string& src, const std::string& dst, bool arrays_by_ref = false) {
+  const std::string fn = prefix + spelt(c, lang, c.name) + suffix;
   CCall r;
   size_t off = 0;
   std::string args, uargs;
@@ -370,7 +389,7 @@ CCall c_call(const Case& c, const std::string& T, const std::string& fn, const s
   std::string prepare;
   if (c.prepared) {
     r.decls += "  " + T + " prep[" + std::to_string(c.prepared) + "];\n";
-    prepare = "  " + prepare_name(c, fn) + "(" + uargs + ", prep);\n";
+    prepare = "  " + prefix + spelt(c, lang, c.name + "_prepare") + suffix + "(" + uargs + ", prep);\n";
     args = std::string(arrays_by_ref ? "&" : "") + "prep" + (args.empty() ? "" : ", ") + args;
   }
   off = 0;
@@ -388,7 +407,7 @@ CCall c_call(const Case& c, const std::string& T, const std::string& fn, const s
 
 // The C++ double kernel on n random inputs: nanoseconds per kernel call.
 double cpp_bench(const Case& c, const std::string& gendir, const std::string& work, long n) {
-  CCall k = c_call(c, "double", "cga::kernels::" + c.name, "a", "o");
+  CCall k = c_call(c, "double", "cpp", "cga::kernels::", "", "a", "o");
   std::string src = "#include <chrono>\n#include <cstdio>\n#include <random>\n#include <vector>\n#include \"" + gendir +
                     "/" + c.name + ".hpp\"\n"
                     "int main() {\n  const long n = " + std::to_string(n) + ";\n"
@@ -409,7 +428,7 @@ double cpp_bench(const Case& c, const std::string& gendir, const std::string& wo
 void run_python(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   for (const auto& c : cases) {
     std::string base = work + "/" + c.name;
-    std::ofstream(base + ".json") << meta_json(c);
+    std::ofstream(base + ".json") << meta_json(c, "python");
     write_rows(base + ".in", c.inputs);
     std::string cmd = std::string(PYTHON) + " " + TARGETS_DIR + "/drive.py " + base + ".json " + gendir + "/" + c.name +
                       ".py " + base + ".in " + base + ".py64 " + base + ".py32 " + base + ".pyscalar";
@@ -440,7 +459,7 @@ void run_python(const std::vector<Case>& cases, const std::string& gendir, const
 void run_javascript(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   for (const auto& c : cases) {
     std::string base = work + "/" + c.name;
-    std::ofstream(base + ".json") << meta_json(c);
+    std::ofstream(base + ".json") << meta_json(c, "javascript");
     write_rows(base + ".in", c.inputs);
     std::string cmd = std::string(NODE) + " " + TARGETS_DIR + "/drive.mjs " + base + ".json " + gendir + "/" +
                       c.name + ".mjs " + base + ".in " + base + ".js64";
@@ -462,7 +481,7 @@ void run_opencl(const std::vector<Case>& cases, const std::string& gendir, const
     src += slurp(gendir + "/" + c.name + ".cl");
     for (std::string T : {"float", "double"}) {
       std::string suffix = T == "float" ? "_f32" : "_f64";
-      CCall k = c_call(c, T, c.name + suffix, "a", "o");
+      CCall k = c_call(c, T, "opencl", "", suffix, "a", "o");
       src += std::string(T == "double" ? "\n#ifdef cl_khr_fp64\n" : "\n") + "__kernel void run_" + c.name + suffix +
              "(__global const " + T + "* in_all, __global " + T + "* out_all) {\n" +
              "  const size_t i = get_global_id(0);\n  __global const " + T + "* a = in_all + i * " +
@@ -496,7 +515,7 @@ void run_opencl(const std::vector<Case>& cases, const std::string& gendir, const
 void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   for (const auto& c : cases) {
     std::string base = work + "/" + c.name;
-    CCall k = c_call(c, "float", c.name, "In", "Out");
+    CCall k = c_call(c, "float", "hlsl", "", "", "In", "Out");
     // c_call reads src[off + k]; make the row offset part of the buffer index.
     std::string body = k.decls + k.call + k.copy_out;
     auto replace_all = [](std::string s, const std::string& a, const std::string& b) {
@@ -520,6 +539,89 @@ void run_hlsl(const std::vector<Case>& cases, const std::string& gendir, const s
     if (!run_steps(c.name, steps, base + ".log")) continue;
     if (&c == &cases.front()) std::printf("HLSL -> SPIR-V (glslang -D, spirv-val ok) -> GLSL 4.50 (spirv-cross) on %s", slurp(base + ".device").c_str());
     check(c, "hlsl->spirv->gl float", base + ".hl32", kTolFloat);
+  }
+}
+
+// cpp and cuda (tests/targets/names only; tests/kernels runs the bundled scripts): every script's header in
+// one C++ program, run per script in float and double. cuda: the .cuh compiled by the host compiler with its
+// qualifiers defined away (nvcc is not on the CI machine), which checks its names as C++ names.
+void run_native(const std::vector<Case>& cases, const std::string& gendir, const std::string& work,
+                const std::string& lang) {
+  const std::string ext = emit::syntax(lang).extension;
+  std::string src = "#include <cstdio>\n#include <cstdlib>\n#include <vector>\n";
+  for (const auto& c : cases) src += "#include \"" + gendir + "/" + c.name + ext + "\"\n";
+  std::string table;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    for (std::string T : {"float", "double"}) {
+      CCall k = c_call(c, T, lang, "cga::kernels::", "", "a", "o");
+      src += "static void run" + std::to_string(i) + "_" + T + "(const double* a, double* o) {\n" + k.decls + k.call +
+             k.copy_out + "}\n";
+    }
+    table += "  {run" + std::to_string(i) + "_float, run" + std::to_string(i) + "_double, " + std::to_string(c.nin) +
+             ", " + std::to_string(c.nout) + "},\n";
+  }
+  src += "struct K { void (*f)(const double*, double*); void (*d)(const double*, double*); int nin, nout; };\n"
+         "static const K kernels[] = {\n" + table + "};\n"
+         "int main(int, char** argv) {\n  const K& k = kernels[std::atoi(argv[1])];\n"
+         "  const bool single = argv[2][0] == 'f';\n  std::vector<double> a(k.nin), o(k.nout);\n"
+         "  while (true) {\n    for (auto& v : a) if (std::scanf(\"%lf\", &v) != 1) return 0;\n"
+         "    (single ? k.f : k.d)(a.data(), o.data());\n"
+         "    for (int j = 0; j < k.nout; ++j) std::printf(j ? \" %.17g\" : \"%.17g\", o[j]);\n"
+         "    std::printf(\"\\n\");\n  }\n}\n";
+  const std::string base = work + "/drive_" + lang;
+  std::ofstream(base + ".cpp") << src;
+  const std::string flags = lang == "cuda" ? " -x c++ -D__host__= -D__device__= -D__forceinline__=inline" : "";
+  const std::string cmd = std::string(CXX_COMPILER) + " -std=c++17 -O0 -Wall -Werror" + flags + " -o " + base + " " +
+                          base + ".cpp > " + base + ".log 2>&1";
+  const bool built = sh(cmd) == 0;
+  std::printf("%s (%s%s) %s\n%s", CXX_COMPILER, lang.c_str(), flags.c_str(), built ? "ok" : "FAILED",
+              built ? "" : slurp(base + ".log").c_str());
+  if (!built) {
+    ++failures;
+    return;
+  }
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    const std::string in = work + "/" + c.name + ".in";
+    write_rows(in, c.inputs);
+    for (std::string T : {"float", "double"}) {
+      const std::string out = work + "/" + c.name + "." + lang + "." + T;
+      if (sh(base + " " + std::to_string(i) + " " + T + " < " + in + " > " + out) != 0) {
+        std::printf("FAIL %-20s %s driver failed (%s)\n", c.name.c_str(), lang.c_str(), T.c_str());
+        ++failures;
+        continue;
+      }
+      check(c, lang + " " + T, out, T == "float" ? kTolFloat : kTolDouble);
+    }
+  }
+}
+
+// glsl (tests/targets/names only; tests/gpu runs the bundled kernels): the file in a GLSL 4.30 compute shader,
+// validated by glslang and run by gl_compute_runner on the headless GL 4.5 context.
+void run_glsl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
+  auto replace_all = [](std::string s, const std::string& a, const std::string& b) {
+    for (size_t p = 0; (p = s.find(a, p)) != std::string::npos; p += b.size()) s.replace(p, a.size(), b);
+    return s;
+  };
+  for (const auto& c : cases) {
+    const std::string base = work + "/" + c.name;
+    CCall k = c_call(c, "float", "glsl", "", "", "In", "Out");
+    std::string body = replace_all(k.decls + k.call + k.copy_out, "(float)", "");
+    body = replace_all(body, "In[", "In_.data[row * " + std::to_string(c.nin) + " + ");
+    body = replace_all(body, "Out[", "Out_.data[row * " + std::to_string(c.nout) + " + ");
+    std::ofstream(base + ".comp") << "#version 430\nlayout(local_size_x = 1) in;\n"
+                                     "layout(std430, binding = 0) readonly buffer In { float data[]; } In_;\n"
+                                     "layout(std430, binding = 1) buffer Out { float data[]; } Out_;\n"
+                                  << slurp(gendir + "/" + c.name + ".glsl")
+                                  << "\nvoid main() {\n  int row = int(gl_GlobalInvocationID.x);\n" << body << "}\n";
+    write_rows(base + ".in", c.inputs);
+    std::string steps[] = {
+        std::string(GLSLANG_VALIDATOR) + " " + base + ".comp > " + base + ".log 2>&1",
+        std::string(GL_RUNNER) + " " + base + ".comp " + std::to_string(c.nin) + " " + std::to_string(c.nout) + " " +
+            base + ".in " + base + ".gl32 > " + base + ".device 2>> " + base + ".log"};
+    if (!run_steps(c.name, steps, base + ".log")) continue;
+    check(c, "glsl compute float", base + ".gl32", kTolFloat);
   }
 }
 
@@ -729,7 +831,7 @@ std::string webgl_vertex_shader(const Case& c, const std::string& defs, const st
     list += (list.empty() ? "" : ", ") + v;
   }
   if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
-    vs += "  float cgagen_prep[" + std::to_string(c.prepared) + "];\n  " + c.name + "_prepare(" + uargs +
+    vs += "  float cgagen_prep[" + std::to_string(c.prepared) + "];\n  " + spelt(c, "glsl-es", c.name + "_prepare") + "(" + uargs +
           ", cgagen_prep);\n";
     args = "cgagen_prep" + (args.empty() ? "" : ", " + args);
   }
@@ -737,7 +839,7 @@ std::string webgl_vertex_shader(const Case& c, const std::string& defs, const st
     vs += "  float cgagen_o" + std::to_string(i) + "[" + std::to_string(c.out_sizes[i]) + "];\n";
     args += ", cgagen_o" + std::to_string(i);
   }
-  vs += "  " + c.name + "(" + args + ");\n";
+  vs += "  " + spelt(c, "glsl-es", c.name) + "(" + args + ");\n";
   for (size_t i = 0; i < vec4s; ++i) vs += "  cgagen_r" + std::to_string(i) + " = vec4(0.0);\n";
   for (size_t i = 0, g = 0; i < c.out_sizes.size(); ++i)
     for (size_t k = 0; k < c.out_sizes[i]; ++k, ++g)
@@ -767,7 +869,7 @@ void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, cons
     std::ofstream(base + ".vert") << vertex_shader("", code);
     add_runs(webgl, c, code, "glsl-es WebGL2 float", kSinCosEssl, vertex_shader);
     // The ES 3.10 compute wrapper for the desktop GL context.
-    CCall k = c_call(c, "float", c.name, "In", "Out");
+    CCall k = c_call(c, "float", "glsl-es", "", "", "In", "Out");
     std::string body = replace_all(k.decls + k.call + k.copy_out, "(float)", "");
     body = replace_all(body, "In[", "In_.data[row * " + std::to_string(c.nin) + " + ");
     body = replace_all(body, "Out[", "Out_.data[row * " + std::to_string(c.nout) + " + ");
@@ -796,7 +898,7 @@ void run_glsl_es(const std::vector<Case>& cases, const std::string& gendir, cons
 void run_wgsl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::vector<BrowserRun> runs;
   for (const auto& c : cases) {
-    const std::string fn = emit::syntax("wgsl").text(c.name);  // the emitter renames WGSL's reserved words
+    const std::string fn = spelt(c, "wgsl", c.name);  // the emitter renames WGSL's reserved words
     std::string main = "\n@group(0) @binding(0) var<storage, read> cgagen_in: array<f32>;\n"
                        "@group(0) @binding(1) var<storage, read_write> cgagen_out: array<f32>;\n\n"
                        "@compute @workgroup_size(64)\nfn cgagen_main(@builtin(global_invocation_id) cgagen_id: vec3<u32>) {\n"
@@ -819,7 +921,7 @@ void run_wgsl(const std::vector<Case>& cases, const std::string& gendir, const s
     }
     if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
       main += "  var cgagen_prep: array<f32, " + std::to_string(c.prepared) + ">;\n  " +
-              emit::syntax("wgsl").text(c.name + "_prepare") + "(" + uargs + ", &cgagen_prep);\n";
+              spelt(c, "wgsl", c.name + "_prepare") + "(" + uargs + ", &cgagen_prep);\n";
       args = "cgagen_prep" + (args.empty() ? "" : ", " + args);
     }
     std::string copy_out;
@@ -880,11 +982,16 @@ void run_dot(const std::vector<Case>& cases, const std::string& gendir, const st
 }
 
 // Rust: one crate over every script's module (#[path]), one rustc run; `drive NAME f32|f64` reads rows on stdin.
+// Outputs are copied by plain loops: a closure per output (the names scripts have about 50) took rustc minutes.
 void run_rust(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
   std::string src = "use std::io::{self, BufRead, Write};\n\n";
-  for (const auto& c : cases) src += "#[path = \"" + gendir + "/" + c.name + ".rs\"]\nmod k_" + c.name + ";\n";
-  for (const auto& c : cases) {
-    src += "\nfn run_" + c.name + "(single: bool, a: &[f64]) -> Vec<f64> {\n  let mut r = Vec::new();\n";
+  // Modules and functions by index: a script's name may start with _ (a stem with a leading digit).
+  for (size_t i = 0; i < cases.size(); ++i)
+    src += "#[path = \"" + gendir + "/" + cases[i].name + ".rs\"]\nmod k" + std::to_string(i) + ";\n";
+  for (size_t ci = 0; ci < cases.size(); ++ci) {
+    const Case& c = cases[ci];
+    const std::string mod = "k" + std::to_string(ci);
+    src += "\nfn run" + std::to_string(ci) + "(single: bool, a: &[f64]) -> Vec<f64> {\n  let mut r = Vec::new();\n";
     for (std::string T : {"f32", "f64"}) {
       src += std::string(T == "f32" ? "  if single {\n" : "  } else {\n");
       std::string args, uargs;
@@ -903,8 +1010,8 @@ void run_rust(const std::vector<Case>& cases, const std::string& gendir, const s
         list += (list.empty() ? "" : ", ") + std::string("&") + v;
       }
       if (c.prepared) {  // staged: NAME_prepare, then NAME on its values
-        src += "    let mut prep = [0.0 as " + T + "; " + std::to_string(c.prepared) + "];\n    k_" + c.name +
-               "::" + c.name + "_prepare_" + T + "(" + uargs + ", &mut prep);\n";
+        src += "    let mut prep = [0.0 as " + T + "; " + std::to_string(c.prepared) + "];\n    " + mod +
+               "::" + spelt(c, "rust", c.name + "_prepare") + "_" + T + "(" + uargs + ", &mut prep);\n";
         args = "&prep" + (args.empty() ? "" : ", " + args);
       }
       std::string outs;
@@ -912,15 +1019,15 @@ void run_rust(const std::vector<Case>& cases, const std::string& gendir, const s
         std::string v = "o" + std::to_string(i);
         src += "    let mut " + v + " = [0.0 as " + T + "; " + std::to_string(c.out_sizes[i]) + "];\n";
         args += ", &mut " + v;
-        outs += "    r.extend(" + v + ".iter().map(|&v| v as f64));\n";
+        outs += "    for &x in " + v + ".iter() { r.push(x as f64); }\n";  // no closure type per output
       }
-      src += "    k_" + c.name + "::" + c.name + "_" + T + "(" + args + ");\n" + outs;
+      src += "    " + mod + "::" + spelt(c, "rust", c.name) + "_" + T + "(" + args + ");\n" + outs;
     }
     src += "  }\n  r\n}\n";
   }
   src += "\nfn main() {\n  let args: Vec<String> = std::env::args().collect();\n  let single = args[2] == \"f32\";\n"
          "  let f: fn(bool, &[f64]) -> Vec<f64> = match args[1].as_str() {\n";
-  for (const auto& c : cases) src += "    \"" + c.name + "\" => run_" + c.name + ",\n";
+  for (size_t i = 0; i < cases.size(); ++i) src += "    \"" + cases[i].name + "\" => run" + std::to_string(i) + ",\n";
   src += "    _ => panic!(\"unknown kernel\"),\n  };\n  let stdin = io::stdin();\n"
          "  let mut out = io::BufWriter::new(io::stdout());\n  for line in stdin.lock().lines() {\n"
          "    let line = line.unwrap();\n    if line.is_empty() { continue; }\n"
@@ -991,6 +1098,8 @@ int main(int argc, char** argv) {
   else if (lang == "wgsl") run_wgsl(cases, gendir, work);
   else if (lang == "latex") run_latex(cases, gendir, work);
   else if (lang == "dot") run_dot(cases, gendir, work);
+  else if (lang == "cpp" || lang == "cuda") run_native(cases, gendir, work, lang);
+  else if (lang == "glsl") run_glsl(cases, gendir, work);
   else {
     std::fprintf(stderr, "targets_check: no driver for %s\n", lang.c_str());
     return 2;
