@@ -365,10 +365,14 @@ function heatUniforms(scene) {
   return {on: state.heat.on, a: state.heat.a, b: state.heat.b, scale: state.heat.scale * (scene === "twist" ? CGA_DATA.twist.size : CGA_DATA.size)};
 }
 
+// Set when the picture must be drawn again (a control, the camera, the canvas size, the animation): a still
+// pose is not redrawn every frame, which keeps a laptop cool and a virtual-time screenshot quick.
+let dirty = true;
+
 function resize(canvas) {
   const dpr = window.devicePixelRatio || 1;
   const w = Math.max(4, Math.floor(canvas.clientWidth * dpr)), h = Math.max(1, Math.floor(canvas.clientHeight * dpr));
-  if (canvas.width !== w || canvas.height !== h) canvas.width = w, canvas.height = h;
+  if (canvas.width !== w || canvas.height !== h) canvas.width = w, canvas.height = h, dirty = true;
 }
 
 // Max distance between the GPU's and the CPU's skinned positions over every method, relative to the size.
@@ -516,15 +520,18 @@ async function main() {
       update();
     }
     const t0 = performance.now();
-    try {
-      await withTimeout(renderer.draw(state.scene, heatUniforms(state.scene)), PROBE_MS, "a frame");
-    } catch (e) {
-      setStatus("error", backend + " \u2014 stopped: " + e.message + ". Reload, or add #webgl2 to the address.");
-      loopDone("interactive stopped: " + e.message);
-      return;
+    if (dirty) {
+      dirty = false;
+      try {
+        await withTimeout(renderer.draw(state.scene, heatUniforms(state.scene)), PROBE_MS, "a frame");
+      } catch (e) {
+        setStatus("error", backend + " \u2014 stopped: " + e.message + ". Reload, or add #webgl2 to the address.");
+        loopDone("interactive stopped: " + e.message);
+        return;
+      }
+      const ms = performance.now() - t0;
+      frameMs = frameMs === null ? ms : 0.9 * frameMs + 0.1 * ms;
     }
-    const ms = performance.now() - t0;
-    frameMs = frameMs === null ? ms : 0.9 * frameMs + 0.1 * ms;
     if (t0 - last > 250) {
       last = t0;
       // (0 under a virtual clock, as in Chromium's --virtual-time-budget: no figure then)

@@ -91,6 +91,7 @@ function setupControls(renderer, state) {
       el.classList.toggle("hidden", f === "heat" ? !state.heat.on : f !== state.scene);
     }
     heatLegend(state.heat, state.scene);
+    dirty = true;
     renderer.setPalette("character", characterPalette(state.mode, state.time, state.weight));
     renderer.setPalette("twist", twistPalette(state.twist));
   };
@@ -110,8 +111,9 @@ function setupControls(renderer, state) {
     camera.yaw -= 0.01 * (e.clientX - drag[0]);
     camera.pitch = Math.max(-1.4, Math.min(1.4, camera.pitch + 0.01 * (e.clientY - drag[1])));
     drag = [e.clientX, e.clientY];
+    dirty = true;
   });
-  canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom *= Math.exp(0.001 * e.deltaY); }, {passive: false});
+  canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom *= Math.exp(0.001 * e.deltaY); dirty = true; }, {passive: false});
   update();
   return update;
 }

@@ -1,6 +1,7 @@
 # ctest driver for cga-demo (cmake -P): runs the demo on its default character with few frames and fails
 # unless it exits 0, prints every table, skins on the GL path within 1e-4 of the character's size for every
-# method and path, and writes every picture. Variables: DEMO (the executable), OUT (a scratch folder).
+# method and path, and writes every picture, each CPU picture the same size as its GPU twin (they share pose,
+# camera and caption band). Variables: DEMO (the executable), OUT (a scratch folder).
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${DEMO}" --frames 4 --out "${OUT}" RESULT_VARIABLE rc OUTPUT_VARIABLE out
                 ERROR_VARIABLE err)
@@ -35,5 +36,13 @@ foreach(png ik-hand-reach character-lbs character-dqs character-cga-points chara
             gpu-character-lbs gpu-character-dqs gpu-character-cga-points gpu-character-cga-motors gpu-twist-strip)
   if(NOT EXISTS "${OUT}/${png}.png")
     message(FATAL_ERROR "cga-demo wrote no ${OUT}/${png}.png\n${out}")
+  endif()
+endforeach()
+# A PNG's width and height are the 8 bytes after its signature and IHDR header (offset 16).
+foreach(png character-lbs character-dqs character-cga-points character-cga-motors twist-strip)
+  file(READ "${OUT}/${png}.png" cpu_size OFFSET 16 LIMIT 8 HEX)
+  file(READ "${OUT}/gpu-${png}.png" gpu_size OFFSET 16 LIMIT 8 HEX)
+  if(NOT cpu_size STREQUAL gpu_size)
+    message(FATAL_ERROR "${png}.png (${cpu_size}) and gpu-${png}.png (${gpu_size}) differ in size")
   endif()
 endforeach()

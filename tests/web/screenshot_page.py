@@ -26,7 +26,7 @@ FLAGS = ["--headless", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
 # Not part of the try above, but needed here: root in a container (no sandbox), a throwaway profile, a
 # small /dev/shm, and a window wide enough for the controls and the four captions.
 HOUSEKEEPING = ["--no-sandbox", "--no-first-run", "--disable-extensions", "--disable-dev-shm-usage",
-                "--hide-scrollbars", "--window-size=1280,900"]
+                "--hide-scrollbars", "--window-size=1280,760"]
 
 
 def read_png(path, max_rows=None):
