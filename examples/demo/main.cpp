@@ -502,9 +502,8 @@ int run(const demo::Options& opt) {
       }
     }
     if (opt.pictures && !ch.meshes.empty()) {
-      fmt::print("pictures (GPU, the same pose and framing as the CPU's):");
-      for (const std::string& w : demo::write_gpu_pictures(context, pictures, opt.out_dir)) fmt::print(" {}", w);
-      fmt::print("\n");
+      const std::vector<std::string> paths = demo::write_gpu_pictures(context, pictures, opt.out_dir);
+      fmt::print("pictures (GPU, the same pose and framing as the CPU's): {}\n", fmt::join(paths, " "));
     }
   } catch (const gpu::Unavailable& e) {
     fmt::print("GPU       no OpenGL 4.5 context, GPU path skipped: {}\n", e.what());

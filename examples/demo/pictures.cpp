@@ -3,6 +3,7 @@
 #include "pictures.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 
@@ -50,6 +51,23 @@ std::string twist_title(const PictureSet& set) {
                      set.twist_angle * 180.0f / std::numbers::pi_v<float>);
 }
 
+// Pixels of `gpu` that differ from `cpu` by more than 16 of 255 in some channel, as "N of TOTAL"; "(no CPU
+// picture)" or "(size differs)" when they cannot be compared.
+std::string differing(const PictureSet& set, const std::string& name, const gpu::Image& gpu) {
+  const auto it = set.cpu_drawn.find(name);
+  if (it == set.cpu_drawn.end()) return name + " (no CPU picture)";
+  const gpu::Image& cpu = it->second;
+  if (cpu.width != gpu.width || cpu.height != gpu.height) return name + " (size differs)";
+  std::size_t n = 0;
+  for (std::size_t at = 0; at + 3 < gpu.rgba.size(); at += 4)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(gpu.rgba[at + c]) - int(cpu.rgba[at + c])) > 16) {
+        ++n;
+        break;
+      }
+  return fmt::format("{} {} of {}", name, n, gpu.rgba.size() / 4);
+}
+
 std::string written(const gpu::Image& image, const std::string& path) {
   gpu::write_png(image, path);
   return path;
@@ -57,7 +75,7 @@ std::string written(const gpu::Image& image, const std::string& path) {
 
 }  // namespace
 
-std::vector<std::string> write_cpu_pictures(const PictureSet& set, const std::string& out_dir) {
+std::vector<std::string> write_cpu_pictures(PictureSet& set, const std::string& out_dir) {
   const std::string path_line = "CPU: skinned by the CPU SkinningJob, drawn by the demo's rasterizer";
   std::vector<std::string> out;
   const gpu::Camera camera = character_camera(set);
@@ -68,7 +86,8 @@ std::vector<std::string> write_cpu_pictures(const PictureSet& set, const std::st
       draw_triangles(img, view, meshes[m].px, meshes[m].py, meshes[m].pz, set.character->meshes[m].indices,
                      gpu::method_colour(method), meshes[m].nx, meshes[m].ny, meshes[m].nz);
     const std::string lines[] = {std::string(to_string(method)), path_line, set.pose};
-    out.push_back(written(gpu::with_caption(to_rgba(img), lines, kCaptionRows),
+    const gpu::Image& kept = set.cpu_drawn[fmt::format("character-{}", to_string(method))] = to_rgba(img);
+    out.push_back(written(gpu::with_caption(kept, lines, kCaptionRows),
                           fmt::format("{}/character-{}.png", out_dir, to_string(method))));
   }
   if (set.cylinder && !set.twisted.empty()) {
@@ -82,7 +101,8 @@ std::vector<std::string> write_cpu_pictures(const PictureSet& set, const std::st
       gpu::draw_label(panels.back(), 0, 0, std::string(to_string(method)));
     }
     const std::string lines[] = {twist_title(set), path_line};
-    out.push_back(written(gpu::with_caption(gpu::side_by_side(panels), lines, kCaptionRows), out_dir + "/twist-strip.png"));
+    const gpu::Image& kept = set.cpu_drawn["twist-strip"] = gpu::side_by_side(panels);
+    out.push_back(written(gpu::with_caption(kept, lines, kCaptionRows), out_dir + "/twist-strip.png"));
   }
   return out;
 }
@@ -93,6 +113,7 @@ std::vector<std::string> write_gpu_pictures(const gpu::Context& context, const P
                                 context.renderer() + ")";
   std::vector<std::string> out;
   const gpu::Camera camera = character_camera(set);
+  std::vector<std::string> compared;
   for (const auto& [method, meshes] : set.cpu) {
     gpu::Skinner skinner(context, method);
     std::vector<gpu::SkinnedVertices> skinned;
@@ -107,6 +128,7 @@ std::vector<std::string> write_gpu_pictures(const gpu::Context& context, const P
       draws.push_back({skinned[m].positions, skinned[m].normals, set.character->meshes[m].indices,
                        gpu::method_colour(method)});
     const gpu::Image img = gpu::render_meshes(context, draws, camera, kCharacterWidth, kCharacterHeight);
+    compared.push_back(differing(set, fmt::format("character-{}", to_string(method)), img));
     const std::string lines[] = {std::string(to_string(method)), path_line, set.pose};
     out.push_back(written(gpu::with_caption(img, lines, kCaptionRows),
                           fmt::format("{}/gpu-character-{}.png", out_dir, to_string(method))));
@@ -115,9 +137,11 @@ std::vector<std::string> write_gpu_pictures(const gpu::Context& context, const P
     std::vector<SkinningMethod> methods;
     for (const auto& [method, o] : set.twisted) methods.push_back(method);
     const gpu::Image strip = gpu::render_twist_strip(context, set.twist_angle, kStripPanel, kStripHeight, methods);
+    compared.push_back(differing(set, "twist-strip", strip));
     const std::string lines[] = {twist_title(set), path_line};
     out.push_back(written(gpu::with_caption(strip, lines, kCaptionRows), out_dir + "/gpu-twist-strip.png"));
   }
+  fmt::print("pictures, GPU against CPU: pixels that differ by more than 16/255: {}\n", fmt::join(compared, ", "));
   return out;
 }
 
