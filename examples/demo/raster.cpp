@@ -1,12 +1,11 @@
 // The demo's CPU rasterizer (see raster.hpp): edge functions over each triangle's pixel box, a depth test,
 // normals interpolated with the barycentric weights and shaded as the GL path's render.frag shades them.
 //
-// Why not face normals (as this file once used): a twisted quad is not flat, so its two triangles get two
-// different face normals and the twist strip came out in saw-tooth stripes of light and dark. Why the edge
-// functions are computed from the edge's endpoints in one fixed order: a pixel centre on (or within rounding
-// of) an edge shared by two triangles must be inside exactly one of them, or both; computed once per
-// triangle in its own vertex order, rounding could put it outside both, which showed as cracks along the
-// strip's long edges where the triangles are thin.
+// Why interpolated normals and not one face normal per triangle: a twisted quad is not flat, so its two
+// triangles would get two different face normals and a twisted surface would show saw-tooth stripes of
+// light and dark. Why the edge functions are computed from the edge's endpoints in one fixed order: a pixel
+// centre on (or within rounding of) an edge shared by two triangles must be inside at least one of them;
+// computed per triangle in its own vertex order, rounding can put it outside both and leave a crack.
 #include "raster.hpp"
 
 #include <algorithm>
