@@ -1,18 +1,18 @@
-// The page's program: decodes CGA_DATA (written by cga-demo --web), picks WebGPU when navigator.gpu gives an
-// adapter and WebGL 2 otherwise, draws the four methods in four panels with one orbit camera, and wires the
-// controls. Opened as index.html#selftest it skins a fixed frame with every method, reads the vertices back,
+// The page's program (after web/ui.js, which holds the words and controls): decodes CGA_DATA (written by
+// cga-demo --web), starts WebGPU when navigator.gpu gives an adapter and its first frame comes back in time,
+// else WebGL 2, draws the four methods in four panels with one orbit camera, and keeps the status line told.
+// Opened as index.html#selftest it skins a fixed frame with every method, reads the vertices back,
 // compares them with the CPU jobs' vertices in CGA_DATA and writes "PATH ok|fail MAXDEV" into #cga-result
 // (also the first line of the promise window.cgagenResult, which tests/targets/browser_run.py waits for).
 // Options in the fragment, joined by "&": selftest, webgl2 (force the WebGL 2 path), heat (heat map on),
-// twist (the twist strip view), frames (the result comes after 5 frames of the animation loop, playing:
-// tests/web's check of the interactive path), mismatch (the self-test compares each method with the next one's CPU
-// vertices: it must fail; tests/web checks that the comparison can). No libraries: a few matrices are all
-// the page needs.
+// twist (the twist strip view), paused (the animation starts paused), frames (the result comes after 5
+// frames of the animation loop, playing: tests/web's check of the interactive path), mismatch (the self-test
+// compares each method with the next one's CPU vertices: it must fail; tests/web checks that the comparison
+// can). No libraries: a few matrices are all the page needs.
 "use strict";
 
 const METHOD_COLORS = [[0.85, 0.55, 0.35], [0.45, 0.65, 0.85], [0.85, 0.75, 0.35], [0.45, 0.80, 0.50]];
 const TOLERANCE = 1e-4;  // of the character's size (the issue's bound)
-const $ = (id) => document.getElementById(id);
 
 function decodeFloats(b64) {
   const bin = atob(b64);
@@ -224,7 +224,8 @@ async function createWebGL2(canvas) {
 // present "canvas": draw into the canvas's WebGPU context. "copy": draw into a texture, read it back and put
 // it into a 2D canvas; slower, but headless Chromium (no compositor) loses the WebGPU instance on the first
 // frame presented to a canvas (the next await fails with "A valid external Instance reference no longer
-// exists"), while a fresh device that never touches a canvas keeps working. main() tries "canvas" first.
+// exists") and leaves the page unable to show any canvas after it, while a device that never touches a
+// canvas keeps working. main() tries "canvas" first, except in headless Chromium, where it uses "copy".
 async function createWebGPU(canvas, present) {
   const adapter = await navigator.gpu.requestAdapter();
   if (!adapter) return null;
@@ -364,69 +365,14 @@ function heatUniforms(scene) {
   return {on: state.heat.on, a: state.heat.a, b: state.heat.b, scale: state.heat.scale * (scene === "twist" ? CGA_DATA.twist.size : CGA_DATA.size)};
 }
 
-function setupControls(renderer) {
-  $("model").textContent = CGA_DATA.model + ": " + CGA_DATA.fade + ".";
-  const time = $("time"), weight = $("weight"), twistSlider = $("twist");
-  time.max = CGA_DATA.times - 1;
-  weight.max = CGA_DATA.weights - 1;
-  twistSlider.max = CGA_DATA.twist.angles - 1;
-  CGA_DATA.modes.forEach((m, i) => $("mode").add(new Option(m, i)));
-  state.mode = CGA_DATA.modes.indexOf("screw");
-  $("mode").value = state.mode;
-  for (const id of ["heat-a", "heat-b"]) CGA_DATA.methods.forEach((m, i) => $(id).add(new Option(m, i)));
-  $("heat-a").value = state.heat.a, $("heat-b").value = state.heat.b;
-  state.twist = CGA_DATA.twist.angles - 1;
-  twistSlider.value = state.twist;
-  const update = () => {
-    state.time = +time.value, state.weight = +weight.value, state.twist = +twistSlider.value;
-    state.mode = +$("mode").value, state.scene = $("scene").value;
-    state.heat = {on: $("heat").checked, a: +$("heat-a").value, b: +$("heat-b").value, scale: +$("heat-scale").value};
-    $("weight-value").textContent = (state.weight / (CGA_DATA.weights - 1)).toFixed(2);
-    $("twist-value").textContent = Math.round(180 * state.twist / (CGA_DATA.twist.angles - 1)) + "\u00b0";
-    $("legend").style.display = state.heat.on ? "inline" : "none";
-    $("legend").textContent = "heat: |" + CGA_DATA.methods[state.heat.a] + " - " + CGA_DATA.methods[state.heat.b] +
-        "| per vertex, blue 0, green " + (50 * state.heat.scale).toPrecision(2) + "%, red >= " +
-        (100 * state.heat.scale).toPrecision(2) + "% of the " + (state.scene === "twist" ? "strip's length" : "character's size");
-    renderer.setPalette("character", characterPalette(state.mode, state.time, state.weight));
-    renderer.setPalette("twist", twistPalette(state.twist));
-  };
-  for (const id of ["time", "weight", "twist", "mode", "scene", "heat", "heat-a", "heat-b", "heat-scale"])
-    $(id).addEventListener("input", update);
-  $("play").onclick = () => {
-    state.playing = !state.playing;
-    $("play").textContent = state.playing ? "pause" : "play";
-  };
-  // Orbit: drag turns, the wheel zooms; one camera for all panels.
-  const canvas = $("view");
-  let drag = null;
-  canvas.addEventListener("pointerdown", (e) => { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
-  canvas.addEventListener("pointerup", () => { drag = null; });
-  canvas.addEventListener("pointermove", (e) => {
-    if (!drag) return;
-    camera.yaw -= 0.01 * (e.clientX - drag[0]);
-    camera.pitch = Math.max(-1.4, Math.min(1.4, camera.pitch + 0.01 * (e.clientY - drag[1])));
-    drag = [e.clientX, e.clientY];
-  });
-  canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom *= Math.exp(0.001 * e.deltaY); }, {passive: false});
-  update();
-  return update;
-}
-
-function labelPanels() {
-  const stage = $("stage");
-  CGA_DATA.methods.forEach((m, i) => {
-    const d = document.createElement("div");
-    d.className = "panel-label";
-    d.style.left = (25 * i + 1) + "%";
-    d.textContent = m;
-    stage.appendChild(d);
-  });
-}
+// Set when the picture must be drawn again (a control, the camera, the canvas size, the animation): a still
+// pose is not redrawn every frame, which keeps a laptop cool and a virtual-time screenshot quick.
+let dirty = true;
 
 function resize(canvas) {
   const dpr = window.devicePixelRatio || 1;
   const w = Math.max(4, Math.floor(canvas.clientWidth * dpr)), h = Math.max(1, Math.floor(canvas.clientHeight * dpr));
-  if (canvas.width !== w || canvas.height !== h) canvas.width = w, canvas.height = h;
+  if (canvas.width !== w || canvas.height !== h) canvas.width = w, canvas.height = h, dirty = true;
 }
 
 // Max distance between the GPU's and the CPU's skinned positions over every method, relative to the size.
@@ -455,6 +401,30 @@ async function selftest(renderer, shift) {
   return {worst, details};
 }
 
+// How long WebGPU may take to give its first frame (adapter, device, pipelines, one draw) before the page
+// moves on. A WebGPU instance that loses its connection (headless Chromium: "A valid external Instance
+// reference no longer exists") can leave its promises unresolved: without a limit the page would wait on a
+// blank canvas forever.
+const PROBE_MS = 8000;
+
+function withTimeout(promise, ms, what) {
+  let timer = null;
+  const late = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new Error(what + " did not come back within " + ms / 1000 + " s")), ms);
+  });
+  return Promise.race([promise, late]).finally(() => clearTimeout(timer));
+}
+
+// WebGPU on `canvas` presented as `present`, with one frame drawn: null when there is no adapter; throws when
+// something fails.
+async function probeWebGPU(canvas, present) {
+  const r = await createWebGPU(canvas, present);
+  if (!r) return null;
+  r.setPalette("character", characterPalette(0, 0, 0));
+  await r.draw("character", heatUniforms("character"));
+  return r;
+}
+
 async function main() {
   const canvas = $("view");
   resize(canvas);
@@ -469,31 +439,56 @@ async function main() {
     resize(c);
     return c;
   };
-  let renderer = null, fallback = "";
-  if (navigator.gpu && !options.has("webgl2")) {
-    for (const present of ["canvas", "copy"]) {
+  let renderer = null, why = "";  // why: the reason WebGPU is not used ("" when it is, or when not asked for)
+  if (options.has("webgl2")) {
+    why = "";
+  } else if (!navigator.gpu) {
+    why = "this browser offers no WebGPU (navigator.gpu is missing)";
+  } else {
+    // Headless Chromium has no compositor: a WebGPU canvas loses its instance on the first frame and leaves
+    // the page unable to show any later canvas, WebGL 2 included. There the page draws into a texture only.
+    const presents = /HeadlessChrome/.test(navigator.userAgent) ? ["copy"] : ["canvas", "copy"];
+    for (const present of presents) {
+      setStatus("loading", "Loading: starting WebGPU (" + (present === "canvas" ? "drawing into the canvas" :
+                "drawing into a texture copied to the canvas" + (why ? ", since drawing into the canvas failed: " + why : "")) +
+                ")\u2026");
       try {
-        const c = present === "canvas" ? canvas : freshCanvas();
-        renderer = await createWebGPU(c, present);
-        if (!renderer) {
-          fallback = "navigator.gpu gave no adapter; ";
-          break;
-        }
-        renderer.setPalette("character", characterPalette(0, 0, 0));
-        await renderer.draw("character", heatUniforms("character"));  // the probe: presenting works
+        // The self-test must test the path it was asked for, also on a busy CI machine where SwiftShader's
+        // first WebGPU frame can take longer than a person would wait.
+        renderer = await withTimeout(probeWebGPU(present === "canvas" ? canvas : freshCanvas(), present),
+                                     test ? 5 * PROBE_MS : PROBE_MS, "the first WebGPU frame");
+        if (!renderer) why = "navigator.gpu gave no adapter";
         break;
       } catch (e) {
-        fallback = "WebGPU failed (" + e.message + "); ";
+        why = e.message;
         renderer = null;
       }
     }
-    if (renderer) fallback = "";
+    if (renderer) why = "";
   }
-  if (!renderer) renderer = await createWebGL2(fallback ? freshCanvas() : canvas);
+  if (!renderer) {
+    setStatus("loading", "Loading: starting WebGL 2" + (why ? " (WebGPU not used: " + why + ")" : "") + "\u2026");
+    try {
+      renderer = await createWebGL2(why ? freshCanvas() : canvas);
+    } catch (e) {
+      setStatus("error", "Cannot draw: " + (why ? "WebGPU not used (" + why + "), and " : "") + "WebGL 2 failed (" +
+                e.message + "). Try another browser, or one with hardware acceleration on.");
+      throw e;
+    }
+  }
+  const backend = renderer.describe() + (options.has("webgl2") ? " (asked for by #webgl2)" : "") +
+                  (why ? " \u2014 fell back from WebGPU: " + why : "");
+  const report = (extra) => {
+    // Where the panels are (CSS pixels), for tests/web's look at a screenshot.
+    const r = $("view").getBoundingClientRect();
+    document.body.dataset.canvas = [r.left, r.top, r.width, r.height].map((v) => v.toFixed(0)).join(" ");
+    setStatus(why ? "fallback" : "ready", backend + extra);
+  };
+  report("");
   if (options.has("heat")) $("heat").checked = true;
   if (options.has("twist")) $("scene").value = "twist";
-  const update = setupControls(renderer);
-  $("status").textContent = fallback + renderer.describe();
+  const update = setupControls(renderer, state);
+  if (options.has("paused")) state.playing = false, $("play").textContent = "play";
   const lines = [];
   if (test) {
     const r = await selftest(renderer, options.has("mismatch") ? 1 : 0);
@@ -503,6 +498,7 @@ async function main() {
     // Frame time: 8 frames of the character (4 panels each), every one waited for (1 for the mismatch
     // check, which needs no timing); the self-test's frame stays on the screen.
     state.playing = false;
+    $("play").textContent = "play";
     $("time").value = CGA_DATA.selftest.time, $("weight").value = CGA_DATA.selftest.weight;
     $("mode").value = CGA_DATA.modes.indexOf(CGA_DATA.selftest.mode);
     update();
@@ -513,7 +509,8 @@ async function main() {
     const ms = (performance.now() - t0) / frames;
     lines.push("frame_ms " + ms.toFixed(2) + " (" + character.vertexCount + " vertices x 4 panels; " +
                renderer.describe() + ")");
-    $("status").textContent = fallback + renderer.describe() + " - frame " + ms.toFixed(1) + " ms";
+    report(" \u2014 frame " + ms.toFixed(1) + " ms");
+    lines.push("status " + $("status").textContent);
     return lines.join("\n");
   }
   let last = performance.now(), tick = 0, drawn = 0, loopDone = null;
@@ -526,12 +523,22 @@ async function main() {
       update();
     }
     const t0 = performance.now();
-    await renderer.draw(state.scene, heatUniforms(state.scene));
-    const ms = performance.now() - t0;
-    frameMs = frameMs === null ? ms : 0.9 * frameMs + 0.1 * ms;
+    if (dirty) {
+      dirty = false;
+      try {
+        await withTimeout(renderer.draw(state.scene, heatUniforms(state.scene)), PROBE_MS, "a frame");
+      } catch (e) {
+        setStatus("error", backend + " \u2014 stopped: " + e.message + ". Reload, or add #webgl2 to the address.");
+        loopDone("interactive stopped: " + e.message);
+        return;
+      }
+      const ms = performance.now() - t0;
+      frameMs = frameMs === null ? ms : 0.9 * frameMs + 0.1 * ms;
+    }
     if (t0 - last > 250) {
       last = t0;
-      $("status").textContent = fallback + renderer.describe() + " - frame " + frameMs.toFixed(2) + " ms";
+      // (0 under a virtual clock, as in Chromium's --virtual-time-budget: no figure then)
+      report(frameMs > 0 ? " \u2014 frame " + frameMs.toFixed(2) + " ms" : "");
     }
     if (++drawn === 5) loopDone("interactive " + drawn + " frames, time step " + state.time + ", frame " + frameMs.toFixed(1) + " ms");
     requestAnimationFrame(loop);
@@ -543,5 +550,6 @@ async function main() {
 window.cgagenResult = main().catch((e) => {
   const line = "unknown fail " + String(e && e.message || e).replace(/\s+/g, " ");
   $("cga-result").textContent = line;
+  if (document.body.dataset.status !== "error") setStatus("error", "The page failed: " + line.slice(13));
   return line;
 });

@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.20)  # new policies: "@NAME@" in the placeholders stays literal
 # Assembles the page template at build time (cmake -P): page.html with the WebGL 2 shaders (cgagen's
 # generated GLSL ES transform_point_split + skin.vert.glsl, and skin.frag.glsl), the WebGPU module (cgagen's
-# generated WGSL transform_point_split + skin.wgsl) and app.js put in its placeholders; the data placeholder
+# generated WGSL transform_point_split + skin.wgsl) and the program (ui.js, then app.js) put in its placeholders; the data placeholder
 # /*@CGA_DATA@*/ stays for cga-demo --web. Writes OUT_HTML (to look at) and OUT_CPP (cga::web::page_template(),
 # which cga-demo compiles in, so the executable needs no files at run time).
 #   -DWEB_DIR=<web/> -DESSL=<generated .essl> -DWGSL=<generated .wgsl> -DOUT_HTML=<file> -DOUT_CPP=<file>
@@ -17,8 +17,9 @@ file(READ ${WGSL} _wgsl)
 file(READ ${WEB_DIR}/skin.vert.glsl _vert)
 file(READ ${WEB_DIR}/skin.frag.glsl _frag)
 file(READ ${WEB_DIR}/skin.wgsl _skin_wgsl)
+file(READ ${WEB_DIR}/ui.js _ui)
 file(READ ${WEB_DIR}/app.js _app)
-foreach(_text _essl _wgsl _vert _frag _skin_wgsl _app)
+foreach(_text _essl _wgsl _vert _frag _skin_wgsl _ui _app)
   string(FIND "${${_text}}" "</script" _bad)
   if(NOT _bad EQUAL -1)
     message(FATAL_ERROR "assemble_page.cmake: a part contains </script, which would end its element")
@@ -28,7 +29,7 @@ endforeach()
 string(REPLACE "/*@GLSL_VERTEX@*/" "${_essl}\n${_vert}" _page "${_page}")
 string(REPLACE "/*@GLSL_FRAGMENT@*/" "${_frag}" _page "${_page}")
 string(REPLACE "/*@WGSL@*/" "${_wgsl}\n${_skin_wgsl}" _page "${_page}")
-string(REPLACE "/*@APP_JS@*/" "${_app}" _page "${_page}")
+string(REPLACE "/*@APP_JS@*/" "${_ui}\n${_app}" _page "${_page}")
 file(WRITE ${OUT_HTML} "${_page}")
 
 # C++: raw-string pieces of at most 4000 bytes (compilers limit one literal's length; the sources are ASCII,

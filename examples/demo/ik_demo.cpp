@@ -13,6 +13,7 @@
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
+#include "cga/gpu/label.hpp"
 #include "raster.hpp"
 
 namespace demo {
@@ -129,7 +130,12 @@ std::string ik_hand_reach(const Character& ch, const std::string& out_dir) {
     draw_marker(img, view, target, 0.04f * arm);
   }
   const std::string path = out_dir + "/ik-hand-reach.png";
-  write_png(img, path);
+  const std::string caption[] = {
+      "two-bone IK, right arm (cga-motors)",
+      fmt::format("CPU: skinned by the CPU SkinningJob, drawn by the demo's rasterizer. Clip '{}' at {:.3g} s; "
+                  "left: before the solve (grey), right: after (blue); the target in red",
+                  clip.name, 0.5f * clip.duration)};
+  cga::gpu::write_png(cga::gpu::with_caption(to_rgba(img), caption), path);
   fmt::print("  ik-hand-reach.png: before (grey) and after (blue) the solve, target in red (inside the reaching hand on the right): {}\n\n", path);
   return path;
 }

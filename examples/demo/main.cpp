@@ -29,7 +29,7 @@
 #include "cga/testing/twist_strip.hpp"
 #include "ik_demo.hpp"
 #include "options.hpp"
-#include "raster.hpp"
+#include "pictures.hpp"
 #include "web.hpp"
 
 using namespace cga;
@@ -240,16 +240,6 @@ double time_batches(F&& body, double min_seconds) {
   return elapsed / batches;
 }
 
-glm::vec3 method_color(SkinningMethod m) {
-  switch (m) {
-    case SkinningMethod::lbs: return {0.85f, 0.55f, 0.35f};
-    case SkinningMethod::dqs: return {0.45f, 0.65f, 0.85f};
-    case SkinningMethod::cga_points: return {0.85f, 0.75f, 0.35f};
-    case SkinningMethod::cga_motors: return {0.45f, 0.80f, 0.50f};
-  }
-  return {0.7f, 0.7f, 0.7f};
-}
-
 // All skinned vertices of all meshes of one method, concatenated (for framing and drawing).
 struct PosedCharacter {
   std::vector<SkinnedOutput> meshes;
@@ -424,50 +414,26 @@ int run(const demo::Options& opt) {
   }
   fmt::print("\n");
 
-  // ---- pictures (CPU rasterizer)
+  // ---- pictures (pictures.cpp): the mid-fade pose and the strip, here from the CPU jobs, below from the GL path
+  demo::PictureSet pictures;
+  pictures.character = &ch;
+  pictures.pose = fmt::format("pose: the middle of the fade (screw mode, weight 0.5): clip '{}' at {:.3g} s, clip '{}' at {:.3g} s",
+                              fade.a->name, fade.time_a(0.5f), fade.b->name, fade.time_b(0.5f));
+  for (const auto& [method, pc] : posed) pictures.cpu[method] = pc.meshes;
+  pictures.gpu_palette = [&](SkinningMethod method, std::size_t m) {
+    std::vector<float> packed;
+    gpu::append_palette(method, palettes[m].matrices, palettes[m].dual_quats, palettes[m].motors, packed);
+    return packed;
+  };
+  pictures.cylinder = &cyl, pictures.twist_angle = std::numbers::pi_v<float>, pictures.twisted = twisted;
   if (opt.pictures) {
     progress.stage("drawing pictures into " + opt.out_dir);
     std::error_code ec;
     std::filesystem::create_directories(opt.out_dir, ec);
     if (ec) throw std::runtime_error(fmt::format("cannot create folder {}: {}", opt.out_dir, ec.message()));
-    std::vector<std::string> written;
-    for (const auto& [method, pc] : posed) {
-      demo::Image img(480, 640);
-      std::vector<float> ax, ay, az;
-      for (const SkinnedOutput& o : pc.meshes)
-        ax.insert(ax.end(), o.px.begin(), o.px.end()), ay.insert(ay.end(), o.py.begin(), o.py.end()),
-            az.insert(az.end(), o.pz.begin(), o.pz.end());
-      const demo::View view = demo::frame_points(ax, ay, az, 0, 0, img.width, img.height);
-      for (std::size_t m = 0; m < ch.meshes.size(); ++m)
-        demo::draw_triangles(img, view, pc.meshes[m].px, pc.meshes[m].py, pc.meshes[m].pz, ch.meshes[m].indices,
-                             method_color(method));
-      written.push_back(fmt::format("{}/character-{}.png", opt.out_dir, to_string(method)));
-      demo::write_png(img, written.back());
-    }
-    if (!twisted.empty()) {
-      const int panel = 240;
-      demo::Image img(panel * int(twisted.size()), 2 * panel);
-      int k = 0;
-      for (const auto& [method, out] : twisted) {
-        // The same frame for every panel (the rest cylinder's), so radii compare by eye.
-        demo::View view = demo::frame_points(cyl.mesh.px, cyl.mesh.py, cyl.mesh.pz, k * panel, 0, panel, 2 * panel);
-        view.up = {0, 0, 1}, view.toward = {0, -1, 0};
-        view.center = {0.0f, 0.5f * cyl.spec.length};
-        view.scale = 0.8f * std::min(panel / (2.4f * cyl.spec.radius), 2.0f * panel / cyl.spec.length);
-        demo::draw_triangles(img, view, out.px, out.py, out.pz, cyl.mesh.indices, method_color(method));
-        ++k;
-      }
-      written.push_back(opt.out_dir + "/twist-strip.png");
-      demo::write_png(img, written.back());
-    }
     fmt::print("pictures (CPU rasterizer):");
-    for (const std::string& w : written) fmt::print(" {}", w);
+    for (const std::string& w : demo::write_cpu_pictures(pictures, opt.out_dir)) fmt::print(" {}", w);
     fmt::print("\n");
-    if (!twisted.empty()) {
-      fmt::print("  twist-strip.png panels, left to right:");
-      for (const auto& [method, out] : twisted) fmt::print(" {}", to_string(method));
-      fmt::print("\n");
-    }
   }
   // ---- IK: the right hand reaches a target (ik_demo.cpp)
   demo::ik_hand_reach(ch, opt.pictures ? opt.out_dir : std::string());
@@ -480,6 +446,9 @@ int run(const demo::Options& opt) {
     demo::WebInput web;
     web.character = &ch, web.model = std::filesystem::path(opt.model).filename().string(), web.size = size;
     web.fade_description = fade.description;
+    web.time_label = [&](float u) {
+      return fmt::format("a {:.2f} s, b {:.2f} s", fade.time_a(u), fade.time_b(u));
+    };
     web.modes = {Interpolation::paper, Interpolation::nlerp, Interpolation::screw};
     std::map<Interpolation, PosePipeline> pipelines;
     for (Interpolation m : web.modes) pipelines.emplace(m, PosePipeline(m, sk, ch.meshes, inverse_binds));
@@ -532,20 +501,9 @@ int run(const demo::Options& opt) {
         fmt::print("  {:<11}{}\n", to_string(method), cells);
       }
     }
-    if (opt.pictures) {
-      std::vector<std::string> written;
-      const Clip& clip = *fade.a;
-      const float time = fade.time_a(0.5f);
-      for (SkinningMethod method : methods) {
-        if (ch.meshes.empty()) break;
-        written.push_back(fmt::format("{}/gpu-character-{}.png", opt.out_dir, to_string(method)));
-        gpu::write_png(gpu::render_posed_character(context, ch, clip, time, method), written.back());
-      }
-      written.push_back(opt.out_dir + "/gpu-twist-strip.png");
-      gpu::write_png(gpu::render_twist_strip(context), written.back());
-      fmt::print("pictures (GPU, clip '{}' at t = {:.3g} s):", clip.name, time);
-      for (const std::string& w : written) fmt::print(" {}", w);
-      fmt::print("\n  gpu-twist-strip.png panels, left to right: lbs dqs cga-points cga-motors\n");
+    if (opt.pictures && !ch.meshes.empty()) {
+      const std::vector<std::string> paths = demo::write_gpu_pictures(context, pictures, opt.out_dir);
+      fmt::print("pictures (GPU, the same pose and framing as the CPU's): {}\n", fmt::join(paths, " "));
     }
   } catch (const gpu::Unavailable& e) {
     fmt::print("GPU       no OpenGL 4.5 context, GPU path skipped: {}\n", e.what());

@@ -1,6 +1,7 @@
-// A small CPU z-buffer rasterizer for the demo's pictures: flat-shaded triangles seen along one axis
-// (orthographic), written as PNG with stb_image_write. It exists so that the demo draws the posed meshes on any
-// machine; the GL path (cga::gpu) renders the same meshes with shaders.
+// A small CPU z-buffer rasterizer for the demo's pictures: triangles seen by an orthographic camera, shaded
+// like the GL path's render.frag (two-sided Lambert, headlight a little above the eye, normals interpolated
+// across each triangle), written as PNG. It exists so that the demo draws the posed meshes on any machine;
+// the GL path (cga::gpu) renders the same meshes with shaders, framed the same way (view_like()).
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "cga/gpu/render.hpp"
 
 namespace demo {
 
@@ -33,11 +36,17 @@ struct View {
 View frame_points(std::span<const float> px, std::span<const float> py, std::span<const float> pz, int x0, int y0,
                   int w, int h);
 
-// Draws triangles (index triples into the vertex arrays) flat-shaded in `color` (0..1 per channel).
-void draw_triangles(Image& image, const View& view, std::span<const float> px, std::span<const float> py,
-                    std::span<const float> pz, std::span<const std::uint32_t> indices, glm::vec3 color);
+// The view cga::gpu::render_meshes uses for `camera` (its fixed axes and box; fit_axes and fit_box must be
+// off) in the viewport [x0, x0+w) x [y0, y0+h): the same pixels on both paths.
+View view_like(const cga::gpu::Camera& camera, int x0, int y0, int w, int h);
 
-// Writes the image; throws std::runtime_error naming the path when it cannot.
-void write_png(const Image& image, const std::string& path);
+// Draws triangles (index triples into the vertex arrays) in `color` (0..1 per channel). With normals (nx, ny,
+// nz as long as px) they are interpolated across each triangle; without, each triangle gets its face normal.
+void draw_triangles(Image& image, const View& view, std::span<const float> px, std::span<const float> py,
+                    std::span<const float> pz, std::span<const std::uint32_t> indices, glm::vec3 color,
+                    std::span<const float> nx = {}, std::span<const float> ny = {}, std::span<const float> nz = {});
+
+// The picture as the GL path's image type (RGBA), for its captions (cga/gpu/label.hpp) and PNG writer.
+cga::gpu::Image to_rgba(const Image& image);
 
 }  // namespace demo

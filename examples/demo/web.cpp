@@ -205,6 +205,11 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
   data += "  methods: [\"lbs\", \"dqs\", \"cga-points\", \"cga-motors\"],\n";
   data += fmt::format("  modes: [{}], times: {}, weights: {}, entryFloats: {}, vertexFloats: {},\n",
                       fmt::join(mode_names, ", "), in.times, in.weights, kEntryFloats, kVertexFloats);
+  if (in.time_label) {
+    std::vector<std::string> labels;
+    for (int t = 0; t < in.times; ++t) labels.push_back(json_string(in.time_label(float(t) / float(in.times - 1))));
+    data += fmt::format("  timeLabels: [{}],\n", fmt::join(labels, ", "));
+  }
   data += fmt::format("  character: {{entries: {}, vertexCount: {}, vertices: \"{}\", indices: \"{}\", palettes: \"{}\", centers: \"{}\"}},\n",
                       body.entries, body.vertices.size() / kVertexFloats, base64(body.vertices), base64(body.indices),
                       base64(palettes), base64(centers));

@@ -23,6 +23,8 @@ struct WebInput {
   // The per-mesh motor palettes of `mode` at clip step u in [0, 1] (times along both clips) with weight w on
   // the second clip: the demo's pose pipeline (sample 2 clips, cross-fade, hierarchy, palette).
   std::function<std::vector<cga::MotorPalette>(cga::Interpolation mode, float u, float w)> pose;
+  // What the time slider's step u in [0, 1] shows (the clip times), next to the slider; may be empty.
+  std::function<std::string(float u)> time_label;
 };
 
 // Writes DIR/index.html (created if missing). Returns a one-line summary (sizes). Throws std::runtime_error.

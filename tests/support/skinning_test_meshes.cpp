@@ -61,10 +61,13 @@ TwistCylinder make_twist_cylinder(const TwistCylinderSpec& spec) {
   const auto at = [&](int r, int s) {
     return static_cast<std::uint32_t>(r * spec.segments + (s % spec.segments));
   };
+  // Each quad (r, s) (r, s+1) (r+1, s+1) (r+1, s) is split along the diagonal (r, s+1)-(r+1, s): a positive
+  // twist turns ring r+1 toward +phi relative to ring r, which brings those two corners together; the other
+  // diagonal would be stretched by the twist into a chord that cuts into the cylinder.
   for (int r = 0; r + 1 < rings; ++r)
     for (int s = 0; s < spec.segments; ++s) {
-      m.indices.insert(m.indices.end(), {at(r, s), at(r, s + 1), at(r + 1, s + 1)});
-      m.indices.insert(m.indices.end(), {at(r, s), at(r + 1, s + 1), at(r + 1, s)});
+      m.indices.insert(m.indices.end(), {at(r, s), at(r, s + 1), at(r + 1, s)});
+      m.indices.insert(m.indices.end(), {at(r, s + 1), at(r + 1, s + 1), at(r + 1, s)});
     }
   return cyl;
 }

@@ -13,6 +13,7 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
+#include "cga/gpu/label.hpp"
 #include "cga/gpu/pose.hpp"
 #include "cga/gpu/skinning.hpp"
 #include "cga/runtime/motor.hpp"
@@ -245,7 +246,7 @@ Image render_posed_character(const Context& context, const Character& character,
 
 Image render_method_strip(const Context& context, const SkinnedMesh& mesh,
                           std::span<const Transform> skinning_transforms, const Camera& camera, int panel_width,
-                          int height) {
+                          int height, std::span<const SkinningMethod> methods) {
   MeshPalette palette;
   for (const Transform& x : skinning_transforms) {
     palette.matrices.push_back(to_skinning_matrix(x));
@@ -253,7 +254,7 @@ Image render_method_strip(const Context& context, const SkinnedMesh& mesh,
     palette.motors.push_back(motor_from_transform(x));
   }
   std::vector<Image> panels;
-  for (SkinningMethod method : kAllSkinningMethods) {
+  for (SkinningMethod method : methods) {
     Skinner skinner(context, method);
     skinner.set_mesh(mesh);
     std::vector<float> packed;
@@ -261,6 +262,7 @@ Image render_method_strip(const Context& context, const SkinnedMesh& mesh,
     const SkinnedVertices v = skinner.run(SkinPath::vertex_feedback, packed, skinning_transforms.size(), 1, true);
     const DrawMesh draw{v.positions, v.normals, mesh.indices, method_colour(method)};
     panels.push_back(render_meshes(context, std::span<const DrawMesh>(&draw, 1), camera, panel_width, height));
+    draw_label(panels.back(), 0, 0, std::string(to_string(method)));
   }
   return side_by_side(panels);
 }

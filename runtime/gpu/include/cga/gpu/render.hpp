@@ -69,10 +69,12 @@ Image render_posed_character(const Context& context, const Character& character,
                              SkinningMethod method, int width = 512, int height = 512);
 
 // `mesh` skinned on the GPU (vertex shader + transform feedback) with the mesh-space skinning transforms
-// `skinning_transforms` (one per palette entry) by each of the four methods, side by side in the order lbs,
-// dqs, cga-points, cga-motors, every panel seen by the same `camera`.
+// `skinning_transforms` (one per palette entry) by each of `methods` (default: the four, in the order lbs,
+// dqs, cga-points, cga-motors), side by side, every panel seen by the same `camera` and labelled with its
+// method's name (label.hpp).
 Image render_method_strip(const Context& context, const SkinnedMesh& mesh,
                           std::span<const Transform> skinning_transforms, const Camera& camera,
-                          int panel_width = 256, int height = 384);
+                          int panel_width = 256, int height = 384,
+                          std::span<const SkinningMethod> methods = kAllSkinningMethods);
 
 }  // namespace cga::gpu

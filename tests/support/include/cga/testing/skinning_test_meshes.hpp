@@ -17,7 +17,11 @@ struct TwistCylinderSpec {
   float radius = 1.0f;
   float length = 4.0f;       // along +z, from z = 0
   int segments = 32;         // vertices around
-  int rings = 33;            // vertex rings along z; made odd so one ring sits exactly at z = length / 2
+  // Vertex rings along z; made odd so one ring sits exactly at z = length / 2. 65 rings: at 180 degrees two
+  // neighbouring rings in the blend zone turn about as far apart (11.25 degrees) as two neighbouring vertices
+  // of a ring, so the twisted triangles stay small; fewer rings make them slivers whose edges cut into the
+  // surface (notches in the silhouette, saw-tooth shading in the pictures).
+  int rings = 65;
   float blend_width = 1.0f;  // the weight of bone 1 ramps linearly from 0 to 1 over this length around the middle
 };
 

@@ -1,0 +1,119 @@
+// The page's words and controls (web/app.js does the drawing): the status line, the caption under each panel
+// (what the method is, what to look for), the controls (each shown only in the view where it acts, each slider
+// with its value) and the heat map's legend. assemble_page.cmake puts this file in front of app.js.
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+
+// The status line: always says what the page is doing (state: loading, ready, fallback, error). The state is
+// also body[data-status], which tests/web reads.
+function setStatus(state, text) {
+  document.body.dataset.status = state;
+  $("status").textContent = text;
+}
+// An error before main() runs (bad data, a syntax error) must not leave "Loading" on the screen.
+window.addEventListener("error", (e) => setStatus("error", "The page failed: " + e.message));
+
+// One caption per panel, in CGA_DATA.methods' order.
+const METHOD_NOTES = {
+  "lbs": ["linear blend skinning",
+          "each bone's matrix moves the vertex and the moved points are averaged (the games-industry default)",
+          "the twist strip pinches to a point at 180\u00b0 (the candy wrapper); elbows and shoulders thin out"],
+  "dqs": ["dual-quaternion skinning",
+          "the bones' dual quaternions (rotation + translation) are blended, then applied once",
+          "the twist strip keeps its radius; a bone's scale is dropped"],
+  "cga-points": ["CGA, blended points",
+                 "each bone's CGA motor moves the vertex and the points are averaged: lbs computed with motors",
+                 "the same picture as lbs (the heat map of the two is blue: rounding only)"],
+  "cga-motors": ["CGA, blended motors (the paper's method)",
+                 "the bones' motors (rotation + translation + uniform scale in one versor) are blended, then applied once",
+                 "no candy wrapper, like dqs, and scaled bones keep their scale"],
+};
+
+function labelPanels() {
+  const stage = $("stage"), captions = $("captions");
+  CGA_DATA.methods.forEach((m, i) => {
+    const d = document.createElement("div");
+    d.className = "panel-label";
+    d.style.left = (25 * i + 1) + "%";
+    d.textContent = m;
+    stage.appendChild(d);
+    const [title, what, look] = METHOD_NOTES[m] || [m, "", ""];
+    const c = document.createElement("div");
+    c.className = "caption";
+    c.append(Object.assign(document.createElement("b"), {textContent: m + ": " + title + ". "}), what + ". ",
+             Object.assign(document.createElement("i"), {textContent: "Look for: " + look + "."}));
+    captions.appendChild(c);
+  });
+}
+
+// The heat map's legend in plain words, with the colour bar.
+function heatLegend(heat, scene) {
+  const legend = $("legend");
+  legend.classList.toggle("hidden", !heat.on);
+  if (!heat.on) return;
+  const of = scene === "twist" ? "the strip's length" : "the character's size (its bounding box's diagonal)";
+  const red = +(100 * heat.scale).toPrecision(2) + "%";
+  legend.replaceChildren(
+      "Heat map: every panel colours each vertex by how far apart " + CGA_DATA.methods[heat.a] + " and " +
+      CGA_DATA.methods[heat.b] + " put it. blue: the same place",
+      Object.assign(document.createElement("span"), {className: "bar"}),
+      "red: " + red + " of " + of + " apart or more (green: half that). " +
+      (heat.a === heat.b ? "Both are the same method: all blue." : "The panels' own methods do not matter here."));
+  $("heat-of").textContent = "of " + (scene === "twist" ? "the strip's length" : "the character's size");
+}
+
+// Wires the controls to `state` and the renderer's palettes; returns update(), which re-reads them.
+function setupControls(renderer, state) {
+  $("model").textContent = CGA_DATA.model + ": " + CGA_DATA.fade + ".";
+  const time = $("time"), weight = $("weight"), twistSlider = $("twist");
+  time.max = CGA_DATA.times - 1;
+  weight.max = CGA_DATA.weights - 1;
+  twistSlider.max = CGA_DATA.twist.angles - 1;
+  CGA_DATA.modes.forEach((m, i) => $("mode").add(new Option(m, i)));
+  state.mode = CGA_DATA.modes.indexOf("screw");
+  $("mode").value = state.mode;
+  for (const id of ["heat-a", "heat-b"]) CGA_DATA.methods.forEach((m, i) => $(id).add(new Option(m, i)));
+  $("heat-a").value = state.heat.a, $("heat-b").value = state.heat.b;
+  state.twist = CGA_DATA.twist.angles - 1;
+  twistSlider.value = state.twist;
+  const update = () => {
+    state.time = +time.value, state.weight = +weight.value, state.twist = +twistSlider.value;
+    state.mode = +$("mode").value, state.scene = $("scene").value;
+    state.heat = {on: $("heat").checked, a: +$("heat-a").value, b: +$("heat-b").value, scale: +$("heat-scale").value};
+    const labels = CGA_DATA.timeLabels;
+    $("time-value").textContent = (state.time + 1) + "/" + CGA_DATA.times + (labels ? " (" + labels[state.time] + ")" : "");
+    $("weight-value").textContent = (state.weight / (CGA_DATA.weights - 1)).toFixed(2) + " of clip b";
+    $("twist-value").textContent = Math.round(180 * state.twist / (CGA_DATA.twist.angles - 1)) + "\u00b0";
+    // Each control only where it acts: time, fade, mode and play move the character; twist turns the strip.
+    for (const el of document.querySelectorAll("[data-for]")) {
+      const f = el.dataset.for;
+      el.classList.toggle("hidden", f === "heat" ? !state.heat.on : f !== state.scene);
+    }
+    heatLegend(state.heat, state.scene);
+    dirty = true;
+    renderer.setPalette("character", characterPalette(state.mode, state.time, state.weight));
+    renderer.setPalette("twist", twistPalette(state.twist));
+  };
+  for (const id of ["time", "weight", "twist", "mode", "scene", "heat", "heat-a", "heat-b", "heat-scale"])
+    $(id).addEventListener("input", update);
+  $("play").onclick = () => {
+    state.playing = !state.playing;
+    $("play").textContent = state.playing ? "pause" : "play";
+  };
+  // Orbit: drag turns, the wheel zooms; one camera for all panels.
+  const canvas = $("view");
+  let drag = null;
+  canvas.addEventListener("pointerdown", (e) => { drag = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
+  canvas.addEventListener("pointerup", () => { drag = null; });
+  canvas.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    camera.yaw -= 0.01 * (e.clientX - drag[0]);
+    camera.pitch = Math.max(-1.4, Math.min(1.4, camera.pitch + 0.01 * (e.clientY - drag[1])));
+    drag = [e.clientX, e.clientY];
+    dirty = true;
+  });
+  canvas.addEventListener("wheel", (e) => { e.preventDefault(); camera.zoom *= Math.exp(0.001 * e.deltaY); dirty = true; }, {passive: false});
+  update();
+  return update;
+}
