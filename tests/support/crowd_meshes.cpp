@@ -89,14 +89,24 @@ SkinnedMesh make_coherent_skinned_mesh(std::size_t vertex_count, int joint_count
   m.name = fmt::format("coherent_{}_{}", vertex_count, seed);
   std::size_t bone = 0;
   while (m.px.size() < vertex_count) {
-    const auto length = static_cast<std::size_t>(static_cast<float>(run) * rng.uniform(0.5f, 1.5f)) + 1;
+    // A tube around the bone: rings of kAround vertices, whole rings only, triangles between the rings.
+    constexpr std::size_t kAround = 4;
+    const auto rings = std::max<std::size_t>(
+        2, static_cast<std::size_t>(static_cast<float>(run) * rng.uniform(0.5f, 1.5f) / kAround + 0.5f));
+    const std::size_t length = rings * kAround;
     const std::size_t p = parent[bone], c = child[bone], extra = parent[p];
     const glm::vec3 a = at[p], b = at[bone];
     const float radius = 0.1f * extent;
+    const auto first = static_cast<std::uint32_t>(m.px.size());
     for (std::size_t t = 0; t < length && m.px.size() < vertex_count; ++t) {
-      const float u = (static_cast<float>(t) + 0.5f) / static_cast<float>(length);
-      const float phi = rng.uniform(0.0f, 2.0f * std::numbers::pi_v<float>);
-      const glm::vec3 n = glm::normalize(glm::vec3(std::cos(phi), std::sin(phi), rng.uniform(-0.3f, 0.3f)));
+      const float u = (static_cast<float>(t / kAround) + 0.5f) / static_cast<float>(rings);
+      const float phi = 2.0f * std::numbers::pi_v<float> * static_cast<float>(t % kAround) / kAround;
+      const glm::vec3 axis = b - a;
+      const glm::vec3 side = glm::length(glm::cross(axis, glm::vec3(0, 0, 1))) > 1e-4f
+                                 ? glm::normalize(glm::cross(axis, glm::vec3(0, 0, 1)))
+                                 : glm::vec3(1, 0, 0);
+      const glm::vec3 up = glm::length(axis) > 1e-6f ? glm::normalize(glm::cross(side, axis)) : glm::vec3(0, 1, 0);
+      const glm::vec3 n = std::cos(phi) * side + std::sin(phi) * up;
       const glm::vec3 pos = glm::clamp(glm::mix(a, b, u) + radius * n, glm::vec3(-extent), glm::vec3(extent));
       m.px.push_back(pos.x), m.py.push_back(pos.y), m.pz.push_back(pos.z);
       m.nx.push_back(n.x), m.ny.push_back(n.y), m.nz.push_back(n.z);
@@ -124,6 +134,15 @@ SkinnedMesh make_coherent_skinned_mesh(std::size_t vertex_count, int joint_count
       m.joints.push_back(j);
       m.weights.push_back(w);
     }
+    const auto made = static_cast<std::uint32_t>(m.px.size()) - first;
+    for (std::uint32_t r = 0; (r + 2) * kAround <= made; ++r)
+      for (std::uint32_t k = 0; k < kAround; ++k) {
+        const auto at_ = [&](std::uint32_t ring, std::uint32_t s) {
+          return first + ring * static_cast<std::uint32_t>(kAround) + s % static_cast<std::uint32_t>(kAround);
+        };
+        m.indices.insert(m.indices.end(), {at_(r, k), at_(r, k + 1), at_(r + 1, k + 1)});
+        m.indices.insert(m.indices.end(), {at_(r, k), at_(r + 1, k + 1), at_(r + 1, k)});
+      }
     bone = (bone + 1) % joints;
   }
   return m;
