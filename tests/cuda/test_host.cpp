@@ -124,6 +124,7 @@ TEST_CASE("the shared palette copies: every (unit, copy) has its own slot, each 
           const unsigned s = cuda::detail::palette_slot(u, c, shift);
           REQUIRE(s < used.size());
           CHECK(used[s]++ == 0);
+          CHECK(cuda::detail::palette_unit_of_slot(s, shift) == u);  // what the staging loop stores there
           // Copy c lives in bank groups [c * 8 / copies, (c + 1) * 8 / copies).
           CHECK(s % 8 / (8 / layout.copies) == c);
         }

@@ -140,10 +140,9 @@ __global__ void __launch_bounds__(kBlock, 8) skin_kernel(const KernelArgs a) {
   } else {
     // Consecutive threads fill consecutive slots (conflict-free stores); each reads its unit's 16 B.
     const float4* src4 = reinterpret_cast<const float4*>(src);
-    const unsigned units = a.bones * kUnits, per_copy_shift = 3u - shift;
-    const unsigned slots = palette_slots(units, shift);
+    const unsigned units = a.bones * kUnits, slots = palette_slots(units, shift);
     for (unsigned s = threadIdx.x; s < slots; s += blockDim.x) {
-      const unsigned unit = ((s >> 3) << per_copy_shift) + (s & ((1u << per_copy_shift) - 1u));
+      const unsigned unit = palette_unit_of_slot(s, shift);
       if (unit < units) palette[s] = __ldg(src4 + unit);
     }
   }

@@ -30,6 +30,13 @@ CGA_HOST_DEVICE inline unsigned palette_slot(unsigned unit, unsigned copy, unsig
   return ((unit >> per_copy_shift) << 3) + (copy << per_copy_shift) + (unit & ((1u << per_copy_shift) - 1u));
 }
 
+// The unit slot `s` holds (the inverse of palette_slot, whatever the copy): what the staging loop reads for
+// each slot. May be >= the palette's units in the last row of a layout with fewer than 8 copies.
+CGA_HOST_DEVICE inline unsigned palette_unit_of_slot(unsigned s, unsigned copy_shift) {
+  const unsigned per_copy_shift = 3u - copy_shift;
+  return ((s >> 3) << per_copy_shift) + (s & ((1u << per_copy_shift) - 1u));
+}
+
 // 16-B slots the layout spans for `total_units` units (bones * units per entry).
 CGA_HOST_DEVICE inline unsigned palette_slots(unsigned total_units, unsigned copy_shift) {
   const unsigned per_copy_shift = 3u - copy_shift;
