@@ -1,6 +1,7 @@
 // cga::cuda's host side without a GPU: a launch with inconsistent arguments throws CudaError naming the
 // problem before any CUDA call; bytes per vertex of the layouts the benchmark reports; palettes packed in
-// the layout the kernels read (lbs row-major 3x4, dqs real xyzw + dual xyzw, cga motors' 12 blades).
+// the layout the kernels read (lbs row-major 3x4, dqs real xyzw + dual xyzw, cga motors' 12 blades); the
+// shared-memory palette copies (kernels.hpp) and the bank model that predicts their wavefronts.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -9,7 +10,9 @@
 #include "cga/cuda/crowd_skinning.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
+#include "cga/testing/crowd_meshes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
+#include "kernels.hpp"
 
 using namespace cga;
 using namespace cga::cuda;
@@ -102,4 +105,55 @@ TEST_CASE("palettes are packed in the layout the kernels read (cga::append_packe
       }
     }
   }
+}
+
+TEST_CASE("the shared palette copies: every (unit, copy) has its own slot, each copy in its own bank groups") {
+  for (const std::size_t bones : {std::size_t{1}, std::size_t{3}, std::size_t{64}, std::size_t{100}, kMaxBones})
+    for (SkinningMethod m : kAllSkinningMethods) {
+      const PaletteLayout layout = palette_layout(m, bones);
+      INFO(to_string(m) << ", " << bones << " bones: " << layout.copies << " copies, " << layout.shared_bytes << " B");
+      CHECK(layout.shared_bytes <= cuda::detail::kPaletteSharedBudget);
+      unsigned shift = 0;
+      while ((1u << shift) < layout.copies) ++shift;
+      const unsigned units = cuda::detail::palette_units(static_cast<int>(m));
+      const unsigned total = static_cast<unsigned>(bones) * units;
+      CHECK(std::size_t(cuda::detail::palette_slots(total, shift)) * 16 == layout.shared_bytes);
+      std::vector<int> used(layout.shared_bytes / 16, 0);
+      for (unsigned u = 0; u < total; ++u)
+        for (unsigned c = 0; c < layout.copies; ++c) {
+          const unsigned s = cuda::detail::palette_slot(u, c, shift);
+          REQUIRE(s < used.size());
+          CHECK(used[s]++ == 0);
+          CHECK(cuda::detail::palette_unit_of_slot(s, shift) == u);  // what the staging loop stores there
+          // Copy c lives in bank groups [c * 8 / copies, (c + 1) * 8 / copies).
+          CHECK(s % 8 / (8 / layout.copies) == c);
+        }
+    }
+  CHECK(palette_layout(SkinningMethod::lbs, 64).copies == 8);   // 3 KiB x 8 = 24 KiB
+  CHECK(palette_layout(SkinningMethod::dqs, 64).copies == 8);   // 2 KiB x 8
+  CHECK(palette_layout(SkinningMethod::lbs, 128).copies == 4);  // 6 KiB x 4
+  CHECK(palette_layout(SkinningMethod::lbs, kMaxBones).copies == 2);
+}
+
+TEST_CASE("modelled wavefronts of the palette reads: 8 copies take the minimum on random joints") {
+  const SkinnedMesh random = make_random_skinned_mesh(4096, 64, 1234u);
+  const SkinnedMesh coherent = make_coherent_skinned_mesh(4096, 64, 1234u);
+  for (SkinningMethod m : kAllSkinningMethods) {
+    const PaletteLayout copies = palette_layout(m, 64), one{1, 64 * palette_floats(m) * 4};
+    const double random_one = modelled_palette_wavefronts(one, m, random.joints);
+    const double random_copies = modelled_palette_wavefronts(copies, m, random.joints);
+    const double coherent_one = modelled_palette_wavefronts(one, m, coherent.joints);
+    const double coherent_copies = modelled_palette_wavefronts(copies, m, coherent.joints);
+    INFO(to_string(m) << ": random " << random_one << " -> " << random_copies << ", coherent " << coherent_one
+                      << " -> " << coherent_copies);
+    CHECK(random_one > 8.0);        // Nsight Compute on an H200, lbs: 9.3
+    CHECK(random_copies == 4.0);    // one wavefront per quarter warp: the 128-bit minimum
+    CHECK(coherent_one >= 4.0);
+    CHECK(coherent_one < 5.0);
+    CHECK(coherent_copies == 4.0);
+  }
+  // One warp, all lanes on one joint: a broadcast, one wavefront per quarter warp in either layout.
+  const std::vector<std::array<std::uint16_t, 4>> same(32, {5, 5, 5, 5});
+  CHECK(modelled_palette_wavefronts(palette_layout(SkinningMethod::lbs, 64), SkinningMethod::lbs, same) == 4.0);
+  CHECK(modelled_palette_wavefronts(PaletteLayout{1, 3072}, SkinningMethod::lbs, same) == 4.0);
 }

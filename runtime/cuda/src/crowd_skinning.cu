@@ -1,5 +1,8 @@
 // Crowd-skinning kernels: one thread per vertex (grid-stride), blockIdx.y = instance. Each block stages its
-// instance's palette in shared memory; cga_points converts every motor there once (a per-bone prepass)
+// instance's palette in shared memory, in copies spread over the bank groups (palette_slot in kernels.hpp:
+// lane l reads copy l % copies, so a warp's 128-bit palette reads take the minimum 4 wavefronts whatever
+// joints its vertices use); the per-vertex blend reads each entry into registers (load_entry) and blends
+// those; cga_points converts every motor there once (a per-bone prepass)
 // into its weight-normalized point-transform matrix with the generated transform_point_split_prepare (the
 // prepare of the staged point transform; the point transform of a motor is affine, so the per-bone transform_point + divide + average the paper does per vertex equals blending
 // these matrices), and cga_motors stages its motors in split form (G = a + b, H = a - b, U; see
@@ -23,7 +26,7 @@ constexpr int kBlock = 256;
 constexpr int kVerticesPerThread = 4;  // grid-stride steps per thread, to amortize the palette staging
 
 struct KernelArgs {
-  unsigned vertex_count, bones, instance_offset;
+  unsigned vertex_count, bones, instance_offset, copy_shift;
   bool per_instance_inputs;
   const float* __restrict__ positions;
   const float* __restrict__ normals;
@@ -87,27 +90,61 @@ __device__ __forceinline__ void dual_quat_rows(const float b[8], float m[12]) {
   m[11] = 2.0f * (rw * dz - dw * rz + (rx * dy - ry * dx)) * inv;
 }
 
+// Stores entry `b` (kUnits 16-B units from v) into every copy. Lane-rotated copy order: the lanes of a warp
+// store different copies at once, i.e. different bank groups.
+template <int kUnits>
+__device__ __forceinline__ void store_entry(float4* pal, unsigned b, const float* v, unsigned shift) {
+  const unsigned copies = 1u << shift;
+  for (int u = 0; u < kUnits; ++u) {
+    const float4 x = make_float4(v[4 * u], v[4 * u + 1], v[4 * u + 2], v[4 * u + 3]);
+    for (unsigned c = 0; c < copies; ++c)
+      pal[palette_slot(b * kUnits + u, (c + b) & (copies - 1u), shift)] = x;
+  }
+}
+
+// Entry j of this lane's copy into registers: kUnits 128-bit shared loads.
+template <int kUnits>
+__device__ __forceinline__ void load_entry(const float4* pal, int j, unsigned shift, unsigned copy,
+                                           float out[4 * kUnits]) {
+  for (int u = 0; u < kUnits; ++u) {
+    const float4 x = pal[palette_slot(static_cast<unsigned>(j) * kUnits + u, copy, shift)];
+    out[4 * u] = x.x, out[4 * u + 1] = x.y, out[4 * u + 2] = x.z, out[4 * u + 3] = x.w;
+  }
+}
+
+// 8 blocks of 256 threads per SM (2048 threads, full occupancy on sm_90): caps registers at 32 (ptxas -v: no
+// spills but 4 B in dqs with normals), and 8 x 24 KiB of palette copies fit in the SM's 228 KiB.
 template <int kMethod, bool kU8, bool kUnorm, bool kNormals>
-__global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
+__global__ void __launch_bounds__(kBlock, 8) skin_kernel(const KernelArgs a) {
   constexpr int kEntry = kMethod == kDqs ? 8 : 12;
-  extern __shared__ float palette[];
+  constexpr int kUnits = kEntry / 4;
+  extern __shared__ float4 palette[];
+  const unsigned shift = a.copy_shift, copy = threadIdx.x & ((1u << shift) - 1u);
   const unsigned instance = a.instance_offset + blockIdx.y;
   const float* src = a.palettes + static_cast<std::size_t>(instance) * a.bones * kEntry;
   if constexpr (kMethod == kPoints) {
     for (unsigned b = threadIdx.x; b < a.bones; b += blockDim.x) {
-      float motor[12], split[12];
+      float motor[12], split[12], rows[12];
       for (int e = 0; e < 12; ++e) motor[e] = src[12 * b + e];
       motor_split(motor, split);
-      split_rows(split, palette + 12 * b);
+      split_rows(split, rows);
+      store_entry<kUnits>(palette, b, rows, shift);
     }
   } else if constexpr (kMethod == kMotors) {
     for (unsigned b = threadIdx.x; b < a.bones; b += blockDim.x) {
-      float motor[12];
+      float motor[12], split[12];
       for (int e = 0; e < 12; ++e) motor[e] = src[12 * b + e];
-      motor_split(motor, palette + 12 * b);
+      motor_split(motor, split);
+      store_entry<kUnits>(palette, b, split, shift);
     }
   } else {
-    for (unsigned i = threadIdx.x; i < a.bones * kEntry; i += blockDim.x) palette[i] = src[i];
+    // Consecutive threads fill consecutive slots (conflict-free stores); each reads its unit's 16 B.
+    const float4* src4 = reinterpret_cast<const float4*>(src);
+    const unsigned units = a.bones * kUnits, slots = palette_slots(units, shift);
+    for (unsigned s = threadIdx.x; s < slots; s += blockDim.x) {
+      const unsigned unit = palette_unit_of_slot(s, shift);
+      if (unit < units) palette[s] = __ldg(src4 + unit);
+    }
   }
   __syncthreads();
 
@@ -124,26 +161,32 @@ __global__ void __launch_bounds__(kBlock) skin_kernel(const KernelArgs a) {
     float m[12] = {};  // the blended 3x4
     float px = 0.0f, py = 0.0f, pz = 0.0f;
     if constexpr (kMethod == kLbs || kMethod == kPoints) {
-      for (int e = 0; e < 12; ++e) m[e] = w[0] * palette[12 * j[0] + e];
-      for (int k = 1; k < 4; ++k)
-        for (int e = 0; e < 12; ++e) m[e] += w[k] * palette[12 * j[k] + e];
+      float q[12];
+      load_entry<3>(palette, j[0], shift, copy, q);
+      for (int e = 0; e < 12; ++e) m[e] = w[0] * q[e];
+      for (int k = 1; k < 4; ++k) {
+        load_entry<3>(palette, j[k], shift, copy, q);
+        for (int e = 0; e < 12; ++e) m[e] += w[k] * q[e];
+      }
     } else if constexpr (kMethod == kDqs) {
-      const float* q0 = palette + 8 * j[0];
+      float q0[8], q[8];
+      load_entry<2>(palette, j[0], shift, copy, q0);
       float b[8];
       for (int e = 0; e < 8; ++e) b[e] = w[0] * q0[e];
       for (int k = 1; k < 4; ++k) {
-        const float* q = palette + 8 * j[k];
+        load_entry<2>(palette, j[k], shift, copy, q);
         const float dot = q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[3] * q[3];
         const float wk = copysignf(w[k], dot);
         for (int e = 0; e < 8; ++e) b[e] += wk * q[e];
       }
       dual_quat_rows(b, m);
     } else {  // kMotors
-      const float* q0 = palette + 12 * j[0];
+      float q0[12], q[12];
+      load_entry<3>(palette, j[0], shift, copy, q0);
       float b[12];
       for (int e = 0; e < 12; ++e) b[e] = w[0] * q0[e];
       for (int k = 1; k < 4; ++k) {
-        const float* q = palette + 12 * j[k];
+        load_entry<3>(palette, j[k], shift, copy, q);
         // Rotor parts times 1 + k: G (split indices 0-3).
         const float wk = rotor_sign::signed_weight(w[k], rotor_sign::dot(q0, q));
         for (int e = 0; e < 12; ++e) b[e] += wk * q[e];
@@ -193,11 +236,12 @@ std::string launch(const LaunchArgs& args, void* stream) {
     case kMotors: kernel = pick<kMotors>(args.joints_u8, args.weights_unorm16, normals); break;
     default: return "unknown method " + std::to_string(args.method);
   }
-  KernelArgs k{static_cast<unsigned>(args.vertex_count), static_cast<unsigned>(args.bones), 0,
+  const unsigned units = palette_units(args.method);
+  const unsigned shift = copy_shift_for(args.bones, units);
+  KernelArgs k{static_cast<unsigned>(args.vertex_count), static_cast<unsigned>(args.bones), 0, shift,
                args.per_instance_inputs, args.positions, args.normals, args.joints, args.weights,
                args.palettes, args.out_positions, args.out_normals};
-  const std::size_t entry = args.method == kDqs ? 8 : 12;
-  const std::size_t shared = args.bones * entry * sizeof(float);
+  const std::size_t shared = std::size_t{palette_slots(static_cast<unsigned>(args.bones) * units, shift)} * 16u;
   const std::size_t per_block = static_cast<std::size_t>(kBlock) * kVerticesPerThread;
   const unsigned blocks_x = static_cast<unsigned>((args.vertex_count + per_block - 1) / per_block);
   auto s = static_cast<cudaStream_t>(stream);

@@ -1,7 +1,10 @@
 // cga-gl-bench: crowd skinning throughput on the OpenGL backend (cga::gpu), per method and GL path (vertex
-// shader + transform feedback, compute shader), against the device's measured buffer copy bandwidth (the
-// GL counterpart of cga-cuda-bench, same table). Many instances of one random mesh, 64 bones by
-// default, >= 10^7 vertices in all. Two input layouts:
+// shader + transform feedback, compute shader), against the memory bandwidth a compute shader reaches (a
+// 16-B-per-invocation copy, measured in the same run; glCopyNamedBufferSubData's figure is printed too: on
+// NVIDIA it is far below the memory's); the GL counterpart of cga-cuda-bench. Many instances of one mesh, 64
+// bones by default, >= 10^7 vertices in all: the coherent mesh (make_coherent_skinned_mesh, neighbouring
+// vertices share bones as in real characters) and the random one (4 random bones per vertex, the worst
+// case), --mesh picks. Two input layouts:
 //   shared        every instance reads the one rest mesh (what cga::gpu::Skinner::set_mesh does): the rest
 //                 vertices are read once per dispatch and stay in cache, so the bytes streamed per skinned
 //                 vertex are its outputs (12 B, 24 with normals) plus the rest mesh spread over the instances
@@ -15,13 +18,13 @@
 // softpipe) run vertex shaders, compute shaders and buffer copies on the calling thread, outside what their
 // GL_TIME_ELAPSED queries measure (they report ~0 for ten 4 MiB copies): there --timing auto (the default) uses
 // the wall clock between glFinish calls around all iterations instead, and says so. For every row it prints vertices/s, bytes per
-// vertex, the bandwidth bound (copy bandwidth / bytes per vertex), the fraction of it reached, and the largest
+// vertex, the bandwidth bound (compute copy bandwidth / bytes per vertex), the fraction of it reached, and the largest
 // distance between the first and last instance and the CPU SkinningJob (exit status 1 when one is off by more
 // than 1e-4 of the scene size, 2 on an error).
 //
 //   cga-gl-bench [--vertices N] [--instances I] [--bones B] [--iterations K] [--normals]
 //                [--inputs shared|per-instance|both] [--path vertex|compute|both] [--copy-mib M]
-//                [--timing auto|query|wall]
+//                [--timing auto|query|wall] [--mesh coherent|random|both]
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -38,6 +41,7 @@
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
+#include "cga/testing/crowd_meshes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 
 using namespace cga;
@@ -55,15 +59,16 @@ struct Options {
   std::string path = "both";
   std::size_t copy_mib = 512;
   std::string timing = "auto";
+  std::string mesh = "both";
   bool help = false;
 };
 
 constexpr std::string_view kUsage =
     "usage: cga-gl-bench [--vertices N] [--instances I] [--bones B] [--iterations K] [--normals]\n"
     "                    [--inputs shared|per-instance|both] [--path vertex|compute|both] [--copy-mib M]\n"
-    "                    [--timing auto|query|wall]\n"
+    "                    [--timing auto|query|wall] [--mesh coherent|random|both]\n"
     "defaults: 16384 vertices x 1024 instances, 64 bones, 10 iterations, positions only, both input layouts,\n"
-    "both paths, a 512 MiB buffer copy for the bandwidth, timing auto (GL_TIME_ELAPSED queries, the wall\n"
+    "both paths, both meshes, a 512 MiB buffer copy for the bandwidth, timing auto (GL_TIME_ELAPSED queries, the wall\n"
     "clock on Mesa's software renderers llvmpipe / softpipe, whose queries do not cover the work)\n";
 
 std::size_t parse_size(std::string_view option, const std::string& text) {
@@ -96,6 +101,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--path") o.path = value();
     else if (a == "--copy-mib") o.copy_mib = parse_size(a, value());
     else if (a == "--timing") o.timing = value();
+    else if (a == "--mesh") o.mesh = value();
     else if (a == "--help" || a == "-h") o.help = true;
     else throw std::invalid_argument("unknown option " + std::string(a) + " (see --help)");
   }
@@ -106,6 +112,8 @@ Options parse(int argc, char** argv) {
   if (o.vertices == 0 || o.instances == 0) throw std::invalid_argument("--vertices and --instances must be >= 1");
   if (o.bones == 0 || o.bones > 65536) throw std::invalid_argument("--bones must be 1..65536");
   if (o.iterations < 1) throw std::invalid_argument("--iterations must be >= 1");
+  if (o.mesh != "coherent" && o.mesh != "random" && o.mesh != "both")
+    throw std::invalid_argument("--mesh must be coherent, random or both");
   if (o.timing != "auto" && o.timing != "query" && o.timing != "wall")
     throw std::invalid_argument("--timing must be auto, query or wall");
   if (o.copy_mib == 0 || o.copy_mib > 16384) throw std::invalid_argument("--copy-mib must be 1..16384");
@@ -147,16 +155,22 @@ double seconds_per_call(const Context& ctx, Timing timing, int iterations, const
   return seconds;
 }
 
-// Buffer-to-buffer copy bandwidth (bytes read + written per second) of glCopyNamedBufferSubData between two
-// buffers of `bytes`, 10 copies after a warm-up copy.
-double copy_bandwidth(const Context& ctx, Timing timing, std::size_t bytes) {
+// Buffer-to-buffer copy bandwidth (bytes read + written per second) between two buffers of `bytes`, 10 copies
+// after a warm-up copy: glCopyNamedBufferSubData, and a compute-shader copy (Context::copy_compute).
+struct Bandwidth {
+  double buffer_copy = 0.0, compute_copy = 0.0;
+};
+Bandwidth copy_bandwidth(const Context& ctx, Timing timing, std::size_t bytes) {
+  bytes = std::max<std::size_t>(bytes / 16 * 16, 16);
   std::vector<std::uint8_t> fill(std::min<std::size_t>(bytes, std::size_t{1} << 20), 1);
   Buffer a = ctx.make_buffer(bytes), b = ctx.make_buffer(bytes);
   for (std::size_t at = 0; at < bytes; at += fill.size())
     ctx.upload(a, fill.data(), std::min(fill.size(), bytes - at), at);
   ctx.copy(a, b, bytes);  // warm-up: first touch of b
   const double s = seconds_per_call(ctx, timing, 10, "the buffer copy", [&] { ctx.copy(a, b, bytes); });
-  return 2.0 * static_cast<double>(bytes) / s;
+  ctx.copy_compute(a, b, bytes);  // warm-up: compiles the program
+  const double c = seconds_per_call(ctx, timing, 10, "the compute copy", [&] { ctx.copy_compute(a, b, bytes); });
+  return {2.0 * static_cast<double>(bytes) / s, 2.0 * static_cast<double>(bytes) / c};
 }
 
 // Largest distance between instance `instance` of `gpu` (holding that one instance) and the CPU result;
@@ -203,9 +217,12 @@ int main(int argc, char** argv) try {
                                                          : "wall clock between glFinish calls: a software renderer, "
                                                            "whose GL_TIME_ELAPSED queries do not cover the work "
                                                            "(these are CPU figures, not GPU ones)"));
-  const double bandwidth = copy_bandwidth(ctx, timing, opt.copy_mib << 20);
+  const Bandwidth measured = copy_bandwidth(ctx, timing, opt.copy_mib << 20);
+  const double bandwidth = measured.compute_copy;
+  fmt::print("measured compute-shader copy ({} MiB, 16 B per invocation): {:.1f} GB/s (read + write): the bound\n",
+             opt.copy_mib, measured.compute_copy * 1e-9);
   fmt::print("measured buffer copy (glCopyNamedBufferSubData, {} MiB): {:.1f} GB/s (read + write)\n", opt.copy_mib,
-             bandwidth * 1e-9);
+             measured.buffer_copy * 1e-9);
   // The largest buffer the compute path binds: per-instance weights (16 B per vertex) or the output positions.
   const std::size_t largest = total * (opt.inputs == "shared" ? 12 : 16);
   const std::size_t block_limit = ctx.max_storage_block_bytes();
@@ -215,8 +232,14 @@ int main(int argc, char** argv) try {
                largest >> 20, block_limit >> 20);
   fmt::print("\n");
 
-  // One rest mesh and 16 distinct rigid palettes cycled over the instances (those of cga-cuda-bench).
-  const SkinnedMesh mesh = make_random_skinned_mesh(opt.vertices, static_cast<int>(opt.bones), 1234u, 1.0f);
+  // The meshes (coherent: the main rows; random: the stress rows) and 16 distinct rigid palettes cycled over
+  // the instances (those of cga-cuda-bench).
+  std::vector<std::pair<const char*, SkinnedMesh>> meshes;
+  const int bones = static_cast<int>(opt.bones);  // <= 65536 (parse); the mesh makers reject < 4
+  if (opt.mesh != "random") meshes.emplace_back("coherent", make_coherent_skinned_mesh(opt.vertices, bones, 1234u, 1.0f));
+  if (opt.mesh != "coherent") meshes.emplace_back("random", make_random_skinned_mesh(opt.vertices, bones, 1234u, 1.0f));
+  for (const auto& [name, mesh] : meshes) fmt::print("{} mesh: {}\n", name, describe(joint_coherence(mesh)));
+  fmt::print("\n");
   constexpr std::size_t kPalettes = 16;
   const RandomPalettes crowd = make_random_palettes(static_cast<int>(opt.bones), kPalettes, 500u);
   const auto& mats = crowd.matrices;
@@ -232,8 +255,9 @@ int main(int argc, char** argv) try {
   if (opt.path != "vertex") paths.push_back(SkinPath::compute);
 
   bool all_ok = true;
-  fmt::print("| method | path | inputs | B/vertex | ms | G vertices/s | bound G vertices/s | fraction | max error |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print("| mesh | method | path | inputs | B/vertex | ms | G vertices/s | bound G vertices/s | fraction | max error |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& [mesh_name, mesh] : meshes)
   for (const bool per_instance : layouts) {
     const double bytes_per_vertex =
         static_cast<double>(skinned_vertex_bytes(opt.normals)) +
@@ -272,7 +296,7 @@ int main(int argc, char** argv) try {
         const bool position_ok = worst.position <= 1e-4f * scene_size;
         const bool normal_ok = !opt.normals || worst.normal <= 1e-3f;
         all_ok = all_ok && position_ok && normal_ok;
-        fmt::print("| {} | {} | {} | {:.1f} | {:.3f} | {:.3f} | {:.2f} | {:.0f} % | {:.2e}{}{} |\n", to_string(method),
+        fmt::print("| {} | {} | {} | {} | {:.1f} | {:.3f} | {:.3f} | {:.2f} | {:.0f} % | {:.2e}{}{} |\n", mesh_name, to_string(method),
                    to_string(path), per_instance ? "per instance (issue layout)" : "shared rest mesh",
                    bytes_per_vertex, seconds * 1e3, rate * 1e-9, bound * 1e-9, 100.0 * rate / bound, worst.position,
                    position_ok ? "" : " FAIL",
@@ -283,7 +307,7 @@ int main(int argc, char** argv) try {
   fmt::print(
       "\nB/vertex: bytes streamed per skinned vertex, palettes not counted. shared rest mesh: the outputs ({} B) plus "
       "the one rest mesh ({} B per vertex) read once per dispatch, i.e. / {} instances; per instance: each instance "
-      "reads its own rest vertices, {} B in + {} B out (the issue's layout). bound = copy bandwidth / B/vertex; ms = "
+      "reads its own rest vertices, {} B in + {} B out (the issue's layout). bound = compute-shader copy bandwidth / B/vertex; ms = "
       "{} of one draw / dispatch, mean of {}; max error = largest distance to the CPU "
       "SkinningJob over the first and last instance (tolerance 1e-4 x scene size {}).\n",
       skinned_vertex_bytes(opt.normals), rest_vertex_bytes(opt.normals), opt.instances, rest_vertex_bytes(opt.normals),

@@ -7,7 +7,7 @@
 const int PALETTE_STRIDE = 3;
 
 mat3x4 palette_motor(int e) {
-  return mat3x4(palette[PALETTE_STRIDE * e], palette[PALETTE_STRIDE * e + 1], palette[PALETTE_STRIDE * e + 2]);
+  return mat3x4(palette_at(PALETTE_STRIDE * e), palette_at(PALETTE_STRIDE * e + 1), palette_at(PALETTE_STRIDE * e + 2));
 }
 
 

@@ -3,14 +3,14 @@
 const int PALETTE_STRIDE = 2;
 
 void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on) {
-  vec4 r0 = palette[PALETTE_STRIDE * (base + j[0])];
+  vec4 r0 = palette_at(PALETTE_STRIDE * (base + j[0]));
   vec4 r = w[0] * r0;
-  vec4 d = w[0] * palette[PALETTE_STRIDE * (base + j[0]) + 1];
+  vec4 d = w[0] * palette_at(PALETTE_STRIDE * (base + j[0]) + 1);
   for (int k = 1; k < 4; ++k) {
-    vec4 rk = palette[PALETTE_STRIDE * (base + j[k])];
+    vec4 rk = palette_at(PALETTE_STRIDE * (base + j[k]));
     float wk = dot(r0, rk) < 0.0 ? -w[k] : w[k];
     r += wk * rk;
-    d += wk * palette[PALETTE_STRIDE * (base + j[k]) + 1];
+    d += wk * palette_at(PALETTE_STRIDE * (base + j[k]) + 1);
   }
   float inv = 1.0 / dot(r, r);
   // Unnormalized blend b = (r, d): p' = (rotate(r) p) / |r|^2 + 2 (r_w d_v - d_w r_v + r_v x d_v) / |r|^2.

@@ -3,7 +3,7 @@
 const int PALETTE_STRIDE = 3;
 
 mat3x4 palette_rows(int e) {
-  return mat3x4(palette[PALETTE_STRIDE * e], palette[PALETTE_STRIDE * e + 1], palette[PALETTE_STRIDE * e + 2]);
+  return mat3x4(palette_at(PALETTE_STRIDE * e), palette_at(PALETTE_STRIDE * e + 1), palette_at(PALETTE_STRIDE * e + 2));
 }
 
 void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on) {

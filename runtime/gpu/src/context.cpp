@@ -1,6 +1,7 @@
 // Headless EGL context creation and the thin GL helpers of context.hpp.
 #include "cga/gpu/context.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <string_view>
@@ -356,6 +357,42 @@ void Context::copy(const Buffer& src, const Buffer& dst, std::size_t bytes, std:
     glCopyNamedBufferSubData(src.get(), dst.get(), static_cast<GLintptr>(src_offset),
                              static_cast<GLintptr>(dst_offset), static_cast<GLsizeiptr>(bytes));
   check("glCopyNamedBufferSubData");
+}
+
+void Context::copy_compute(const Buffer& src, const Buffer& dst, std::size_t bytes) const {
+  if (bytes > src.bytes || bytes > dst.bytes)
+    throw std::out_of_range("cga::gpu::Context::copy_compute: " + std::to_string(bytes) + " bytes from a " +
+                            std::to_string(src.bytes) + "-byte buffer to a " + std::to_string(dst.bytes) +
+                            "-byte buffer");
+  if (bytes % 16 != 0)
+    throw std::invalid_argument("cga::gpu::Context::copy_compute: " + std::to_string(bytes) +
+                                " bytes, not a multiple of 16");
+  if (!copy_program_) {
+    static constexpr const char* kCopy = R"glsl(#version 450
+// One 16-B element per invocation, grid-stride: what a bandwidth-bound compute dispatch streams.
+layout(local_size_x = 256) in;
+layout(std430, binding = 0) readonly buffer Src { uvec4 src[]; };
+layout(std430, binding = 1) writeonly buffer Dst { uvec4 dst[]; };
+uniform uint u_count;
+void main() {
+  for (uint i = gl_GlobalInvocationID.x; i < u_count; i += gl_NumWorkGroups.x * 256u) dst[i] = src[i];
+}
+)glsl";
+    const ShaderSource stage{GL_COMPUTE_SHADER, "cga::gpu::Context::copy_compute", kCopy};
+    copy_program_ = make_program(std::span<const ShaderSource>(&stage, 1));
+  }
+  const GLuint prog = copy_program_.get();
+  // Ranges within the SSBO block limit, a multiple of 64 KiB (any offset alignment a driver asks for).
+  const std::size_t chunk = std::max<std::size_t>(max_storage_block_bytes() / 65536 * 65536, 65536);
+  for (std::size_t at = 0; at < bytes; at += chunk) {
+    const std::size_t n = std::min(chunk, bytes - at);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, src.get(), static_cast<GLintptr>(at), static_cast<GLsizeiptr>(n));
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, dst.get(), static_cast<GLintptr>(at), static_cast<GLsizeiptr>(n));
+    const auto count = static_cast<GLuint>(n / 16);
+    glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_count"), count);
+    dispatch(prog, std::min<GLuint>((count + 255) / 256, 65535));
+  }
+  check("copy_compute");
 }
 
 std::size_t Context::max_storage_block_bytes() const {

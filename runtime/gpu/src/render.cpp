@@ -92,23 +92,11 @@ glm::vec3 method_colour(SkinningMethod method) {
   return {0.8f, 0.8f, 0.8f};
 }
 
-Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, const Camera& camera, int width,
-                    int height) {
-  if (width <= 0 || height <= 0 || width > 8192 || height > 8192)
-    throw std::invalid_argument("cga::gpu::render_meshes: picture size " + std::to_string(width) + "x" +
-                                std::to_string(height) + " outside 1..8192");
+ViewMatrices camera_view(const Camera& camera, glm::vec3 lo, glm::vec3 hi, int width, int height) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("cga::gpu::camera_view: empty picture");
   Box box;
-  if (camera.fit_box) {
-    for (const DrawMesh& m : meshes)
-      for (std::size_t i = 0; i + 2 < m.positions.size(); i += 3)
-        box.add({m.positions[i], m.positions[i + 1], m.positions[i + 2]});
-  } else {
-    box.add(camera.box_min);
-    box.add(camera.box_max);
-  }
-  if (box.empty()) throw std::invalid_argument("cga::gpu::render_meshes: nothing to draw");
-
-  // Camera frame.
+  box.add(lo);
+  box.add(hi);
   const glm::vec3 extent = box.hi - box.lo;
   glm::vec3 dir = camera.direction, up = camera.up;
   if (camera.fit_axes) {
@@ -123,7 +111,7 @@ Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, co
     dir[shortest] = -1.0f;
   }
   if (glm::length(glm::cross(dir, up)) < 1e-6f)
-    throw std::invalid_argument("cga::gpu::render_meshes: camera direction parallel to up");
+    throw std::invalid_argument("cga::gpu::camera_view: camera direction parallel to up");
   const glm::vec3 centre = 0.5f * (box.lo + box.hi);
   const float radius = std::max(0.5f * glm::length(extent), 1e-6f);
   const float distance = 3.0f * radius;
@@ -141,8 +129,46 @@ Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, co
   const float half_h = half_w / aspect;
   const glm::mat4 projection = glm::ortho(-half_w, half_w, -half_h, half_h, distance - 1.5f * radius,
                                           distance + 1.5f * radius);
-  const glm::mat4 view_projection = projection * view;
-  const glm::mat3 view_rotation(view);
+  return {projection * view, glm::mat3(view)};
+}
+
+double picture_difference(const Image& a, const Image& b, int tolerance) {
+  if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+    throw std::invalid_argument("cga::gpu::picture_difference: pictures of different sizes");
+  std::size_t covered = 0, differing = 0;
+  for (std::size_t at = 0; at + 3 < a.rgba.size(); at += 4) {
+    bool blank_a = true, blank_b = true, differs = false;
+    for (int c = 0; c < 4; ++c) {
+      blank_a = blank_a && a.rgba[at + c] == kClearColour[c];
+      blank_b = blank_b && b.rgba[at + c] == kClearColour[c];
+      differs = differs || std::abs(int{a.rgba[at + c]} - int{b.rgba[at + c]}) > tolerance;
+    }
+    if (blank_a && blank_b) continue;
+    ++covered;
+    if (differs) ++differing;
+  }
+  return covered ? static_cast<double>(differing) / static_cast<double>(covered) : 0.0;
+}
+
+Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, const Camera& camera, int width,
+                    int height) {
+  if (width <= 0 || height <= 0 || width > 8192 || height > 8192)
+    throw std::invalid_argument("cga::gpu::render_meshes: picture size " + std::to_string(width) + "x" +
+                                std::to_string(height) + " outside 1..8192");
+  Box box;
+  if (camera.fit_box) {
+    for (const DrawMesh& m : meshes)
+      for (std::size_t i = 0; i + 2 < m.positions.size(); i += 3)
+        box.add({m.positions[i], m.positions[i + 1], m.positions[i + 2]});
+  } else {
+    box.add(camera.box_min);
+    box.add(camera.box_max);
+  }
+  if (box.empty()) throw std::invalid_argument("cga::gpu::render_meshes: nothing to draw");
+
+  const ViewMatrices matrices = camera_view(camera, box.lo, box.hi, width, height);
+  const glm::mat4& view_projection = matrices.view_projection;
+  const glm::mat3& view_rotation = matrices.view_rotation;
 
   const ShaderSource stages[] = {embedded(GL_VERTEX_SHADER, "render.vert"),
                                  embedded(GL_FRAGMENT_SHADER, "render.frag")};

@@ -31,8 +31,8 @@ GLint uniform(unsigned program, const char* name) { return glGetUniformLocation(
 
 unsigned groups(std::size_t n, std::size_t size) { return static_cast<unsigned>((n + size - 1) / size); }
 
-// Must match local_size_x of shaders/skin_main.comp.
-constexpr std::size_t kComputeGroup = 128;
+// Vertices per compute work group: local_size_x (256) x VERTICES_PER_INVOCATION (4) of shaders/skin_main.comp.
+constexpr std::size_t kComputeGroup = 1024;
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 // i * vertex_count + v, what a crowd of distinct characters streams) or one shared mesh.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -59,6 +60,22 @@ inline constexpr std::size_t kMaxBones = 256;
 
 // Bytes read and written per skinned vertex by the layout (palettes not counted: they are per instance).
 std::size_t bytes_per_vertex(const CrowdArgs& args);
+
+// How a block stages its palette in shared memory (see docs/gpu.md): `copies` copies (1, 2, 4, 8) spread over
+// the 8 bank groups of 16 B so that lane l of a warp reads copy l % copies; `shared_bytes` per block.
+struct PaletteLayout {
+  unsigned copies = 1;
+  std::size_t shared_bytes = 0;
+};
+PaletteLayout palette_layout(SkinningMethod method, std::size_t bones);
+
+// Shared-memory wavefronts of one warp-wide palette load, modelled: a 128-bit load is served per quarter
+// warp (8 lanes, 128 B), and a quarter takes as many wavefronts as its busiest bank group has distinct 16-B
+// slots (equal addresses broadcast): 4 per load at the least. On make_random_skinned_mesh with one copy
+// the model gives 9.3, what Nsight Compute measured on an H200 (58.7 M wavefronts / 6.29 M loads). Returns
+// the mean over the mesh's warps (32 consecutive vertices) and its palette reads (4 joint slots x units).
+double modelled_palette_wavefronts(const PaletteLayout& layout, SkinningMethod method,
+                                   std::span<const std::array<std::uint16_t, 4>> joints);
 
 // Checks the arguments and launches on `stream` (a cudaStream_t, null = default stream); asynchronous.
 // Throws CudaError on bad arguments or a launch error.

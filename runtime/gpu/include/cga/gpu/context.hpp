@@ -117,6 +117,12 @@ class Context {
   void copy(const Buffer& src, const Buffer& dst, std::size_t bytes, std::size_t src_offset = 0,
             std::size_t dst_offset = 0) const;
 
+  // The same copy done by a compute shader (16-B loads and stores, one per invocation, in ranges of at most
+  // the SSBO block limit): the memory bandwidth a compute dispatch can reach, which on some drivers differs
+  // a lot from the buffer copy's (NVIDIA: 177 GB/s glCopyNamedBufferSubData on an H200). `bytes` and the
+  // offsets must be multiples of 16 (std::invalid_argument otherwise); queued, nothing waits.
+  void copy_compute(const Buffer& src, const Buffer& dst, std::size_t bytes) const;
+
   // GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the largest buffer range one SSBO binding may expose to a shader.
   std::size_t max_storage_block_bytes() const;
 
@@ -128,6 +134,7 @@ class Context {
   void* context_ = nullptr;
   std::string platform_;
   Object dummy_fbo_, dummy_rb_;
+  mutable Object copy_program_;  // copy_compute's, compiled on first use
 };
 
 // GPU time of the commands issued between begin() and end() (a GL_TIME_ELAPSED query): the time the GPU

@@ -56,6 +56,19 @@ struct Camera {
 
 inline constexpr std::array<std::uint8_t, 4> kClearColour{255, 255, 255, 255};
 
+// The matrices a camera gives for the box [lo, hi] in a width x height picture (orthographic, the box's
+// corners fitted with camera.margin, axes from the box when camera.fit_axes): what render_meshes and
+// CrowdDraw (draw.hpp) draw with, so that their pictures can be compared pixel by pixel.
+struct ViewMatrices {
+  glm::mat4 view_projection{1.0f};
+  glm::mat3 view_rotation{1.0f};
+};
+ViewMatrices camera_view(const Camera& camera, glm::vec3 lo, glm::vec3 hi, int width, int height);
+
+// The fraction of pixels, among those either picture covers (unlike kClearColour), where a channel differs
+// by more than `tolerance`; 0 for two blank pictures. Throws std::invalid_argument on different sizes.
+double picture_difference(const Image& a, const Image& b, int tolerance = 24);
+
 // Draws the meshes (model space) into a width x height picture on a white background.
 Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, const Camera& camera, int width,
                     int height);
