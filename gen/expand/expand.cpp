@@ -1082,11 +1082,14 @@ class Expander {
       const auto& [k, c] = *b.terms().begin();
       const Multivector unit = Multivector::blade(k) * Multivector::blade(k);
       if (unit.is_scalar() && GiNaC::is_a<GiNaC::numeric>(unit.scalar())) {
+        // blade^2 = u: exp(c blade) = cos(c s) + sin(c s)/s blade with s = sqrt(-u) (u < 0), cosh/sinh
+        // with s = sqrt(u) (u > 0). In a user algebra whose basis is not orthonormal u need not be +-1.
         const GiNaC::numeric u = GiNaC::ex_to<GiNaC::numeric>(unit.scalar());
         const Multivector unit_blade = Multivector::blade(k);
         if (u.is_zero()) return Multivector(ex(1)) + b;
-        if (u.is_negative()) return Multivector(GiNaC::cos(c)) + GiNaC::sin(c) * unit_blade;
-        return Multivector(GiNaC::cosh(c)) + GiNaC::sinh(c) * unit_blade;
+        const ex s = GiNaC::sqrt(GiNaC::abs(u));
+        if (u.is_negative()) return Multivector(GiNaC::cos(c * s)) + (GiNaC::sin(c * s) / s) * unit_blade;
+        return Multivector(GiNaC::cosh(c * s)) + (GiNaC::sinh(c * s) / s) * unit_blade;
       }
     }
     Multivector sq = scalar_part_if_scalar(b * b);

@@ -43,6 +43,7 @@ void fold_negations(CseState& st, std::vector<GiNaC::ex>& roots);     // pass_ne
 void inline_single_use(CseState& st, std::vector<GiNaC::ex>& roots);  // pass_inline.cpp
 void drop_aliases(CseState& st, std::vector<GiNaC::ex>& roots);       // pass_aliases.cpp
 void factor_all_sums(CseState& st, std::vector<GiNaC::ex>& roots);    // pass_factor_sums.cpp
+void merge_equal_temps(CseState& st, std::vector<GiNaC::ex>& roots);  // pass_merge_equal.cpp
 // pass_numeric_factors.cpp, run by pass_factor_sums on each sum it leaves.
 GiNaC::ex group_numeric_factors(CseState& st, const GiNaC::ex& sum, std::vector<Temp>& out);
 GiNaC::numeric numeric_factor(const GiNaC::ex& term);

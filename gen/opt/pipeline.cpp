@@ -59,7 +59,8 @@ void topo_sort(CseState& st) {
 }
 
 // The pipeline. Sharing passes first (pairs, then whole subtrees), sign clean-up, inlining of what ended up
-// used once, sum factoring last (a factored form hides products from the sharing passes).
+// used once, sum factoring (a factored form hides products from the sharing passes), and last the merging of
+// temporaries that came out equal.
 void run_cse(CseState& st, std::vector<ex>& roots) {
   { PhaseTimer t("  cse orient"); orient_all(st, roots); }
   { PhaseTimer t("  cse pairs"); pair_products(st, roots); }
@@ -73,6 +74,7 @@ void run_cse(CseState& st, std::vector<ex>& roots) {
   drop_aliases(st, roots);
   { PhaseTimer t("  cse orient"); orient_all(st, roots); }
   { PhaseTimer t("  cse negations"); fold_negations(st, roots); }
+  { PhaseTimer t("  cse merge"); merge_equal_temps(st, roots); }
 }
 
 }  // namespace cgagen::opt::detail

@@ -189,7 +189,8 @@ std::string inputs_line(const std::map<std::string, double>& in) {
 int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   int count = 300, compile_every = 0;
-  std::string work, regressions;
+  std::string work;
+  std::vector<std::string> regressions;  // directories of *.clu, or single scripts
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto val = [&]() -> std::string {
@@ -200,34 +201,54 @@ int main(int argc, char** argv) {
     else if (a == "--count") count = std::stoi(val());
     else if (a == "--compile-every") compile_every = std::stoi(val());
     else if (a == "--work-dir") work = val();
-    else if (a == "--regressions") regressions = val();
-    else { std::cerr << "usage: diff_fuzz [--seed S] [--count N] [--compile-every K] [--work-dir D] [--regressions DIR]\n"; return 2; }
+    else if (a == "--regressions") regressions.push_back(val());
+    else { std::cerr << "usage: diff_fuzz [--seed S] [--count N] [--compile-every K] [--work-dir D] [--regressions DIR|FILE]...\n"; return 2; }
   }
   const auto start = std::chrono::steady_clock::now();
   Stats st;
   int failures = 0;
   if (!work.empty()) fs::create_directories(fs::path(work) / "finds");
-  // Committed finds first.
-  if (!regressions.empty() && fs::exists(regressions)) {
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(regressions))
-      if (e.path().extension() == ".clu") files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    for (const auto& f : files) {
-      std::ifstream in(f);
-      std::stringstream ss;
-      ss << in.rdbuf();
-      const std::string text = ss.str();
+  // Committed finds first, then single scripts (the benchmarks' algorithms). Each leading "// inputs: ..." line
+  // of a script is one check.
+  std::vector<fs::path> files;
+  for (const auto& r : regressions) {
+    if (fs::is_regular_file(r)) {
+      files.push_back(r);
+    } else if (fs::is_directory(r)) {
+      std::vector<fs::path> in_dir;
+      for (const auto& e : fs::directory_iterator(r))
+        if (e.path().extension() == ".clu") in_dir.push_back(e.path());
+      std::sort(in_dir.begin(), in_dir.end());
+      files.insert(files.end(), in_dir.begin(), in_dir.end());
+    } else {
+      std::cerr << "diff_fuzz: no such regression file or directory: " << r << "\n";
+      return 2;
+    }
+  }
+  for (const auto& f : files) {
+    std::ifstream in(f);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    std::istringstream lines(text);
+    std::string line;
+    int checks = 0;
+    while (std::getline(lines, line) && line.rfind("// inputs:", 0) == 0) {
+      ++checks;
       std::map<std::string, double> inputs;
-      std::istringstream first(text.substr(0, text.find('\n')));
+      std::istringstream words(line);
       std::string word;
-      first >> word >> word;  // "//" "inputs:"
-      while (first >> word) inputs[word.substr(0, word.find('='))] = std::stod(word.substr(word.find('=') + 1));
+      words >> word >> word;  // "//" "inputs:"
+      while (words >> word) inputs[word.substr(0, word.find('='))] = std::stod(word.substr(word.find('=') + 1));
       std::string fail = check(text, inputs, "regression", st, nullptr);
       if (!fail.empty()) {
         ++failures;
-        std::cout << "REGRESSION " << f.filename().string() << ": " << fail << "\n";
+        std::cout << "REGRESSION " << f.filename().string() << " (" << line << "): " << fail << "\n";
       }
+    }
+    if (checks == 0) {
+      ++failures;
+      std::cout << "REGRESSION " << f.filename().string() << ": no leading '// inputs: ...' line\n";
     }
   }
   std::string compile_unit = "#include <cmath>\n";

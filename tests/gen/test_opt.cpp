@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -272,4 +273,33 @@ TEST_CASE("diff text names the levels and the op change", "[opt]") {
   // A changed line reads as diff(1) prints it: the old line, then the new one.
   CHECK(opt::unified_diff("a\nb\nc\nd\n", "a\nx\ny\nd\n", "x", "y") ==
         "--- x\n+++ y\n@@ -1,4 +1,4 @@\n a\n-b\n-c\n+x\n+y\n d\n");
+}
+
+TEST_CASE("no two temporaries of a bundled kernel are the same expression", "[opt]") {
+  // Every -O2 kernel of runtime/scripts, tests/gen/scripts and bench/ik_arm, as C++: the right-hand sides of
+  // its double function's temporaries (up to a sign) are distinct.
+  std::vector<std::filesystem::path> scripts;
+  for (const char* dir : {"runtime/scripts", "tests/gen/scripts", "bench/ik_arm"})
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(CGA_SOURCE_DIR) / dir))
+      if (e.path().extension() == ".clu") scripts.push_back(e.path());
+  std::sort(scripts.begin(), scripts.end());
+  REQUIRE(scripts.size() >= 15);
+  for (const auto& script : scripts) {
+    INFO(script.filename().string());
+    auto file = front::SourceFile::load(script.string());
+    const std::string name = script.stem().string();
+    const std::string code = emit::emit(opt::optimize(expand(front::parse(file), name), Level::O2), emit::EmitOptions{});
+    std::map<std::string, std::string> seen;  // right-hand side (sign dropped) -> temporary
+    std::istringstream lines(code);  // (the double overload's lines: "const double t...")
+    std::string line;
+    while (std::getline(lines, line)) {
+      const auto eq = line.find(" = ");
+      if (line.find("const double t") == std::string::npos || eq == std::string::npos) continue;
+      std::string rhs = line.substr(eq + 3);
+      if (!rhs.empty() && rhs[0] == '-') rhs = rhs.substr(1);
+      const std::string temp = line.substr(line.find(" t") + 1, eq - line.find(" t") - 1);
+      INFO(temp << " = " << rhs);
+      CHECK(seen.emplace(rhs, temp).second);
+    }
+  }
 }

@@ -28,7 +28,7 @@ inline std::string joint_chain_script(int joints) {
       const std::string V = "V" + num(k - 1);
       s += "L" + K + " = " + V + " * " + rest + " * ~" + V + ";\n";
     }
-    s += "?R" + K + " = expp(a" + K + "*L" + K + "/2);\n";
+    s += "?R" + K + " = expp(ang" + K + "*L" + K + "/2);\n";
     s += "V" + K + " = " + (k == 1 ? std::string("R1") : "R" + K + "*V" + num(k - 1)) + ";\n";
   }
   const std::string V = "V" + num(joints);
