@@ -20,6 +20,7 @@
 #include "expand/algebra_builtins.hpp"
 #include "expand/cost.hpp"
 #include "expand/hints.hpp"
+#include "expand/pragmas.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
 #include "symbolic/node_cache.hpp"
@@ -183,7 +184,7 @@ Multivector basis(const std::string& n) {
   return half_inf + Multivector::e0();  // em
 }
 
-class Expander {
+class Expander : private expand_pragmas::PragmaHost {
  public:
   explicit Expander(std::string name) { kernel_.name = std::move(name); }
 
@@ -215,7 +216,7 @@ class Expander {
     if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", spent);
     finish_outputs();
     drop_unused_values();
-    apply_in2out();
+    pragmas_.apply_in2out(kernel_);
     return std::move(kernel_);
   }
 
@@ -230,11 +231,6 @@ class Expander {
     std::string name;
     SourceLoc loc;
   };
-  struct OutputPragma {
-    SourceLoc loc;
-    std::vector<algebra::BladeIndex> blades;
-  };
-
   Kernel kernel_;
   std::string statement_name_;           // the top-level statement being expanded (names its bound parts)
   std::map<std::string, int> parts_;     // bound parts per statement name
@@ -250,15 +246,8 @@ class Expander {
   std::vector<Mark> marks_;                        // in order of first marking
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
-  std::map<std::string, OutputPragma> output_pragmas_;
-  struct In2Out {
-    SourceLoc loc;
-    std::vector<std::string> inputs, outputs;
-  };
-  std::optional<In2Out> in2out_;    // #pragma in2out, applied once the outputs are known
-  bool normalize_outputs_ = false;  // #pragma normalize seen: later `?x = e;` output e / abs(e)
+  expand_pragmas::Pragmas pragmas_;
   std::vector<int> evaluated_values_;   // values of '!x = e;' (kept though no output needs them)
-  std::set<std::string> only_evaluate_;  // names of '#pragma onlyEvaluate' (their values are kept)
 
   // The current algebra's built-in macros (algebra_builtins.cpp; none for CGA), defined before the script
   // so that a script's own definition of the same name replaces them.
@@ -297,14 +286,14 @@ class Expander {
       case Stmt::Kind::Pragma:
         if (!assigned_in_branch_.empty())
           throw CompileError(s.loc, "'#pragma' inside if/else is not supported: put it before the 'if'");
-        pragma(s);
+        pragmas_.apply(s, kernel_, *this);
         return;
       case Stmt::Kind::MacroDef: define_macro(s); return;
       case Stmt::Kind::ExprStmt: eval(*s.value); return;
       case Stmt::Kind::If: exec_if(s); return;
       case Stmt::Kind::Assign: break;
     }
-    if (s.value && normalize_outputs_ && s.marker == front::Marker::Output) {
+    if (s.value && pragmas_.normalize_outputs() && s.marker == front::Marker::Output) {
       // #pragma normalize: x_unnormalized = e; ?x = x_unnormalized / abs(x_unnormalized);
       check_assignable(s);
       Stmt raw = s;
@@ -544,7 +533,7 @@ class Expander {
     // '!x = e;' and '#pragma onlyEvaluate x' ask for x to be evaluated: their values stay (as in Gaalop).
     for (int i : evaluated_values_) keep[static_cast<size_t>(i)] = true;
     for (size_t i = 0; i < kernel_.values.size(); ++i)
-      if (only_evaluate_.count(kernel_.values[i].name)) keep[i] = true;
+      if (pragmas_.only_evaluate(kernel_.values[i].name)) keep[i] = true;
     for (size_t i = kernel_.values.size(); i-- > 0;) {
       const KernelValue& v = kernel_.values[i];
       if (!keep[i])
@@ -573,12 +562,9 @@ class Expander {
   }
 
   void finish_outputs() {
-    for (const auto& [name, p] : output_pragmas_) {
-      const std::string& pragma_name = name;  // clang 14 cannot capture a structured binding
-      bool marked =
-          std::any_of(marks_.begin(), marks_.end(), [&](const Mark& m) { return m.name == pragma_name; });
-      if (!marked) throw CompileError(p.loc, "'#pragma output' names '" + name + "', which is not an output");
-    }
+    pragmas_.check_outputs([&](const std::string& name) {
+      return std::any_of(marks_.begin(), marks_.end(), [&](const Mark& m) { return m.name == name; });
+    });
     if (marks_.empty()) throw CompileError({1, 1}, "script has no outputs (mark one with ?name)");
     for (const auto& m : marks_) {
       auto it = last_value_.find(m.name);
@@ -587,219 +573,33 @@ class Expander {
       out.name = m.name;
       out.loc = m.loc;
       out.value = it->second;
-      auto p = output_pragmas_.find(m.name);
-      out.from_pragma = p != output_pragmas_.end();
-      out.blades = out.from_pragma ? p->second.blades : kernel_.values[it->second].blades;
+      const expand_pragmas::OutputPragma* p = pragmas_.output(m.name);
+      out.from_pragma = p != nullptr;
+      out.blades = p ? p->blades : kernel_.values[it->second].blades;
       if (out.blades.empty()) out.blades = {0};  // an output that is identically 0: one scalar 0, never a[0]
       kernel_.outputs.push_back(std::move(out));
     }
   }
 
-  // ---- pragmas -----------------------------------------------------------------------------------
+  // ---- what pragmas ask of the expander (expand/pragmas.hpp) -----------------------------------------
 
-  SourceLoc word_loc(const Stmt& s, size_t i) const { return i < s.word_locs.size() ? s.word_locs[i] : s.loc; }
-
-  std::vector<algebra::BladeIndex> pragma_blades(const Stmt& s, const std::string& what) {
-    if (s.words.size() < 3)
-      throw CompileError(s.loc, "'#pragma " + what + "' needs a name and at least one blade");
-    std::vector<algebra::BladeIndex> blades;
-    for (size_t i = 2; i < s.words.size(); ++i) {
-      // Gaalop writes the scalar blade `1` as `1.0` in its pragmas.
-      auto b = algebra::parse_blade(s.words[i] == "1.0" ? std::string("1") : s.words[i]);
-      if (!b) throw CompileError(word_loc(s, i), "unknown blade '" + s.words[i] + "' in '#pragma " + what + "'");
-      if (b->sign < 0)
-        throw CompileError(word_loc(s, i), "blade '" + s.words[i] + "' in '#pragma " + what +
-                                               "' is not in canonical order; write '" +
-                                               algebra::blade_name(b->index) + "'");
-      if (std::find(blades.begin(), blades.end(), b->index) != blades.end())
-        throw CompileError(word_loc(s, i), "blade '" + s.words[i] + "' is listed twice in '#pragma " + what + "'");
-      blades.push_back(b->index);
+  bool is_basis_name(const std::string& name) const override { return cgagen::is_basis_name(name); }
+  bool is_assigned(const std::string& name) const override { return script_names_.count(name) > 0; }
+  bool is_defined(const std::string& name) const override { return globals_.count(name) > 0; }
+  void declare_input(const std::string& name, const std::vector<algebra::BladeIndex>& blades) override {
+    KernelInput in;
+    in.name = name;
+    in.is_multivector = true;
+    in.blades = blades;
+    Multivector ref;
+    for (auto b : blades) {
+      GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
+      zeros_.add_input(sym);
+      in.symbols.push_back(sym);
+      ref.set(b, sym);
     }
-    return blades;
-  }
-
-  void pragma(const Stmt& s) {
-    if (s.words.empty()) throw CompileError(s.loc, "empty '#pragma'");
-    const std::string& kind = s.words[0];
-    if (kind == "output") {
-      // Gaalop also names a group of outputs that share the blades: #pragma output {a, b} e1 e2.
-      size_t last = 1;
-      std::vector<std::string> names = output_group(s, last);
-      Stmt rest = s;  // the blades after the group, where pragma_blades expects them (words[2...])
-      rest.words.assign(s.words.begin(), s.words.begin() + 2);
-      rest.words.insert(rest.words.end(), s.words.begin() + static_cast<long>(last) + 1, s.words.end());
-      rest.word_locs.assign(s.word_locs.begin(), s.word_locs.begin() + std::min<size_t>(2, s.word_locs.size()));
-      for (size_t i = last + 1; i < s.word_locs.size(); ++i) rest.word_locs.push_back(s.word_locs[i]);
-      auto blades = pragma_blades(rest, "output");
-      for (const auto& n : names) output_pragmas_[n] = {word_loc(s, 1), blades};
-    } else if (kind == "onlyEvaluate") {
-      // Gaalop keeps these values as temporaries of its own (a boundary for its inlining); they are never
-      // outputs. Here their values stay in the kernel like those of '!x = e;' (emitted at -O0); the outputs
-      // are the same either way. A name that is never assigned is an error.
-      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma onlyEvaluate' needs at least one name");
-      for (size_t i = 1; i < s.words.size(); ++i)
-        if (!script_names_.count(s.words[i]))
-          throw CompileError(word_loc(s, i), "'#pragma onlyEvaluate' names '" + s.words[i] +
-                                                 "', which the script never assigns");
-        else
-          only_evaluate_.insert(s.words[i]);
-    } else if (kind == "in2out") {
-      in2out_pragma(s);
-    } else if (kind == "normalize") {
-      // From here on every `?x = e;` outputs x = e / abs(e) (Gaalop rewrites the source the same way).
-      if (s.words.size() != 1) throw CompileError(word_loc(s, 1), "'#pragma normalize' takes no words");
-      normalize_outputs_ = true;
-    } else if (kind == "return") {
-      throw CompileError(word_loc(s, 0), "'#pragma return' is not supported: it wraps outputs in a type written "
-                                         "as target-language text (Gaalop: C# and Python only), which cgagen cannot "
-                                         "check for its other targets; use the outputs as arrays, or --return/--pack");
-    } else if (kind == "insert") {
-      throw CompileError(word_loc(s, 0), "'#pragma insert' is not supported: it pastes text verbatim into the "
-                                         "generated code, and one script here feeds several target languages");
-    } else if (kind == "segments" || kind == "triangles") {
-      // Drawing hints for Gaalop's visualizer (Ganja); they compute nothing, and code generation ignores them.
-    } else if (kind == "count") {
-      throw CompileError(word_loc(s, 0), "'#pragma count' (a loop counter of Gaalop 2.0) is not supported: loops "
-                                         "run a constant number of times ('#pragma unroll N' before 'loop')");
-    } else if (kind == "input") {
-      auto blades = pragma_blades(s, "input");
-      const std::string& name = s.words[1];
-      if (is_basis_name(name)) throw CompileError(word_loc(s, 1), "cannot declare basis vector '" + name + "' as an input");
-      if (globals_.count(name))
-        throw CompileError(word_loc(s, 1), "'" + name + "' is already used before its '#pragma input'");
-      KernelInput in;
-      in.name = name;
-      in.is_multivector = true;
-      in.blades = blades;
-      Multivector ref;
-      for (auto b : blades) {
-        GiNaC::realsymbol sym(unique_symbol_name(name + "_" + algebra::blade_ident(b)));
-        zeros_.add_input(sym);
-        in.symbols.push_back(sym);
-        ref.set(b, sym);
-      }
-      globals_[name] = ref;
-      kernel_.inputs.push_back(std::move(in));
-    } else if (kind == "range") {
-      range_pragma(s);
-    } else if (kind == "uniform") {
-      // Rates for the staging pass (opt/stage.cpp), which checks the names once all inputs are known.
-      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma uniform' needs at least one input name");
-      for (size_t i = 1; i < s.words.size(); ++i) kernel_.uniforms.push_back({s.words[i], word_loc(s, i)});
-    } else if (kind == "normalized") {
-      // A promise about inputs (X ~X = 1) for -O2 (opt/levels.cpp checks the names once all inputs are known).
-      if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma normalized' needs at least one input name");
-      for (size_t i = 1; i < s.words.size(); ++i) kernel_.normalized.push_back({s.words[i], word_loc(s, i)});
-    } else {
-      throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
-                                         "normalized, onlyEvaluate, in2out, normalize, segments or triangles)");
-    }
-  }
-
-  // The names of '#pragma output NAME ...' or '#pragma output {A, B, ...} ...' (the braces may be spread
-  // over several words); `last` is set to the index of the group's last word.
-  std::vector<std::string> output_group(const Stmt& s, size_t& last) {
-    last = 1;
-    if (s.words.size() < 2 || s.words[1].empty() || s.words[1][0] != '{') return {s.words.size() > 1 ? s.words[1] : ""};
-    std::string text;
-    for (last = 1; last < s.words.size(); ++last) {
-      text += s.words[last] + " ";
-      if (s.words[last].find('}') != std::string::npos) break;
-    }
-    if (last == s.words.size()) throw CompileError(word_loc(s, 1), "expected '}' to close the output group");
-    if (s.words[last].back() != '}') throw CompileError(word_loc(s, last), "expected a space after '}' in the output group");
-    std::vector<std::string> names;
-    std::string cur;
-    for (char c : text.substr(1, text.find('}') - 1) + ",") {
-      if (c == ',') {
-        if (cur.empty()) throw CompileError(word_loc(s, 1), "empty name in the output group");
-        names.push_back(cur);
-        cur.clear();
-      } else if (c != ' ') {
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
-          throw CompileError(word_loc(s, 1), std::string("unexpected '") + c + "' in the output group");
-        cur += c;
-      }
-    }
-    return names;
-  }
-
-  // #pragma in2out a, b -> c, d: the generated function's inputs and outputs, in this order. As in Gaalop,
-  // every input and every output must be listed, and only those; checked once the script is expanded.
-  void in2out_pragma(const Stmt& s) {
-    std::string text;
-    for (size_t i = 1; i < s.words.size(); ++i) text += s.words[i] + " ";
-    size_t arrow = text.find("->");
-    if (arrow == std::string::npos || text.find("->", arrow + 2) != std::string::npos)
-      throw CompileError(s.loc, "'#pragma in2out' expects INPUT, ... -> OUTPUT, ... with one '->'");
-    auto split = [&](const std::string& part) {
-      std::vector<std::string> names;
-      std::string cur;
-      for (char c : part + ",") {
-        if (c == ',') {
-          if (!cur.empty()) names.push_back(cur);
-          cur.clear();
-        } else if (c != ' ') {
-          cur += c;
-        }
-      }
-      return names;
-    };
-    if (in2out_) throw CompileError(s.loc, "a second '#pragma in2out'");
-    in2out_ = In2Out{s.loc, split(text.substr(0, arrow)), split(text.substr(arrow + 2))};
-  }
-
-  void apply_in2out() {
-    if (!in2out_) return;
-    const In2Out& io = *in2out_;
-    std::vector<KernelInput> inputs;
-    for (const auto& n : io.inputs) {
-      auto it = std::find_if(kernel_.inputs.begin(), kernel_.inputs.end(), [&](const KernelInput& k) { return k.name == n; });
-      if (it == kernel_.inputs.end())
-        throw CompileError(io.loc, "'#pragma in2out' lists '" + n + "', which is not an input of the script");
-      if (std::any_of(inputs.begin(), inputs.end(), [&](const KernelInput& k) { return k.name == n; }))
-        throw CompileError(io.loc, "'#pragma in2out' lists input '" + n + "' twice");
-      inputs.push_back(*it);
-    }
-    for (const auto& k : kernel_.inputs)
-      if (std::find(io.inputs.begin(), io.inputs.end(), k.name) == io.inputs.end())
-        throw CompileError(io.loc, "'#pragma in2out' does not list input '" + k.name + "'");
-    std::vector<KernelOutput> outputs;
-    for (const auto& n : io.outputs) {
-      auto it = std::find_if(kernel_.outputs.begin(), kernel_.outputs.end(), [&](const KernelOutput& k) { return k.name == n; });
-      if (it == kernel_.outputs.end())
-        throw CompileError(io.loc, "'#pragma in2out' lists '" + n + "', which is not an output of the script");
-      if (std::any_of(outputs.begin(), outputs.end(), [&](const KernelOutput& k) { return k.name == n; }))
-        throw CompileError(io.loc, "'#pragma in2out' lists output '" + n + "' twice");
-      outputs.push_back(*it);
-    }
-    for (const auto& k : kernel_.outputs)
-      if (std::find(io.outputs.begin(), io.outputs.end(), k.name) == io.outputs.end())
-        throw CompileError(io.loc, "'#pragma in2out' does not list output '" + k.name + "'");
-    kernel_.inputs = std::move(inputs);
-    kernel_.outputs = std::move(outputs);
-  }
-
-  void range_pragma(const Stmt& s) {
-    std::string text;
-    for (size_t i = 1; i < s.words.size(); ++i) text += s.words[i];
-    auto bad = [&]() { return CompileError(s.loc, "'#pragma range' expects MIN <= NAME <= MAX"); };
-    size_t a = text.find("<="), b = a == std::string::npos ? a : text.find("<=", a + 2);
-    if (b == std::string::npos || text.find("<=", b + 2) != std::string::npos) throw bad();
-    std::string lo = text.substr(0, a), name = text.substr(a + 2, b - a - 2), hi = text.substr(b + 2);
-    auto num = [&](const std::string& t) {
-      char* end = nullptr;
-      double v = std::strtod(t.c_str(), &end);
-      if (t.empty() || end != t.c_str() + t.size()) throw bad();
-      return v;
-    };
-    ScalarRange r;
-    r.name = name;
-    r.min = num(lo);
-    r.max = num(hi);
-    if (name.empty()) throw bad();
-    if (r.min > r.max) throw CompileError(s.loc, "'#pragma range' for '" + name + "' has MIN > MAX");
-    kernel_.ranges.push_back(r);
+    globals_[name] = ref;
+    kernel_.inputs.push_back(std::move(in));
   }
 
   // ---- zero tests through the value chain (symbolic/zero_test.hpp) --------------------------------
