@@ -12,7 +12,7 @@
 "use strict";
 
 const METHOD_COLORS = [[0.85, 0.55, 0.35], [0.45, 0.65, 0.85], [0.85, 0.75, 0.35], [0.45, 0.80, 0.50]];
-const TOLERANCE = 1e-4;  // of the character's size (the bound)
+const TOLERANCE = 1e-4;  // of the character's size: the bound every GPU path is held to
 
 function decodeFloats(b64) {
   const bin = atob(b64);

@@ -297,7 +297,7 @@ int main(int argc, char** argv) try {
         const bool normal_ok = !opt.normals || worst.normal <= 1e-3f;
         all_ok = all_ok && position_ok && normal_ok;
         fmt::print("| {} | {} | {} | {} | {:.1f} | {:.3f} | {:.3f} | {:.2f} | {:.0f} % | {:.2e}{}{} |\n", mesh_name, to_string(method),
-                   to_string(path), per_instance ? "per instance (issue layout)" : "shared rest mesh",
+                   to_string(path), per_instance ? "per instance" : "shared rest mesh",
                    bytes_per_vertex, seconds * 1e3, rate * 1e-9, bound * 1e-9, 100.0 * rate / bound, worst.position,
                    position_ok ? "" : " FAIL",
                    !opt.normals ? "" : fmt::format(" (normals {:.1e}{})", worst.normal, normal_ok ? "" : " FAIL"));
@@ -307,7 +307,7 @@ int main(int argc, char** argv) try {
   fmt::print(
       "\nB/vertex: bytes streamed per skinned vertex, palettes not counted. shared rest mesh: the outputs ({} B) plus "
       "the one rest mesh ({} B per vertex) read once per dispatch, i.e. / {} instances; per instance: each instance "
-      "reads its own rest vertices, {} B in + {} B out (the issue's layout). bound = compute-shader copy bandwidth / B/vertex; ms = "
+      "reads its own rest vertices, {} B in + {} B out. bound = compute-shader copy bandwidth / B/vertex; ms = "
       "{} of one draw / dispatch, mean of {}; max error = largest distance to the CPU "
       "SkinningJob over the first and last instance (tolerance 1e-4 x scene size {}).\n",
       skinned_vertex_bytes(opt.normals), rest_vertex_bytes(opt.normals), opt.instances, rest_vertex_bytes(opt.normals),
