@@ -83,9 +83,4 @@ std::string prelude() {
   return kCommon + specific(algebra::current().name());
 }
 
-bool is_cga_only_builtin(const std::string& fn) {
-  static const std::set<std::string> names = {"VecN3", "createPoint", "TranslatorN3", "RotorN3", "SphereN3"};
-  return !is_cga() && names.count(fn) > 0;
-}
-
 }  // namespace cgagen::expand_algebra

@@ -17,7 +17,5 @@ bool is_basis_name(const std::string& n);
 symbolic::Multivector basis(const std::string& n);
 // CluScript text of the current algebra's built-in macros ("" for CGA).
 std::string prelude();
-// The CGA-only built-in functions (VecN3, TranslatorN3, ...): an error in any other algebra.
-bool is_cga_only_builtin(const std::string& fn);
 
 }  // namespace cgagen::expand_algebra

@@ -18,6 +18,7 @@
 
 #include "algebra/algebra.hpp"
 #include "expand/algebra_builtins.hpp"
+#include "expand/builtins.hpp"
 #include "expand/cost.hpp"
 #include "expand/hints.hpp"
 #include "expand/pragmas.hpp"
@@ -38,17 +39,11 @@ using front::CompileError;
 using front::Expr;
 using front::SourceLoc;
 using front::Stmt;
+using expand_builtins::blade_list;
+using expand_builtins::describe;
+using expand_builtins::magnitude;
 using symbolic::Multivector;
 using GiNaC::ex;
-
-// Blade list for messages: "e1, e1^e2".
-std::string blade_list(const Multivector& m) {
-  std::string s;
-  for (const auto& [b, c] : m.terms()) s += (s.empty() ? "" : ", ") + algebra::blade_name(b);
-  return s;
-}
-
-std::string describe(const Multivector& m) { return "a multivector with blades " + blade_list(m); }
 
 // "0.5" -> 1/2, "1e-3" -> 1/1000, "12" -> 12, exactly.
 std::optional<ex> parse_number(const std::string& text) {
@@ -89,87 +84,10 @@ std::optional<ex> parse_number(const std::string& text) {
   return ex(value);
 }
 
-// Is the expanded expression e >= 0 for every real value of its symbols, visibly (a sum of positive
-// multiples of even powers)? Used to pick the closed form of exp.
-bool manifestly_nonnegative(const ex& e) {
-  if (GiNaC::is_a<GiNaC::numeric>(e)) {
-    const auto& n = GiNaC::ex_to<GiNaC::numeric>(e);
-    return n.is_real() && !n.is_negative();
-  }
-  if (GiNaC::is_a<GiNaC::add>(e)) {
-    for (size_t i = 0; i < e.nops(); ++i)
-      if (!manifestly_nonnegative(e.op(i))) return false;
-    return true;
-  }
-  if (GiNaC::is_a<GiNaC::mul>(e)) {
-    for (size_t i = 0; i < e.nops(); ++i)
-      if (!manifestly_nonnegative(e.op(i))) return false;
-    return true;
-  }
-  if (GiNaC::is_a<GiNaC::power>(e)) {
-    const ex& p = e.op(1);
-    return GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_even();
-  }
-  return false;
-}
-
-// A square root of a manifestly nonnegative t, taking even powers out of the root where factoring shows
-// them. Its sign may differ from sqrt(t); callers use it only in even functions (cos, sin(x)/x, ...).
-ex root_of_square(const ex& t) {
-  ex f = GiNaC::factor(t);
-  ex out = 1, rest = 1;
-  auto take = [&](const ex& factor) {
-    if (GiNaC::is_a<GiNaC::power>(factor) && GiNaC::is_a<GiNaC::numeric>(factor.op(1)) &&
-        GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).is_even())
-      out *= GiNaC::pow(factor.op(0), factor.op(1) / 2);
-    else if (GiNaC::is_a<GiNaC::numeric>(factor))
-      out *= GiNaC::sqrt(factor);
-    else
-      rest *= factor;
-  };
-  if (GiNaC::is_a<GiNaC::mul>(f))
-    for (size_t i = 0; i < f.nops(); ++i) take(f.op(i));
-  else
-    take(f);
-  return rest.is_equal(1) ? out : out * GiNaC::sqrt(rest);
-}
-
 bool is_basis_name(const std::string& n) {
   if (!expand_algebra::is_cga()) return expand_algebra::is_basis_name(n);  // the algebra's own names
   static const std::set<std::string> names = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
   return names.count(n) > 0;
-}
-
-// floor of a real rational number, exactly.
-GiNaC::numeric floor_numeric(const GiNaC::numeric& x) {
-  GiNaC::numeric q = GiNaC::iquo(x.numer(), x.denom());  // truncates toward zero
-  if (x.is_negative() && q * x.denom() != x.numer()) q -= 1;
-  return q;
-}
-
-// The built-in functions: scalar functions of one scalar, and the others by their argument count.
-using Fn1 = std::function<ex(const ex&)>;
-const std::map<std::string, Fn1>& scalar_functions() {
-  static const std::map<std::string, Fn1> fns = {
-      {"abs", [](const ex& x) { return GiNaC::abs(x); }},   {"sqrt", [](const ex& x) { return GiNaC::sqrt(x); }},
-      {"sin", [](const ex& x) { return GiNaC::sin(x); }},   {"cos", [](const ex& x) { return GiNaC::cos(x); }},
-      {"tan", [](const ex& x) { return GiNaC::tan(x); }},   {"asin", [](const ex& x) { return GiNaC::asin(x); }},
-      {"acos", [](const ex& x) { return GiNaC::acos(x); }}, {"atan", [](const ex& x) { return GiNaC::atan(x); }},
-      {"log", [](const ex& x) { return GiNaC::log(x); }},
-      // floor, ceil and fact (Gaalop's MathFunction) are exact on constants; call() refuses run-time values.
-      {"floor", [](const ex& x) { return ex(GiNaC::numeric(floor_numeric(GiNaC::ex_to<GiNaC::numeric>(x)))); }},
-      {"ceil", [](const ex& x) { return ex(-GiNaC::numeric(floor_numeric(-GiNaC::ex_to<GiNaC::numeric>(x)))); }},
-      {"fact", [](const ex& x) { return GiNaC::factorial(x); }},
-  };
-  return fns;
-}
-const std::map<std::string, size_t>& builtin_arity() {
-  static const std::map<std::string, size_t> arity = {
-      {"atan2", 2},        {"exp", 1},     {"VecN3", 3},        {"createPoint", 3}, {"TranslatorN3", 3},
-      {"RotorN3", 4},      {"SphereN3", 4},  // also SphereN3(P, r), handled before the arity check
-      {"coefficient", 2},  {"invert", 1},  {"Normalize", 1}, {"ExtractFirstPoint", 1}, {"ExtractSecondPoint", 1},
-      {"Dual", 1}};
-  return arity;
 }
 
 Multivector basis(const std::string& n) {
@@ -184,7 +102,7 @@ Multivector basis(const std::string& n) {
   return half_inf + Multivector::e0();  // em
 }
 
-class Expander : private expand_pragmas::PragmaHost {
+class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Context {
  public:
   explicit Expander(std::string name) { kernel_.name = std::move(name); }
 
@@ -617,8 +535,12 @@ class Expander : private expand_pragmas::PragmaHost {
     return r;
   }
 
-  Multivector scalar_part_if_scalar(const Multivector& m) {
+  Multivector scalar_part_if_scalar(const Multivector& m) override {
     return m.is_scalar() ? m : drop_vanishing(m, [](algebra::BladeIndex b) { return b != 0; });
+  }
+
+  Multivector bivector_part_if_bivector(const Multivector& m) override {
+    return drop_vanishing(m, [](algebra::BladeIndex b) { return algebra::blade_grade(b) != 2; });
   }
 
   // ---- expressions -------------------------------------------------------------------------------
@@ -653,9 +575,7 @@ class Expander : private expand_pragmas::PragmaHost {
   void warn_if_typo(const std::string& n, SourceLoc loc) {
     std::vector<std::string> known = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
     known.insert(known.end(), script_names_.begin(), script_names_.end());
-    std::vector<std::string> functions;
-    for (const auto& f : scalar_functions()) functions.push_back(f.first);
-    for (const auto& f : builtin_arity()) functions.push_back(f.first);
+    const std::vector<std::string> functions = expand_builtins::names();
     if (auto k = hints::for_read(n, known, functions))
       kernel_.warnings.push_back({loc, "'" + n + "' is used before it is assigned and becomes an input; did you mean '" +
                                            *k + "'?"});
@@ -711,7 +631,7 @@ class Expander : private expand_pragmas::PragmaHost {
     throw CompileError(e.loc, "internal error: unknown expression kind");
   }
 
-  Multivector divide(const Multivector& a, const Multivector& b_in, const Expr& be) {
+  Multivector divide(const Multivector& a, const Multivector& b_in, const Expr& be) override {
     Multivector b = scalar_part_if_scalar(b_in);
     if (b.is_zero()) throw CompileError(be.loc, "division by zero");
     if (b.is_scalar()) return guarded(be.loc, [&] { return a / b.scalar(); });
@@ -738,21 +658,13 @@ class Expander : private expand_pragmas::PragmaHost {
     }
   }
 
-  ex scalar_arg(const std::string& fn, std::vector<Multivector>& args, const Expr& call, size_t i) {
-    args[i] = scalar_part_if_scalar(args[i]);
-    if (!args[i].is_scalar()) {
-      std::string which = args.size() == 1 ? "a scalar argument" : "scalar arguments";
-      throw CompileError(call.args[i]->loc,
-                         "'" + fn + "' takes " + which + ", got " + describe(args[i]) +
-                             (args.size() == 1 ? "" : " as argument " + std::to_string(i + 1)));
-    }
-    return args[i].scalar();
-  }
-
-  void check_arity(const Expr& e, size_t n) {
-    if (e.args.size() != n)
-      throw CompileError(e.loc, "'" + e.text + "' takes " + std::to_string(n) + " argument" + (n == 1 ? "" : "s") +
-                                    ", got " + std::to_string(e.args.size()));
+  static void check_arity(const Expr& e, const std::vector<size_t>& arities) {
+    if (std::find(arities.begin(), arities.end(), e.args.size()) != arities.end()) return;
+    std::string counts;
+    for (size_t i = 0; i < arities.size(); ++i)
+      counts += (i == 0 ? "" : i + 1 == arities.size() ? " or " : ", ") + std::to_string(arities[i]);
+    throw CompileError(e.loc, "'" + e.text + "' takes " + counts + " argument" + (arities.back() == 1 ? "" : "s") +
+                                  ", got " + std::to_string(e.args.size()));
   }
 
   Multivector call(const Expr& e) {
@@ -771,144 +683,18 @@ class Expander : private expand_pragmas::PragmaHost {
         throw CompileError(e.loc, "in the " + algebra::current().name() + " built-in '" + fn + "': " + x.what());
       }
     }
-    if (expand_algebra::is_cga_only_builtin(fn))
-      throw CompileError(e.loc, "'" + fn + "' is a CGA built-in; the algebra '" + algebra::current().name() +
-                                    "' does not have it");
-    const auto& scalar1 = scalar_functions();
-    const auto& arity = builtin_arity();
-    auto f1 = scalar1.find(fn);
-    auto ar = arity.find(fn);
-    if (f1 == scalar1.end() && ar == arity.end()) {
-      std::vector<std::string> known;  // functions: macros, built-ins (expand/hints.hpp)
+    const expand_builtins::Builtin* builtin = expand_builtins::find(fn);
+    if (!builtin) {
+      std::vector<std::string> known = expand_builtins::names();  // functions: macros, built-ins (expand/hints.hpp)
       for (const auto& m : macros_) known.push_back(m.first);
-      for (const auto& f : scalar1) known.push_back(f.first);
-      for (const auto& f : arity) known.push_back(f.first);
       throw CompileError(e.loc, "unknown function '" + fn + "'" + hints::for_call(fn, known));
     }
-    if (!(fn == "SphereN3" && e.args.size() == 2)) check_arity(e, f1 != scalar1.end() ? 1 : ar->second);
+    if (builtin->cga_only && !expand_algebra::is_cga())
+      throw CompileError(e.loc, "'" + fn + "' is a CGA built-in; the algebra '" + algebra::current().name() +
+                                    "' does not have it");
+    check_arity(e, builtin->arities);
     for (const auto& a : e.args) args.push_back(eval(*a));
-    return guarded(e.loc, [&]() -> Multivector {
-      if (fn == "abs" && !scalar_part_if_scalar(args[0]).is_scalar()) return magnitude(args[0]);
-      if (fn == "floor" || fn == "ceil" || fn == "fact") {
-        // Exact on constants. On a run-time value they would need a function some targets lack (a factorial
-        // of a real is tgamma(x+1), absent from GLSL) and one the optimizer cannot reason about (floor is
-        // not smooth), so a value that is not a number is a located error.
-        const ex x = scalar_arg(fn, args, e, 0);
-        if (!GiNaC::is_a<GiNaC::numeric>(x) || !GiNaC::ex_to<GiNaC::numeric>(x).is_real())
-          throw CompileError(e.args[0]->loc, "'" + fn + "' takes a constant argument in cgagen (a number, not a "
-                                             "value that depends on the inputs)");
-        if (fn == "fact" && (!GiNaC::ex_to<GiNaC::numeric>(x).is_nonneg_integer() ||
-                             GiNaC::ex_to<GiNaC::numeric>(x) > 170))
-          throw CompileError(e.args[0]->loc, "'fact' takes an integer from 0 to 170");
-        return Multivector(f1->second(x));
-      }
-      if (f1 != scalar1.end()) return Multivector(f1->second(scalar_arg(fn, args, e, 0)));
-      if (fn == "exp") return exp(args[0], e);
-      // invert (Gaalop's MathFunction INVERT): the inverse of a multivector, 1/X as the division defines it.
-      if (fn == "invert") return divide(Multivector(ex(1)), args[0], *e.args[0]);
-      if (fn == "Dual") return args[0].dual();
-      // Gaalop's CGA Normalize: -X / (X.einf), a point scaled to e0 weight 1 (not X / abs(X), which is what
-      // the other algebras' Normalize and #pragma normalize do).
-      if (fn == "Normalize") return divide(-args[0], inner(args[0], Multivector::einf()), *e.args[0]);
-      // Gaalop's CGA ExtractFirstPoint / ExtractSecondPoint of X, the outer product of three dual spheres (the
-      // form Gaalop's GPS example builds): with D = *X, the point pair, (D +- sqrt(|X.X|)) / (einf.D); first
-      // with +, second with -. Not normalized (e0 weight != 1).
-      if (fn == "ExtractFirstPoint" || fn == "ExtractSecondPoint") {
-        const Multivector dpp = args[0].dual();
-        Multivector root =
-            Multivector(GiNaC::sqrt(GiNaC::abs(scalar_part_if_scalar(inner(args[0], args[0])).scalar())));
-        Multivector num = fn == "ExtractFirstPoint" ? dpp + root : dpp - root;
-        return divide(num, inner(Multivector::einf(), dpp), *e.args[0]);
-      }
-      if (fn == "coefficient") return coefficient(args[0], args[1], *e.args[1]);
-      if (fn == "SphereN3" && args.size() == 2) {
-        // Gaalop's SphereN3(P, r) = *(P - r^2/2 einf): the dual of the (inner product null space) sphere around
-        // the conformal point P, a 4-vector; Gaalop's scripts write *SphereN3(...) for the vector form.
-        const ex r = scalar_arg(fn, args, e, 1);
-        return (args[0] - Multivector::blade(4, r * r / 2)).dual();
-      }
-      // The arguments of the remaining built-ins must all be scalars.
-      std::vector<ex> s;
-      for (size_t i = 0; i < args.size(); ++i) s.push_back(scalar_arg(fn, args, e, i));
-      if (fn == "atan2") return Multivector(GiNaC::atan2(s[0], s[1]));
-      if (fn == "VecN3" || fn == "createPoint") {
-        Multivector p = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
-        p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / 2);
-        return p + Multivector::e0();
-      }
-      if (fn == "SphereN3") {  // SphereN3(x, y, z, r) = SphereN3(VecN3(x, y, z), r) = *(VecN3(x, y, z) - r^2/2 einf)
-        Multivector p = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
-        p += Multivector::blade(4, (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - s[3] * s[3]) / 2);
-        return (p + Multivector::e0()).dual();
-      }
-      if (fn == "TranslatorN3") {
-        Multivector t = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
-        return Multivector(ex(1)) - GiNaC::numeric(1, 2) * (t * Multivector::einf());
-      }
-      // RotorN3 (Gaalop): cos(a/2) + sin(a/2) * (-x e23 + y e13 - z e12) / |(x,y,z)|
-      ex len = GiNaC::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-      ex half = s[3] / 2;
-      Multivector plane = Multivector::blade(10, -s[0]) + Multivector::blade(7, s[1]) + Multivector::blade(6, -s[2]);
-      return Multivector(GiNaC::cos(half)) + (GiNaC::sin(half) / len) * plane;
-    });
-  }
-
-  // Gaalop's abs of a multivector: its magnitude sqrt(|<L ~L>_0|).
-  static Multivector magnitude(const Multivector& m) {
-    return Multivector(GiNaC::sqrt(GiNaC::abs((m * m.reverse()).scalar())));
-  }
-
-  // coefficient(mv, blade): the scalar c with which mv holds c * blade, for a blade given as one basis
-  // blade (e1^e2, or e2^e1 = -e1^e2, or 1).
-  Multivector coefficient(const Multivector& mv, const Multivector& blade, const Expr& blade_expr) {
-    if (blade.terms().size() != 1 || !GiNaC::is_a<GiNaC::numeric>(blade.terms().begin()->second))
-      throw CompileError(blade_expr.loc, "'coefficient' takes a basis blade as its second argument (such as "
-                                         "e1^e2 or 1), got " + describe(blade));
-    const auto& [k, sign] = *blade.terms().begin();
-    return Multivector(mv.coeff(k) / sign);
-  }
-
-  // exp of a scalar, or closed form for a bivector B with scalar square.
-  Multivector exp(const Multivector& b_in, const Expr& e) {
-    Multivector b = scalar_part_if_scalar(b_in);
-    if (b.is_scalar()) return Multivector(GiNaC::exp(b.scalar()));
-    SourceLoc at = e.args[0]->loc;
-    b = drop_vanishing(b, [](algebra::BladeIndex i) { return algebra::blade_grade(i) != 2; });
-    if (!b.is_homogeneous(2))
-      throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got " + describe(b));
-    if (b.terms().size() == 1) {
-      // c * blade: B*B = c^2 * blade^2, and blade^2 is a number (+1, -1 or 0 for a blade of orthogonal
-      // vectors), so the sign needs nothing of c; cos, sinh(c)/c, ... are even in c, so c serves as theta.
-      const auto& [k, c] = *b.terms().begin();
-      const Multivector unit = Multivector::blade(k) * Multivector::blade(k);
-      if (unit.is_scalar() && GiNaC::is_a<GiNaC::numeric>(unit.scalar())) {
-        // blade^2 = u: exp(c blade) = cos(c s) + sin(c s)/s blade with s = sqrt(-u) (u < 0), cosh/sinh
-        // with s = sqrt(u) (u > 0). In a user algebra whose basis is not orthonormal u need not be +-1.
-        const GiNaC::numeric u = GiNaC::ex_to<GiNaC::numeric>(unit.scalar());
-        const Multivector unit_blade = Multivector::blade(k);
-        if (u.is_zero()) return Multivector(ex(1)) + b;
-        const ex s = GiNaC::sqrt(GiNaC::abs(u));
-        if (u.is_negative()) return Multivector(GiNaC::cos(c * s)) + (GiNaC::sin(c * s) / s) * unit_blade;
-        return Multivector(GiNaC::cosh(c * s)) + (GiNaC::sinh(c * s) / s) * unit_blade;
-      }
-    }
-    Multivector sq = scalar_part_if_scalar(b * b);
-    if (!sq.is_scalar())
-      throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
-                             "square has blades " + blade_list(sq.grade_above(0)));
-    ex s = sq.scalar();
-    if (s.is_zero()) return Multivector(ex(1)) + b;
-    if (manifestly_nonnegative((-s).expand())) {  // B^2 = -theta^2: rotation
-      ex theta = root_of_square((-s).expand());
-      return Multivector(GiNaC::cos(theta)) + (GiNaC::sin(theta) / theta) * b;
-    }
-    if (manifestly_nonnegative(s)) {  // B^2 = theta^2: boost
-      ex theta = root_of_square(s);
-      return Multivector(GiNaC::cosh(theta)) + (GiNaC::sinh(theta) / theta) * b;
-    }
-    // (The square is not printed: GiNaC's term order differs between processes, and messages must not.)
-    throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument B: B*B must be "
-                           "visibly <= 0 (a rotation) or >= 0 (a boost)");
+    return guarded(e.loc, [&] { return builtin->define(expand_builtins::Call{fn, args, e, *this}); });
   }
 
   // The highest _P(n) a macro's body and result use.

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <string>
@@ -556,4 +558,26 @@ TEST_CASE("node caches live only while a scope is open, nested scopes share the 
     CHECK(symbolic::NodeCaches::current() == shared);
   }
   CHECK(symbolic::NodeCaches::current() == nullptr);
+}
+
+TEST_CASE("built-ins: CLUCalc's DefVars calls do nothing; exp in a basis that is not orthonormal", "[expand]") {
+  // DefVarsN3() (Gaalop's hist_Horizon.clu) declares CLUCalc's basis names: here a no-op statement.
+  Kernel k = expand_text("DefVarsN3();\nDefVarsE3();\n?p = createPoint(1, 2, 3);\n");
+  REQUIRE(k.outputs.size() == 1);
+  CHECK(k.values.back().blades.size() == 5);
+  CHECK_THROWS_WITH(expand_text("?p = DefVarsN3(1);\n"), Catch::Contains("'DefVarsN3' takes 0 arguments, got 1"));
+  // A user basis a = 2 d1, b = d2 over orthonormal d1, d2: (a^b)^2 = -4, so exp(t a^b) = cos(2t) +
+  // sin(2t)/2 a^b (t = 0.5: cos 1 + sin(1)/2 a^b), not cos(t) + sin(t) a^b.
+  const std::string csv = (std::filesystem::temp_directory_path() / "cgagen_scaled2d.csv").string();
+  {
+    std::ofstream f(csv);
+    f << "1,a,b\nd1=0.5*a,d2=b\n1,d1,d2\nd1=1,d2=1\na=2*d1,b=d2\n";
+  }
+  front::SourceFile file("t.clu", "?o = exp(0.5*(a^b));\n");
+  Kernel e = expand(front::parse(file), "t", algebra::load(csv));
+  REQUIRE(e.values.back().blades.size() == 2);
+  const double c = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e.values.back().coeffs[0])).to_double();
+  const double s = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e.values.back().coeffs[1])).to_double();
+  CHECK(c == Approx(std::cos(1.0)));
+  CHECK(s == Approx(std::sin(1.0) / 2));
 }

@@ -1,0 +1,273 @@
+// The built-in functions (builtins.hpp): the table, and the closed forms behind exp.
+#include "expand/builtins.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "algebra/algebra.hpp"
+#include "front/diagnostics.hpp"
+
+namespace cgagen::expand_builtins {
+
+using front::CompileError;
+using GiNaC::ex;
+
+std::string blade_list(const Multivector& m) {
+  std::string s;
+  for (const auto& [b, c] : m.terms()) s += (s.empty() ? "" : ", ") + algebra::blade_name(b);
+  return s;
+}
+
+std::string describe(const Multivector& m) { return "a multivector with blades " + blade_list(m); }
+
+Multivector magnitude(const Multivector& m) { return Multivector(GiNaC::sqrt(GiNaC::abs((m * m.reverse()).scalar()))); }
+
+ex Call::scalar(size_t i) const {
+  args[i] = ctx.scalar_part_if_scalar(args[i]);
+  if (!args[i].is_scalar()) {
+    std::string which = args.size() == 1 ? "a scalar argument" : "scalar arguments";
+    throw CompileError(expr.args[i]->loc, "'" + name + "' takes " + which + ", got " + describe(args[i]) +
+                                              (args.size() == 1 ? "" : " as argument " + std::to_string(i + 1)));
+  }
+  return args[i].scalar();
+}
+
+std::vector<ex> Call::scalars() const {
+  std::vector<ex> s;
+  for (size_t i = 0; i < args.size(); ++i) s.push_back(scalar(i));
+  return s;
+}
+
+namespace {
+
+// Is the expanded expression e >= 0 for every real value of its symbols, visibly (a sum of positive
+// multiples of even powers)? Used to pick the closed form of exp.
+bool manifestly_nonnegative(const ex& e) {
+  if (GiNaC::is_a<GiNaC::numeric>(e)) {
+    const auto& n = GiNaC::ex_to<GiNaC::numeric>(e);
+    return n.is_real() && !n.is_negative();
+  }
+  if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
+    for (size_t i = 0; i < e.nops(); ++i)
+      if (!manifestly_nonnegative(e.op(i))) return false;
+    return true;
+  }
+  if (GiNaC::is_a<GiNaC::power>(e)) {
+    const ex& p = e.op(1);
+    return GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_even();
+  }
+  return false;
+}
+
+// A square root of a manifestly nonnegative t, taking even powers out of the root where factoring shows
+// them. Its sign may differ from sqrt(t); callers use it only in even functions (cos, sin(x)/x, ...).
+ex root_of_square(const ex& t) {
+  ex f = GiNaC::factor(t);
+  ex out = 1, rest = 1;
+  auto take = [&](const ex& factor) {
+    if (GiNaC::is_a<GiNaC::power>(factor) && GiNaC::is_a<GiNaC::numeric>(factor.op(1)) &&
+        GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).is_even())
+      out *= GiNaC::pow(factor.op(0), factor.op(1) / 2);
+    else if (GiNaC::is_a<GiNaC::numeric>(factor))
+      out *= GiNaC::sqrt(factor);
+    else
+      rest *= factor;
+  };
+  if (GiNaC::is_a<GiNaC::mul>(f))
+    for (size_t i = 0; i < f.nops(); ++i) take(f.op(i));
+  else
+    take(f);
+  return rest.is_equal(1) ? out : out * GiNaC::sqrt(rest);
+}
+
+// floor of a real rational number, exactly.
+GiNaC::numeric floor_numeric(const GiNaC::numeric& x) {
+  GiNaC::numeric q = GiNaC::iquo(x.numer(), x.denom());  // truncates toward zero
+  if (x.is_negative() && q * x.denom() != x.numer()) q -= 1;
+  return q;
+}
+
+// exp of a scalar, or the closed form for a bivector B with scalar square.
+Multivector exponential(const Call& c) {
+  Multivector b = c.ctx.scalar_part_if_scalar(c.args[0]);
+  if (b.is_scalar()) return Multivector(GiNaC::exp(b.scalar()));
+  const front::SourceLoc at = c.expr.args[0]->loc;
+  b = c.ctx.bivector_part_if_bivector(b);
+  if (!b.is_homogeneous(2))
+    throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got " + describe(b));
+  if (b.terms().size() == 1) {
+    // c * blade: B*B = c^2 * blade^2, and blade^2 = u is a number, so the sign needs nothing of c; cos,
+    // sinh(x)/x, ... are even, so c serves as theta. exp(c blade) = cos(c s) + sin(c s)/s blade with
+    // s = sqrt(-u) (u < 0), cosh/sinh with s = sqrt(u) (u > 0): in a user algebra whose basis is not
+    // orthonormal u need not be +-1.
+    const auto& [k, coeff] = *b.terms().begin();
+    const Multivector unit = Multivector::blade(k) * Multivector::blade(k);
+    if (unit.is_scalar() && GiNaC::is_a<GiNaC::numeric>(unit.scalar())) {
+      const GiNaC::numeric u = GiNaC::ex_to<GiNaC::numeric>(unit.scalar());
+      const Multivector unit_blade = Multivector::blade(k);
+      if (u.is_zero()) return Multivector(ex(1)) + b;
+      const ex s = GiNaC::sqrt(GiNaC::abs(u));
+      if (u.is_negative()) return Multivector(GiNaC::cos(coeff * s)) + (GiNaC::sin(coeff * s) / s) * unit_blade;
+      return Multivector(GiNaC::cosh(coeff * s)) + (GiNaC::sinh(coeff * s) / s) * unit_blade;
+    }
+  }
+  Multivector sq = c.ctx.scalar_part_if_scalar(b * b);
+  if (!sq.is_scalar())
+    throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
+                           "square has blades " + blade_list(sq.grade_above(0)));
+  ex s = sq.scalar();
+  if (s.is_zero()) return Multivector(ex(1)) + b;
+  if (manifestly_nonnegative((-s).expand())) {  // B^2 = -theta^2: rotation
+    ex theta = root_of_square((-s).expand());
+    return Multivector(GiNaC::cos(theta)) + (GiNaC::sin(theta) / theta) * b;
+  }
+  if (manifestly_nonnegative(s)) {  // B^2 = theta^2: boost
+    ex theta = root_of_square(s);
+    return Multivector(GiNaC::cosh(theta)) + (GiNaC::sinh(theta) / theta) * b;
+  }
+  // (The square is not printed: GiNaC's term order differs between processes, and messages must not.)
+  throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument B: B*B must be "
+                         "visibly <= 0 (a rotation) or >= 0 (a boost)");
+}
+
+// A scalar function of one scalar.
+Builtin scalar_function(const std::string& name, ex (*f)(const ex&)) {
+  return {name, {1}, false, [f](const Call& c) { return Multivector(f(c.scalar(0))); }};
+}
+
+// floor, ceil and fact (Gaalop's MathFunction) are exact on constants. On a run-time value they would need a
+// function some targets lack (a factorial of a real is tgamma(x+1), absent from GLSL) and one the optimizer
+// cannot reason about (floor is not smooth), so a value that is not a number is a located error.
+Builtin constant_function(const std::string& name, ex (*f)(const GiNaC::numeric&)) {
+  return {name, {1}, false, [name, f](const Call& c) {
+            const ex x = c.scalar(0);
+            if (!GiNaC::is_a<GiNaC::numeric>(x) || !GiNaC::ex_to<GiNaC::numeric>(x).is_real())
+              throw CompileError(c.expr.args[0]->loc, "'" + name + "' takes a constant argument in cgagen (a number, "
+                                                      "not a value that depends on the inputs)");
+            const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(x);
+            if (name == "fact" && (!n.is_nonneg_integer() || n > 170))
+              throw CompileError(c.expr.args[0]->loc, "'fact' takes an integer from 0 to 170");
+            return Multivector(f(n));
+          }};
+}
+
+// x e1 + y e2 + z e3 + (x^2 + y^2 + z^2 - r2)/2 einf + e0: a conformal point (r2 = 0), or a dual sphere.
+Multivector up(const ex& x, const ex& y, const ex& z, const ex& r2) {
+  return Multivector::blade(1, x) + Multivector::blade(2, y) + Multivector::blade(3, z) +
+         Multivector::blade(4, (x * x + y * y + z * z - r2) / 2) + Multivector::e0();
+}
+
+// CLUCalc's DefVars*: they declare the basis names of a space for CLUCalc's interpreter; a script compiled
+// for one algebra has them already, so they do nothing (and return 0, as a statement of their own).
+Builtin no_op(const std::string& name) {
+  return {name, {0}, false, [](const Call&) { return Multivector(); }};
+}
+
+const std::vector<Builtin>& table() {
+  static const std::vector<Builtin> builtins = {
+      // abs of a scalar is |x|; of a multivector, its magnitude (Gaalop).
+      {"abs", {1}, false, [](const Call& c) {
+         const Multivector s = c.ctx.scalar_part_if_scalar(c.args[0]);
+         return s.is_scalar() ? Multivector(GiNaC::abs(s.scalar())) : magnitude(c.args[0]);
+       }},
+      scalar_function("sqrt", [](const ex& x) -> ex { return GiNaC::sqrt(x); }),
+      scalar_function("sin", [](const ex& x) -> ex { return GiNaC::sin(x); }),
+      scalar_function("cos", [](const ex& x) -> ex { return GiNaC::cos(x); }),
+      scalar_function("tan", [](const ex& x) -> ex { return GiNaC::tan(x); }),
+      scalar_function("asin", [](const ex& x) -> ex { return GiNaC::asin(x); }),
+      scalar_function("acos", [](const ex& x) -> ex { return GiNaC::acos(x); }),
+      scalar_function("atan", [](const ex& x) -> ex { return GiNaC::atan(x); }),
+      scalar_function("log", [](const ex& x) -> ex { return GiNaC::log(x); }),
+      constant_function("floor", [](const GiNaC::numeric& x) -> ex { return ex(floor_numeric(x)); }),
+      constant_function("ceil", [](const GiNaC::numeric& x) -> ex { return ex(-floor_numeric(-x)); }),
+      constant_function("fact", [](const GiNaC::numeric& x) -> ex { return GiNaC::factorial(x); }),
+      {"atan2", {2}, false, [](const Call& c) {
+         const auto s = c.scalars();
+         return Multivector(GiNaC::atan2(s[0], s[1]));
+       }},
+      {"exp", {1}, false, exponential},
+      // invert (Gaalop's MathFunction INVERT): the inverse of a multivector, 1/X as the division defines it.
+      {"invert", {1}, false,
+       [](const Call& c) { return c.ctx.divide(Multivector(ex(1)), c.args[0], *c.expr.args[0]); }},
+      {"Dual", {1}, false, [](const Call& c) { return c.args[0].dual(); }},
+      // coefficient(mv, blade): the scalar c with which mv holds c * blade, for a blade given as one basis
+      // blade (e1^e2, or e2^e1 = -e1^e2, or 1).
+      {"coefficient", {2}, false, [](const Call& c) {
+         const Multivector& blade = c.args[1];
+         if (blade.terms().size() != 1 || !GiNaC::is_a<GiNaC::numeric>(blade.terms().begin()->second))
+           throw CompileError(c.expr.args[1]->loc, "'coefficient' takes a basis blade as its second argument (such "
+                                                   "as e1^e2 or 1), got " + describe(blade));
+         const auto& [k, sign] = *blade.terms().begin();
+         return Multivector(c.args[0].coeff(k) / sign);
+       }},
+      // Gaalop's CGA Normalize: -X / (X.einf), a point scaled to e0 weight 1 (not X / abs(X), which is what
+      // the other algebras' Normalize and #pragma normalize do).
+      {"Normalize", {1}, false, [](const Call& c) {
+         return c.ctx.divide(-c.args[0], inner(c.args[0], Multivector::einf()), *c.expr.args[0]);
+       }},
+      {"VecN3", {3}, true, [](const Call& c) { const auto s = c.scalars(); return up(s[0], s[1], s[2], 0); }},
+      {"createPoint", {3}, true, [](const Call& c) { const auto s = c.scalars(); return up(s[0], s[1], s[2], 0); }},
+      // SphereN3(x, y, z, r) = *(VecN3(x, y, z) - r^2/2 einf); SphereN3(P, r) = *(P - r^2/2 einf): the dual of
+      // the (inner product null space) sphere, a 4-vector; Gaalop's scripts write *SphereN3(...) for the vector.
+      {"SphereN3", {2, 4}, true, [](const Call& c) {
+         if (c.args.size() == 2) {
+           const ex r = c.scalar(1);
+           return (c.args[0] - Multivector::blade(4, r * r / 2)).dual();
+         }
+         const auto s = c.scalars();
+         return up(s[0], s[1], s[2], s[3] * s[3]).dual();
+       }},
+      {"TranslatorN3", {3}, true, [](const Call& c) {
+         const auto s = c.scalars();
+         const Multivector t = Multivector::blade(1, s[0]) + Multivector::blade(2, s[1]) + Multivector::blade(3, s[2]);
+         return Multivector(ex(1)) - GiNaC::numeric(1, 2) * (t * Multivector::einf());
+       }},
+      // RotorN3 (Gaalop): cos(a/2) + sin(a/2) * (-x e23 + y e13 - z e12) / |(x,y,z)|
+      {"RotorN3", {4}, true, [](const Call& c) {
+         const auto s = c.scalars();
+         const ex len = GiNaC::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+         const ex half = s[3] / 2;
+         const Multivector plane =
+             Multivector::blade(10, -s[0]) + Multivector::blade(7, s[1]) + Multivector::blade(6, -s[2]);
+         return Multivector(GiNaC::cos(half)) + (GiNaC::sin(half) / len) * plane;
+       }},
+      // Gaalop's CGA ExtractFirstPoint / ExtractSecondPoint of X, the outer product of three dual spheres (the
+      // form Gaalop's GPS example builds): with D = *X, the point pair, (D +- sqrt(|X.X|)) / (einf.D); first
+      // with +, second with -. Not normalized (e0 weight != 1).
+      {"ExtractFirstPoint", {1}, false, [](const Call& c) {
+         const Multivector d = c.args[0].dual();
+         const Multivector root(GiNaC::sqrt(GiNaC::abs(c.ctx.scalar_part_if_scalar(inner(c.args[0], c.args[0])).scalar())));
+         return c.ctx.divide(d + root, inner(Multivector::einf(), d), *c.expr.args[0]);
+       }},
+      {"ExtractSecondPoint", {1}, false, [](const Call& c) {
+         const Multivector d = c.args[0].dual();
+         const Multivector root(GiNaC::sqrt(GiNaC::abs(c.ctx.scalar_part_if_scalar(inner(c.args[0], c.args[0])).scalar())));
+         return c.ctx.divide(d - root, inner(Multivector::einf(), d), *c.expr.args[0]);
+       }},
+      no_op("DefVarsE3"),
+      no_op("DefVarsP3"),
+      no_op("DefVarsN3"),
+  };
+  return builtins;
+}
+
+}  // namespace
+
+const Builtin* find(const std::string& name) {
+  static const std::map<std::string, const Builtin*> by_name = [] {
+    std::map<std::string, const Builtin*> m;
+    for (const Builtin& b : table()) m.emplace(b.name, &b);
+    return m;
+  }();
+  auto it = by_name.find(name);
+  return it == by_name.end() ? nullptr : it->second;
+}
+
+std::vector<std::string> names() {
+  std::vector<std::string> n;
+  for (const Builtin& b : table()) n.push_back(b.name);
+  std::sort(n.begin(), n.end());  // hints pick the first of equally close names: a fixed order
+  return n;
+}
+
+}  // namespace cgagen::expand_builtins
