@@ -560,7 +560,7 @@ TEST_CASE("node caches live only while a scope is open, nested scopes share the 
   CHECK(symbolic::NodeCaches::current() == nullptr);
 }
 
-TEST_CASE("built-ins: CLUCalc's DefVars calls do nothing; exp in a basis that is not orthonormal", "[expand]") {
+TEST_CASE("built-ins: CLUCalc's DefVars calls do nothing, exp in a basis that is not orthonormal", "[expand]") {
   // DefVarsN3() (Gaalop's hist_Horizon.clu) declares CLUCalc's basis names: here a no-op statement.
   Kernel k = expand_text("DefVarsN3();\nDefVarsE3();\n?p = createPoint(1, 2, 3);\n");
   REQUIRE(k.outputs.size() == 1);

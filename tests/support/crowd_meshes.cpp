@@ -1,5 +1,6 @@
 // joint_coherence() and make_coherent_skinned_mesh() of crowd_meshes.hpp.
 #include "cga/testing/crowd_meshes.hpp"
+#include "cga/testing/seeded_random.hpp"
 
 #include <algorithm>
 #include <array>
@@ -53,15 +54,7 @@ std::string describe(const JointCoherence& c) {
 
 namespace {
 
-// mt19937's output is specified by the standard, the distributions are not: convert by hand.
-struct Random {
-  std::mt19937 engine;
-  explicit Random(std::uint32_t seed) : engine(seed) {}
-  float uniform(float lo, float hi) {
-    return lo + (hi - lo) * static_cast<float>(engine() >> 8) * (1.0f / 16777216.0f);
-  }
-  std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(engine() % n); }
-};
+using Random = testing::SeededRandom;
 
 }  // namespace
 

@@ -12,6 +12,8 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
+#include "skin_streams.hpp"
+
 #include "cga/gpu/skinning.hpp"
 
 namespace cga::gpu {
@@ -85,18 +87,7 @@ CrowdDraw::CrowdDraw(const Context& context, SkinningMethod method, const Skinne
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   vao_ = Object(ObjectKind::vertex_array, vao);
-  glVertexArrayVertexBuffer(vao, 0, positions_.get(), 0, 3 * sizeof(float));
-  glVertexArrayVertexBuffer(vao, 1, normals_.get(), 0, 3 * sizeof(float));
-  glVertexArrayVertexBuffer(vao, 2, joints_.get(), 0, 4 * sizeof(std::uint16_t));
-  glVertexArrayVertexBuffer(vao, 3, weights_.get(), 0, 4 * sizeof(float));
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribIFormat(vao, 2, 4, GL_UNSIGNED_SHORT, 0);
-  glVertexArrayAttribFormat(vao, 3, 4, GL_FLOAT, GL_FALSE, 0);
-  for (GLuint a = 0; a < 4; ++a) {
-    glVertexArrayAttribBinding(vao, a, a);
-    glEnableVertexArrayAttrib(vao, a);
-  }
+  detail::bind_skin_streams(vao, positions_.get(), normals_.get(), joints_.get(), weights_.get());
   glVertexArrayElementBuffer(vao, indices_.get());
 
   GLuint rb[2] = {0, 0};
