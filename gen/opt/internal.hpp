@@ -78,13 +78,19 @@ class Namer {
       for (const auto& s : in.symbols) taken_.insert(s.get_name());
     }
   }
-  std::string fresh(std::string base) {
-    while (taken_.count(base)) base += "_";
-    taken_.insert(base);
-    return base;
+  // base, or base with as few '_' appended as make it new. The search for a base resumes where its last one
+  // ended (a script that assigns one name a thousand times would otherwise retry every shorter name).
+  std::string fresh(const std::string& base) {
+    auto last = last_.find(base);
+    std::string name = last == last_.end() ? base : last->second;
+    while (taken_.count(name)) name += "_";
+    taken_.insert(name);
+    last_[base] = name;
+    return name;
   }
  private:
   std::set<std::string> taken_;
+  std::map<std::string, std::string> last_;  // base -> the name fresh() gave it last
 };
 
 }  // namespace cgagen::opt::detail

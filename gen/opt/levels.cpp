@@ -227,10 +227,10 @@ Substituted substitute(const Kernel& k) {
 std::vector<Temp> materialized_temps(const Kernel& k, const Substituted& s) {
   std::vector<Temp> temps;
   Namer namer(k.inputs);
+  const ExSet materialized(s.materialized.begin(), s.materialized.end());  // (a list scan per value was quadratic)
   for (const auto& v : k.values)
     for (size_t i = 0; i < v.blades.size(); ++i)
-      if (std::find_if(s.materialized.begin(), s.materialized.end(),
-                       [&](const ex& m) { return m.is_equal(v.symbols[i]); }) != s.materialized.end())
+      if (materialized.count(v.symbols[i]))
         temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])), v.symbols[i],
                          s.full.at(v.symbols[i]).value()});
   return temps;

@@ -16,8 +16,19 @@ void merge_equal_temps(CseState& st, std::vector<ex>& roots) {
   exmap merged;                          // dropped temporary -> its earlier equal (or minus it)
   std::map<std::string, ex> first;       // canonical key of a kept temporary's value -> its symbol
   std::vector<Temp> kept;
+  // e with the merged temporaries it uses replaced. GiNaC's subs() scans its whole map on every call, so
+  // each expression gets a map of only the symbols it has (one map for all was quadratic in the temporaries).
+  auto replaced = [&](const ex& e) {
+    if (merged.empty()) return e;
+    ExSet used;
+    collect_symbols(e, used);
+    exmap local;
+    for (const auto& u : used)
+      if (auto it = merged.find(u); it != merged.end()) local.insert(*it);
+    return orient_sums(local.empty() ? e : e.subs(local, kSymbolSubs), st.keys);
+  };
   for (auto t : st.temps) {
-    if (!merged.empty()) t.value = orient_sums(t.value.subs(merged, kSymbolSubs), st.keys);
+    t.value = replaced(t.value);
     if (is_atomic(t.value)) {
       kept.push_back(t);
       continue;
@@ -36,7 +47,7 @@ void merge_equal_temps(CseState& st, std::vector<ex>& roots) {
   }
   if (merged.empty()) return;
   st.temps = std::move(kept);
-  for (auto& r : roots) r = orient_sums(r.subs(merged, kSymbolSubs), st.keys);
+  for (auto& r : roots) r = replaced(r);
 }
 
 }  // namespace cgagen::opt::detail
