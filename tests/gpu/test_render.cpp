@@ -68,19 +68,23 @@ TEST_CASE("the twist strip shows the candy wrapper of lbs and not of cga-motors"
   Context ctx;
   constexpr int kPanel = 160, kHeight = 240, kGap = 4;
   const Image strip = render_twist_strip(ctx, 3.14159265f, kPanel, kHeight);
-  REQUIRE(strip.width == 4 * kPanel + 3 * kGap);
+  constexpr int kPanels = static_cast<int>(kSkinningMethodCount);
+  REQUIRE(strip.width == kPanels * kPanel + (kPanels - 1) * kGap);
   REQUIRE(strip.height == kHeight);
   check_png(strip, std::string(CGA_GPU_PICTURES_DIR) + "/twist_strip.png");
-  // Panels: lbs, dqs, cga-points, cga-motors. The middle band of rows holds the twisted joint.
+  // Panels in the method table's order: lbs, dqs, cga-points, cga-motors, cga-log. The middle band of rows
+  // holds the twisted joint.
   auto middle = [&](int panel) {
     const int x0 = panel * (kPanel + kGap);
     return drawn_in(strip, x0, x0 + kPanel, kHeight * 2 / 5, kHeight * 3 / 5);
   };
   INFO("drawn pixels in the middle band: lbs " << middle(0) << ", dqs " << middle(1) << ", cga-points "
-                                               << middle(2) << ", cga-motors " << middle(3));
+                                               << middle(2) << ", cga-motors " << middle(3) << ", cga-log "
+                                               << middle(4));
   CHECK(middle(0) < 0.75 * middle(3));
   CHECK(middle(2) < 0.75 * middle(3));
   CHECK(middle(1) > 0.9 * middle(3));
+  CHECK(middle(4) > 0.9 * middle(3));
 }
 
 TEST_CASE("render_meshes refuses bad input") {

@@ -58,10 +58,11 @@ Deviation compare(const SkinnedVertices& gpu, std::size_t instance, const Skinne
 MeshPalette palette_from_transforms(const std::vector<Transform>& xs, SkinningMethod method) {
   MeshPalette p;
   for (const Transform& x : xs) {
-    if (method == SkinningMethod::lbs) p.matrices.push_back(to_skinning_matrix(x));
-    if (method == SkinningMethod::dqs) p.dual_quats.push_back(to_dual_quat(x));
-    if (method == SkinningMethod::cga_points || method == SkinningMethod::cga_motors)
-      p.motors.push_back(motor_from_transform(x));
+    switch (skinning_method_info(method).palette) {
+      case PaletteKind::matrices: p.matrices.push_back(to_skinning_matrix(x)); break;
+      case PaletteKind::dual_quats: p.dual_quats.push_back(to_dual_quat(x)); break;
+      case PaletteKind::motors: p.motors.push_back(motor_from_transform(x)); break;
+    }
   }
   return p;
 }
@@ -177,7 +178,7 @@ TEST_CASE("GPU skinning of the real characters' key frames equals the CPU job wi
   }
 }
 
-TEST_CASE("twist cylinder at 180 degrees on the GPU: lbs and cga-points collapse, dqs and cga-motors keep the radius") {
+TEST_CASE("twist cylinder at 180 degrees on the GPU: lbs and cga-points collapse, dqs, cga-motors and cga-log keep the radius") {
   Context ctx;
   const TwistCylinder cyl = make_twist_cylinder();
   const std::vector<Transform> bones = twist_cylinder_skinning_transforms(cyl.spec, 3.14159265f);

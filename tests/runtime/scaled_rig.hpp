@@ -162,7 +162,7 @@ inline std::vector<DoubleSimilarity> double_palette(const Character& ch, const S
 // Vertex v skinned in double by `method`: lbs / cga-points blend the moved points; cga-motors blends the
 // motors (sign fix on the rotor parts) and moves the point once, dividing by its weight; dqs blends the
 // rigid parts as dual quaternions (it has no scale: it moves by the rotation and translation of each
-// similarity and drops the scale).
+// similarity and drops the scale); cga-log exponentiates the blend of the similarities' logarithms.
 inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSimilarity>& pal,
                               const SkinnedMesh& mesh, std::size_t v) {
   const glm::dvec3 p(mesh.px[v], mesh.py[v], mesh.pz[v]);
@@ -212,6 +212,33 @@ inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSim
       real = real / len, dual = dual / len;
       const glm::dquat t = dual * glm::conjugate(real) * 2.0;
       return real * p + glm::dvec3(t.x, t.y, t.z);
+    }
+    case SkinningMethod::cga_log: {
+      // The twists (w, v) of the rigid parts (w the rotation vector, t = V(w) v) and the log scales, blended
+      // with the skin weights and exponentiated: Rodrigues for the rotation, V(w) for the translation.
+      glm::dvec3 w_sum(0.0), v_sum(0.0);
+      double log_scale = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const DoubleSimilarity& x = pal[js[k]];
+        glm::dquat q = x.rotation;
+        if (q.w < 0.0) q = -q;
+        const glm::dvec3 axis_sin(q.x, q.y, q.z);
+        const double s = glm::length(axis_sin), theta = 2.0 * std::atan2(s, q.w);
+        const glm::dvec3 w = s > 0.0 ? axis_sin * (theta / s) : glm::dvec3(0.0);
+        // V^-1 = I - [w]x / 2 + (1 - (theta/2) cot(theta/2)) / theta^2 [w]x^2
+        const double c2 = theta > 1e-8 ? (1.0 - 0.5 * theta * q.w / s) / (theta * theta) : 1.0 / 12.0;
+        const glm::dvec3 wt = glm::cross(w, x.translation);
+        w_sum += double(ws[k]) * w;
+        v_sum += double(ws[k]) * (x.translation - 0.5 * wt + c2 * glm::cross(w, wt));
+        log_scale += double(ws[k]) * std::log(x.scale);
+      }
+      const double theta = glm::length(w_sum);
+      const glm::dvec3 wv = glm::cross(w_sum, v_sum);
+      const double a = theta > 1e-8 ? (1.0 - std::cos(theta)) / (theta * theta) : 0.5;
+      const double b = theta > 1e-8 ? (theta - std::sin(theta)) / (theta * theta * theta) : 1.0 / 6.0;
+      const glm::dvec3 t = v_sum + a * wv + b * glm::cross(w_sum, wv);
+      const glm::dquat r = theta > 1e-12 ? glm::angleAxis(theta, w_sum / theta) : glm::dquat(1.0, 0.0, 0.0, 0.0);
+      return r * (std::exp(log_scale) * p) + t;
     }
   }
   return p;

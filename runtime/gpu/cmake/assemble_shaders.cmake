@@ -1,10 +1,11 @@
-# Assembles the GLSL programs of cga::gpu at build time (cmake -P): "#version 450" + the generated kernels
-# (from cgagen --target glsl, never a hand copy) + the palette block + the method's skin() + the stage's
-# main. Writes each program to OUT_DIR/NAME.STAGE (glslangValidator checks those files) and all of them as
-# C++ string literals into CPP_OUT (what the library compiles with).
-#   -DSHADER_DIR=<runtime/gpu/shaders> -DGENERATED_DIR=<build/generated> -DOUT_DIR=<dir> -DCPP_OUT=<file.cpp>
-#   -DROTOR_SIGN=<rotor_sign.glsl, configured from cga/runtime/rotor_sign.hpp>
-foreach(_v SHADER_DIR GENERATED_DIR OUT_DIR CPP_OUT ROTOR_SIGN)
+# Assembles the GLSL programs of cga::gpu at build time (cmake -P): "#version 450" + the method's generated
+# blend (from cgagen --target glsl, never a hand copy) + the palette block + the method's skin() glue (written
+# from the method table by runtime/cmake/SkinningMethods.cmake: data movement only) + the stage's main. Writes
+# each program to OUT_DIR/NAME.STAGE (glslangValidator checks those files) and all of them as C++ string
+# literals into CPP_OUT (what the library compiles with).
+#   -DSHADER_DIR=<runtime/gpu/shaders> -DGENERATED_DIR=<build/generated> -DGLUE_DIR=<dir of ID.glsl>
+#   -DMETHODS=<id|id|...> -DBLENDS=<blend|blend|...> (the table's order) -DOUT_DIR=<dir> -DCPP_OUT=<file.cpp>
+foreach(_v SHADER_DIR GENERATED_DIR GLUE_DIR METHODS BLENDS OUT_DIR CPP_OUT)
   if(NOT DEFINED ${_v})
     message(FATAL_ERROR "assemble_shaders.cmake: -D${_v}=... is required")
   endif()
@@ -42,24 +43,21 @@ endfunction()
 file(MAKE_DIRECTORY ${OUT_DIR})
 _read_part(_palette_vertex ${SHADER_DIR}/palette.glsl)
 _read_part(_palette_comp ${SHADER_DIR}/palette_compute.glsl)
-_read_part(_transform_point_split ${GENERATED_DIR}/transform_point_split.glsl)
-_read_part(_rotor_sign ${ROTOR_SIGN})
-foreach(_method lbs dqs cga_points cga_motors)
-  _read_part(_skin ${SHADER_DIR}/skin_${_method}.glsl)
-  set(_kernels "")
-  if(_method MATCHES "^cga_")
-    set(_kernels "${_transform_point_split}${_rotor_sign}")
-  endif()
+string(REPLACE "|" ";" _methods "${METHODS}")
+string(REPLACE "|" ";" _blends "${BLENDS}")
+foreach(_method _blend IN ZIP_LISTS _methods _blends)
+  _read_part(_kernel ${GENERATED_DIR}/${_blend}.glsl)
+  _read_part(_skin ${GLUE_DIR}/${_method}.glsl)
   foreach(_stage vert comp)
     _read_part(_main ${SHADER_DIR}/skin_main.${_stage})
     set(_palette "${_palette_vertex}")
     if(_stage STREQUAL "comp")
       set(_palette "${_palette_comp}")
     endif()
-    _emit(skin_${_method}.${_stage} "#version 450\n${_kernels}${_palette}${_skin}${_main}")
+    _emit(skin_${_method}.${_stage} "#version 450\n${_kernel}${_palette}${_skin}${_main}")
   endforeach()
   _read_part(_main ${SHADER_DIR}/skin_draw.vert)
-  _emit(skin_${_method}_draw.vert "#version 450\n${_kernels}${_palette_vertex}${_skin}${_main}")
+  _emit(skin_${_method}_draw.vert "#version 450\n${_kernel}${_palette_vertex}${_skin}${_main}")
 endforeach()
 foreach(_stage vert frag)
   _read_part(_main ${SHADER_DIR}/render.${_stage})

@@ -37,15 +37,7 @@ Camera CrowdGrid::camera() const {
 
 namespace {
 
-std::string_view draw_program(SkinningMethod m) {
-  switch (m) {
-    case SkinningMethod::lbs: return "skin_lbs_draw.vert";
-    case SkinningMethod::dqs: return "skin_dqs_draw.vert";
-    case SkinningMethod::cga_points: return "skin_cga_points_draw.vert";
-    case SkinningMethod::cga_motors: return "skin_cga_motors_draw.vert";
-  }
-  throw std::invalid_argument("cga::gpu::CrowdDraw: unknown skinning method");
-}
+std::string draw_program(SkinningMethod m) { return "skin_" + shader_method_name(m) + "_draw.vert"; }
 
 ShaderSource embedded(unsigned stage, std::string_view name) {
   return {stage, std::string(shader_path(name)), std::string(shader_text(name))};

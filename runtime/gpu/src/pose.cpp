@@ -8,11 +8,10 @@
 namespace cga::gpu {
 
 Interpolation pose_mode(SkinningMethod method) {
-  switch (method) {
-    case SkinningMethod::lbs: return Interpolation::glm_matrix;
-    case SkinningMethod::dqs: return Interpolation::glm_dualquat;
-    case SkinningMethod::cga_points:
-    case SkinningMethod::cga_motors: return Interpolation::paper;
+  switch (skinning_method_info(method).palette) {
+    case PaletteKind::matrices: return Interpolation::glm_matrix;
+    case PaletteKind::dual_quats: return Interpolation::glm_dualquat;
+    case PaletteKind::motors: return Interpolation::paper;
   }
   return Interpolation::paper;
 }

@@ -83,13 +83,8 @@ Image side_by_side(std::span<const Image> images, int gap, std::array<std::uint8
 }
 
 glm::vec3 method_colour(SkinningMethod method) {
-  switch (method) {
-    case SkinningMethod::lbs: return {0.85f, 0.55f, 0.35f};
-    case SkinningMethod::dqs: return {0.45f, 0.65f, 0.85f};
-    case SkinningMethod::cga_points: return {0.85f, 0.75f, 0.35f};
-    case SkinningMethod::cga_motors: return {0.45f, 0.80f, 0.50f};
-  }
-  return {0.8f, 0.8f, 0.8f};
+  const auto& c = skinning_method_info(method).colour;
+  return {c[0], c[1], c[2]};
 }
 
 ViewMatrices camera_view(const Camera& camera, glm::vec3 lo, glm::vec3 hi, int width, int height) {

@@ -471,7 +471,6 @@ const SkinKernels* avx2_kernels() {
       "avx2",
       {{matrix_block_avx2_fn<false, false>, matrix_block_avx2_fn<false, true>},
        {matrix_block_avx2_fn<true, false>, matrix_block_avx2_fn<true, true>}},
-      {portable_kernels().dq[0], portable_kernels().dq[1]},
       {{motor_block_avx2_fn<false, false>, motor_block_avx2_fn<false, true>},
        {motor_block_avx2_fn<true, false>, motor_block_avx2_fn<true, true>}},
       {{motor_block_avx2_fn<false, false, true>, motor_block_avx2_fn<false, true, true>},

@@ -113,7 +113,6 @@ const SkinKernels* avx512_kernels() {
   static const SkinKernels k{
       "avx512",
       {{avx2->matrix[0][0], avx2->matrix[0][1]}, {avx2->matrix[1][0], avx2->matrix[1][1]}},
-      {avx2->dq[0], avx2->dq[1]},
       {{motor_block_avx512_fn<false, false>, motor_block_avx512_fn<false, true>},
        {motor_block_avx512_fn<true, false>, motor_block_avx512_fn<true, true>}},
       {{nullptr, nullptr}, {nullptr, nullptr}},

@@ -1,8 +1,10 @@
-// SkinningJob: names, validation, the per-run palette conversion, strided streams and the dispatch to one
-// instruction set's block functions (the table of loops.hpp, chosen once per process: avx512.cpp, avx2.cpp,
-// portable.cpp). The loops themselves are in loops.hpp (portable bodies) and the ISA files.
+// SkinningJob: names, validation, the per-run palette conversion, strided streams and the dispatch: to one
+// instruction set's hand-written block functions (the table of loops.hpp, chosen once per process: avx512.cpp,
+// avx2.cpp) where it has them for the method, else to the generated path (generated.hpp, portable.cpp).
 #include "cga/runtime/skinning.hpp"
+#include "cga/runtime/packed_palette.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -12,7 +14,7 @@
 #include <fmt/format.h>
 
 
-#include "loops.hpp"
+#include "generated.hpp"
 
 namespace cga {
 
@@ -20,23 +22,21 @@ static_assert(sizeof(glm::mat3x4) == 12 * sizeof(float), "matrix palette entries
 static_assert(sizeof(Motor) == 12 * sizeof(float), "motor palette entries are read as 12 floats");
 
 std::string_view to_string(SkinningMethod method) {
-  switch (method) {
-    case SkinningMethod::lbs: return "lbs";
-    case SkinningMethod::dqs: return "dqs";
-    case SkinningMethod::cga_points: return "cga-points";
-    case SkinningMethod::cga_motors: return "cga-motors";
-  }
-  throw std::invalid_argument(fmt::format("to_string: unknown SkinningMethod {}", static_cast<int>(method)));
+  if (static_cast<std::size_t>(method) >= kSkinningMethodCount)
+    throw std::invalid_argument(fmt::format("to_string: unknown SkinningMethod {}", static_cast<int>(method)));
+  return skinning_method_info(method).name;
 }
 
 SkinningMethod parse_skinning_method(std::string_view text) {
   std::string canonical(text);
   for (char& c : canonical)
     if (c == '_') c = '-';
-  for (SkinningMethod m : kAllSkinningMethods)
-    if (to_string(m) == canonical) return m;
-  throw std::invalid_argument(
-      fmt::format("unknown skinning method '{}' (choose lbs, dqs, cga-points or cga-motors)", text));
+  std::string choices;
+  for (const SkinningMethodInfo& m : kSkinningMethods) {
+    if (m.name == canonical) return m.method;
+    choices += (choices.empty() ? "" : ", ") + std::string(m.name);
+  }
+  throw std::invalid_argument(fmt::format("unknown skinning method '{}' (choose {})", text, choices));
 }
 
 void SkinnedOutput::resize_for(const SkinnedMesh& mesh) {
@@ -76,11 +76,10 @@ namespace {
 using namespace skinning_detail;
 
 std::size_t palette_size(const SkinningJob& job) {
-  switch (job.method) {
-    case SkinningMethod::lbs: return job.matrices.size();
-    case SkinningMethod::dqs: return job.dual_quats.size();
-    case SkinningMethod::cga_points:
-    case SkinningMethod::cga_motors: return job.motors.size();
+  switch (skinning_method_info(job.method).palette) {
+    case PaletteKind::matrices: return job.matrices.size();
+    case PaletteKind::dual_quats: return job.dual_quats.size();
+    case PaletteKind::motors: return job.motors.size();
   }
   return 0;
 }
@@ -231,36 +230,42 @@ bool SkinningJob::Run() const {
   const bool packed = is_packed();
   const bool streaming = n >= kLargeVertices, large = packed && streaming;
 
-  // Per-run palette preparation into the loops' layout (loops.hpp), on the stack (Run() never allocates): lbs
-  // transposes its matrices, cga_points converts every motor once with the generated kernel, cga_motors
-  // stores its motors in split form padded to 16 floats, dqs repacks GLM's dual quaternions as 8 plain floats.
+  // Per-run palette preparation, on the stack (Run() never allocates). The hand-written SIMD loops read their
+  // own layouts (loops.hpp): lbs transposes its matrices, cga_points its bone kernel's rows, cga_motors stores
+  // its motors in split form padded to 16 floats. The generated path prepares every entry with the method's
+  // bone kernel.
   alignas(64) float converted[kMaxConvertedPalette * kEntry];
   static_assert(kMaxPairSignPalette * (2 * kEntry * sizeof(float) + kMaxPairSignPalette) <= sizeof converted &&
                     kMaxPairSignPalette <= 255,
                 "the pair-sign data must fit after the motor entries");
+  static_assert([] {
+    for (const SkinningMethodInfo& m : kSkinningMethods)
+      if (4 * m.entry_vec4s > kEntry) return false;
+    return true;
+  }(), "a prepared entry must fit the converted palette's entry size");
   const SkinKernels& k = kernels_for(use_simd, use_avx512);
   BlockFn block = nullptr;
   bool signed_motors = false;  // cga_motors with the pair-sign data after its palette
   const std::size_t palette = palette_size(*this);
   switch (method) {
     case SkinningMethod::lbs:
+      if (!k.matrix[normals][large]) break;
       for (std::size_t e = 0; e < palette; ++e)
         matrix_entry_from_rows(reinterpret_cast<const float*>(&matrices[e]), converted + kEntry * e);
       block = k.matrix[normals][large];
       break;
     case SkinningMethod::cga_points:
+      if (!k.matrix[normals][large]) break;
+      // The method's own bone kernel (its prepared entry is the rows), so both paths blend the same maps.
       for (std::size_t e = 0; e < palette; ++e) {
         float rows[12];
-        detail::motor_matrix(motors[e].c.data(), rows);
+        prepare_palette(method, {}, {}, motors.subspan(e, 1), rows);
         matrix_entry_from_rows(rows, converted + kEntry * e);
       }
       block = k.matrix[normals][large];
       break;
-    case SkinningMethod::dqs:
-      pack_dual_quats(dual_quats, std::span<float>(converted, 8 * palette));
-      block = k.dq[normals];
-      break;
     case SkinningMethod::cga_motors:
+      if (!k.motor[normals][large]) break;
       for (std::size_t e = 0; e < palette; ++e) {
         float* entry = converted + kEntry * e;
         rotor_sign::split(motors[e].c.data(), entry, entry + 8, entry + 4);
@@ -274,6 +279,13 @@ bool SkinningJob::Run() const {
         block = k.motor_signed[normals][large];
       }
       break;
+    default:
+      break;
+  }
+  const bool generated = block == nullptr;
+  if (generated) {
+    prepare_palette(method, matrices, dual_quats, motors, std::span<float>(converted, sizeof converted / sizeof(float)));
+    block = generated_blocks()[static_cast<std::size_t>(method)][normals];
   }
   const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
                   in_nz.data(),  joints.data(), weights.data(), out_px.data(), out_py.data(),
@@ -281,7 +293,7 @@ bool SkinningJob::Run() const {
                   in_normals_stride, out_positions_stride, out_normals_stride, joints_stride, weights_stride};
   if (!packed) {
     BlockFn strided = nullptr;
-    if (triples(s, normals)) {  // what the strided loops read and write; other layouts are staged
+    if (!generated && triples(s, normals)) {  // what the strided loops read and write; others are staged
       if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points)
         strided = k.matrix_strided[normals][streaming];
       else if (method == SkinningMethod::cga_motors)

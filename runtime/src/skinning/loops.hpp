@@ -1,8 +1,8 @@
 // The skinning loops every instruction set shares (inlined into each ISA file's block functions): the run's
-// streams, the block check, and the portable per-vertex bodies of lbs / cga_points (matrix), dqs and cga_motors.
-// Also the dispatch table each ISA file fills (SkinKernels) and the layouts of the converted palettes:
+// streams, the block check, and the per-vertex bodies the hand-written SIMD loops of lbs / cga_points (matrix)
+// and cga_motors fall back on at block edges. Also the dispatch table each ISA file fills (SkinKernels) and the
+// layouts of the converted palettes those loops read (the generated path's are the table's prepared entries):
 //   matrix entry  16 floats, column-major with padded columns (m00 m10 m20 0)(m01 m11 m21 0)(m02 ..)(t 0)
-//   dq entry       8 floats (real x y z w, dual x y z w)
 //   motor entry   16 floats, split form: lanes 0-3 G = a + b, 4-7 U (einf blades), 8-11 H = a - b, 12-15 zero
 //   with SkinKernels::motor_signed (cga_motors), after the palette's motor entries:
 //     negated motors  palette entries, entry e negated (at kEntry * (palette + e))
@@ -88,28 +88,6 @@ CGA_ALWAYS_INLINE bool block_ok(const std::array<std::uint16_t, 4>* joints, cons
   return max_exponent < 0x7f800000u && max_joint < palette;
 }
 
-// Applies a row-major 3x4 matrix to the point i (and the linear part to its normal, renormalized).
-template <bool kNormals>
-CGA_ALWAYS_INLINE void apply_matrix(const float m[12], const Streams& s, std::size_t i) {
-  const float x = s.px[i], y = s.py[i], z = s.pz[i];
-  s.ox[i] = m[0] * x + m[1] * y + m[2] * z + m[3];
-  s.oy[i] = m[4] * x + m[5] * y + m[6] * z + m[7];
-  s.oz[i] = m[8] * x + m[9] * y + m[10] * z + m[11];
-  if constexpr (kNormals) {
-    const float a = s.nx[i], b = s.ny[i], c = s.nz[i];
-    const float u = m[0] * a + m[1] * b + m[2] * c;
-    const float v = m[4] * a + m[5] * b + m[6] * c;
-    const float w = m[8] * a + m[9] * b + m[10] * c;
-    const float len2 = u * u + v * v + w * w;
-    // A degenerate blend (zero linear part) gives a zero normal rather than NaN.
-    // Written without a conditional division so the loop if-converts and vectorizes.
-    const float inv = (len2 > 0.0f ? 1.0f : 0.0f) / std::sqrt(std::max(len2, 1e-30f));
-    s.onx[i] = u * inv;
-    s.ony[i] = v * inv;
-    s.onz[i] = w * inv;
-  }
-}
-
 // Renormalizes the normals [begin, end) in place (a contiguous pass that vectorizes across vertices);
 // a degenerate normal becomes 0 rather than NaN.
 CGA_ALWAYS_INLINE void renormalize(const Streams& s, std::size_t begin, std::size_t end) {
@@ -156,42 +134,6 @@ CGA_ALWAYS_INLINE void matrix_block(const float* __restrict pal, const Streams& 
     }
   }
   if constexpr (kNormals) renormalize(s, begin, end);
-}
-
-// dqs: blend 8 dual-quaternion coefficients with the antipodality fix, then transform by the normalized
-// blend. Written on the unnormalized blend b = (r, d) with n = |r|^2:
-//   p' = ((r_w^2 - r_v.r_v) p + 2 (r_v.p) r_v + 2 r_w (r_v x p)) / n + 2 (r_w d_v - d_w r_v + r_v x d_v) / n
-template <bool kNormals>
-CGA_ALWAYS_INLINE void dq_block(const float* __restrict pal, const Streams& s, std::size_t begin,
-                                std::size_t end) {
-#pragma GCC ivdep
-  for (std::size_t i = begin; i < end; ++i) {
-    const std::size_t j[4] = {s.joints[i][0], s.joints[i][1], s.joints[i][2], s.joints[i][3]};
-    // Weights read one by one: GCC does not vectorize the copy of the whole std::array here.
-    const float w[4] = {s.weights[i][0], s.weights[i][1], s.weights[i][2], s.weights[i][3]};
-    const float* q[4] = {pal + 8 * j[0], pal + 8 * j[1], pal + 8 * j[2], pal + 8 * j[3]};
-    float b[8];
-    for (int e = 0; e < 8; ++e) b[e] = w[0] * q[0][e];
-    for (int k = 1; k < 4; ++k) {
-      const float dot = q[0][0] * q[k][0] + q[0][1] * q[k][1] + q[0][2] * q[k][2] + q[0][3] * q[k][3];
-      const float wk = std::copysign(w[k], dot);
-      for (int e = 0; e < 8; ++e) b[e] += wk * q[k][e];
-    }
-    // Packed as (r_x, r_y, r_z, r_w, d_x, d_y, d_z, d_w), see pack_dual_quats.
-    const float rx = b[0], ry = b[1], rz = b[2], rw = b[3];
-    const float dx = b[4], dy = b[5], dz = b[6], dw = b[7];
-    const float inv = 1.0f / (rx * rx + ry * ry + rz * rz + rw * rw);
-    const float diag = rw * rw - (rx * rx + ry * ry + rz * rz);
-    const float tx = 2.0f * (rw * dx - dw * rx + (ry * dz - rz * dy));
-    const float ty = 2.0f * (rw * dy - dw * ry + (rz * dx - rx * dz));
-    const float tz = 2.0f * (rw * dz - dw * rz + (rx * dy - ry * dx));
-    // Rotation as a matrix (columns are the rotated axes), scaled by n; shared by point and normal.
-    const float m[12] = {
-        (diag + 2 * rx * rx) * inv, 2 * (rx * ry - rw * rz) * inv, 2 * (rx * rz + rw * ry) * inv, tx * inv,
-        2 * (ry * rx + rw * rz) * inv, (diag + 2 * ry * ry) * inv, 2 * (ry * rz - rw * rx) * inv, ty * inv,
-        2 * (rz * rx - rw * ry) * inv, 2 * (rz * ry + rw * rx) * inv, (diag + 2 * rz * rz) * inv, tz * inv};
-    apply_matrix<kNormals>(m, s, i);
-  }
 }
 
 // cga_motors, in two passes over a block. 1: blend the vertex's 4 motors (sign fix on the rotor parts: blades
@@ -295,12 +237,12 @@ inline void stage_out(const Staged& t, const Streams& s, std::size_t begin, std:
 // written). pal is the converted palette, palette its entry count.
 using BlockFn = bool (*)(const float* pal, const Streams& s, std::size_t begin, std::size_t end, std::size_t palette);
 
-// One instruction set's block functions. A table entry may be another set's function (the AVX-512 table
-// uses the AVX2 matrix loops, the AVX2 one the portable dqs loop).
+// One instruction set's hand-written block functions. A table entry may be another set's function (the
+// AVX-512 table uses the AVX2 matrix loops); a null entry, and every method without a member here (dqs,
+// cga_log), runs on the generated path (generated.hpp).
 struct SkinKernels {
   const char* name;
   BlockFn matrix[2][2];  // lbs and cga_points, [normals][large mesh]
-  BlockFn dq[2];         // dqs, [normals]
   BlockFn motor[2][2];   // cga_motors, [normals][large mesh]
   // cga_motors reading the rotor signs from the pair-sign table after the palette, [normals][large mesh];
   // pair_signs writes the negated entries and that table (the signs with the same arithmetic as

@@ -1,7 +1,7 @@
-// Skinning palettes as flat float arrays, the layout both GPU backends read (cga::gpu's shaders and
-// cga::cuda's kernels): lbs 12 floats per entry (the 3x4 matrix row by row), dqs 8 (real x y z w, dual
-// x y z w), cga_points / cga_motors 12 (the motor's blades in order, which as std430 is the paper's mat3x4
-// with blade k at column k/4, row k%4).
+// Skinning palettes as flat float arrays, the layout the GPU backends read (cga::gpu's shaders, cga::cuda's
+// kernels, the page): each entry prepared by its method's bone kernel (skinning_methods.hpp), 4 x entry_vec4s
+// floats, the layout of the inputs of the method's generated blend. The CPU loop prepares the same entries
+// (SkinningJob::Run on the generated path).
 #pragma once
 
 #include <algorithm>
@@ -15,30 +15,25 @@
 
 namespace cga {
 
-inline std::size_t packed_palette_floats(SkinningMethod method) { return method == SkinningMethod::dqs ? 8 : 12; }
+inline std::size_t packed_palette_floats(SkinningMethod method) { return prepared_entry_floats(method); }
 
-// Appends the method's palette (matrices for lbs, dual_quats for dqs, motors for the cga methods; the others
-// are ignored) to `out`. Call once per instance to build a crowd's palettes.
+// Prepares the entries of the method's palette (its table row's PALETTE: matrices, dual_quats or motors; the
+// other spans are ignored) into out, prepared_entry_floats(method) floats each. Throws std::invalid_argument
+// when out is too small. Runs the generated bone kernels (runtime/src/skinning/prepare.cpp).
+void prepare_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
+                     std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors, std::span<float> out);
+
+// Appends the method's prepared palette to `out`. Call once per instance to build a crowd's palettes.
 inline void append_packed_palette(SkinningMethod method, std::span<const glm::mat3x4> matrices,
                                   std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
                                   std::vector<float>& out) {
-  switch (method) {
-    case SkinningMethod::lbs:
-      for (const glm::mat3x4& m : matrices)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 4; ++c) out.push_back(m[r][c]);
-      break;
-    case SkinningMethod::dqs: {
-      const std::size_t at = out.size();
-      out.resize(at + 8 * dual_quats.size());
-      pack_dual_quats(dual_quats, std::span<float>(out).subspan(at));
-      break;
-    }
-    case SkinningMethod::cga_points:
-    case SkinningMethod::cga_motors:
-      for (const Motor& m : motors) out.insert(out.end(), m.c.begin(), m.c.end());
-      break;
-  }
+  const SkinningMethodInfo& info = skinning_method_info(method);
+  const std::size_t entries = info.palette == PaletteKind::matrices     ? matrices.size()
+                              : info.palette == PaletteKind::dual_quats ? dual_quats.size()
+                                                                         : motors.size();
+  const std::size_t at = out.size();
+  out.resize(at + packed_palette_floats(method) * entries);
+  prepare_palette(method, matrices, dual_quats, motors, std::span<float>(out).subspan(at));
 }
 
 // The packed palettes of `instances` instances, instance i posed by palette i % count of the `count`

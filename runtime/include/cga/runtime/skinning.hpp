@@ -1,24 +1,24 @@
-// CPU skinning of positions (and optionally normals) with up to 4 influences per vertex, four methods behind
-// one ozz-style job (a struct of non-owning spans with Validate() and Run()):
+// CPU skinning of positions (and optionally normals) with up to 4 influences per vertex, the methods of the
+// method table (skinning_methods.hpp) behind one ozz-style job (a struct of non-owning spans with Validate()
+// and Run()). Each method is two scripts (runtime/scripts/skin): a per-bone prepare and a per-vertex blend,
+// generated into the portable loop every method runs on; lbs, cga_points and cga_motors also have AVX2 /
+// AVX-512 loops (use_simd) that agree with it to float rounding.
 //
 //   lbs         linear blend skinning with 3x4 matrices (GLM), the industry baseline: p' = sum_k w_k M_k p.
 //   dqs         dual-quaternion skinning (Kavan et al. 2008): blend the bones' unit dual quaternions with the
-//               antipodality fix (q_k is negated when dot(q_0, q_k) < 0), normalize, transform once. Dual
-//               quaternions hold no scale, so bones with a scale are not supported by this method.
+//               antipodality fix, normalize, transform once. Dual quaternions hold no scale, so bones with a
+//               scale are not supported by this method.
 //   cga_points  the paper's method: transform the vertex by every bone motor (X' = M_k X ~M_k), normalize each
-//               resulting point by its weight -X'.einf, then average the Euclidean points with the skin weights.
-//               Mathematically this IS linear blend skinning (the point transform of a motor is affine in x),
-//               so it shares LBS's candy-wrapper collapse. It runs as LBS does: each palette motor is turned
-//               into its weight-normalized 3x4 point-transform matrix once per Run by the generated
-//               transform_point_split_prepare kernel (the staged point transform's prepare), then the
-//               per-vertex work is the matrix blend.
-//   cga_motors  blend the 12 motor coefficients per vertex (sign fix: M_k is negated when the dot product of the
-//               rotor parts <M_0, M_k> < 0), then transform once with the blended motor and divide by the weight
-//               (the generated transform_point_split_prepare does both). For rigid bones this equals DQS; unlike dual
-//               quaternions it also carries uniform scale (dilation). See docs/skinning.md.
+//               resulting point by its weight, then average the Euclidean points with the skin weights. The
+//               point transform of a motor is affine in x, so this IS linear blend skinning (it shares LBS's
+//               candy-wrapper collapse) and runs as LBS does, on each motor's weight-normalized 3x4 map.
+//   cga_motors  blend the motors per vertex (sign fix on the rotor parts), then transform once with the blend
+//               divided by its point weight. For rigid bones this equals DQS; unlike dual quaternions it also
+//               carries uniform scale (dilation). See docs/skinning.md.
+//   cga_log     blend the bones' motor logarithms (computed once per bone and frame) linearly per vertex and
+//               take the closed-form exponential: a screw about the blend's own axis, the scale geometric.
 //
-// Normals: lbs/cga_points use the blended linear part, cga_motors the linear part of the blended motor, dqs the
-// blended rotation; all are renormalized.
+// Normals: every method moves the normal by the linear part of its blended map; all are renormalized.
 #pragma once
 
 #include <array>
@@ -29,18 +29,15 @@
 #include <string_view>
 #include <vector>
 
+#include "cga/runtime/skinning_methods.hpp"
 #include "cga/runtime/types.hpp"
 
 namespace cga {
 
-enum class SkinningMethod { lbs, dqs, cga_points, cga_motors };
-
-inline constexpr std::array<SkinningMethod, 4> kAllSkinningMethods{
-    SkinningMethod::lbs, SkinningMethod::dqs, SkinningMethod::cga_points, SkinningMethod::cga_motors};
-
-// "lbs", "dqs", "cga-points", "cga-motors" (the CLI spelling).
+// The method's table name: "lbs", "dqs", "cga-points", ... (the CLI spelling).
 std::string_view to_string(SkinningMethod method);
 // Accepts the to_string() names and the enum spelling with '_'; throws std::invalid_argument naming the choices.
+// (SkinningMethod, kAllSkinningMethods and skinning_method_info() come from skinning_methods.hpp.)
 SkinningMethod parse_skinning_method(std::string_view text);
 
 // Largest palette a run takes: every method converts its palette once per run into the loop's layout (cga_points:
@@ -74,7 +71,7 @@ struct SkinningJob {
   std::span<const std::array<std::uint16_t, 4>> joints;
   std::span<const std::array<float, 4>> weights;
 
-  // The palette of `method`: lbs -> matrices, dqs -> dual_quats, cga_points / cga_motors -> motors.
+  // The palette of `method` (its table row's PALETTE): lbs -> matrices, dqs -> dual_quats, the cga methods -> motors.
   std::span<const glm::mat3x4> matrices;   // row-major 3x4, see MatrixPalette
   std::span<const glm::dualquat> dual_quats;
   std::span<const Motor> motors;
@@ -91,7 +88,7 @@ struct SkinningJob {
   std::size_t joints_stride = 1, weights_stride = 1;
 
   // Run lbs / cga_points / cga_motors on the hand-written AVX2 + FMA loops when the CPU has them (the default).
-  // false: always the portable loops, which agree to float rounding; tests use it to check both paths.
+  // false: always the generated portable loop, which agrees to float rounding; tests use it to check both.
   bool use_simd = true;
   // With use_simd, take the AVX-512 loops where the CPU has them (cga_motors); false keeps the AVX2 ones, so
   // tests and A/B benchmarks reach those on an AVX-512 machine too.
