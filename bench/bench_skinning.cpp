@@ -193,7 +193,8 @@ Jobs make_jobs(const SkinScene& scene, SkinningMethod method, bool normals) {
   return j;
 }
 
-void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), SkinningMethod method, bool normals) {
+void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), SkinningMethod method, bool normals,
+                 bool use_simd) {
   const SkinScene* scene = nullptr;
   try {
     scene = &scene_fn();
@@ -205,7 +206,8 @@ void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), Skinni
     state.SkipWithError("the mesh has no normals");
     return;
   }
-  const Jobs jobs = make_jobs(*scene, method, normals);
+  Jobs jobs = make_jobs(*scene, method, normals);
+  for (SkinningJob& job : jobs.jobs) job.use_simd = use_simd;
   for (const SkinningJob& job : jobs.jobs)
     if (const std::string error = job.ValidationError(); !error.empty()) {
       state.SkipWithError(error.c_str());
@@ -321,11 +323,22 @@ void register_skinning_benchmarks() {
       const std::string baseline = prefix + "lbs";
       for (SkinningMethod m : kAllSkinningMethods) {
         const std::string name = prefix + std::string(to_string(m));
-        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals)
+        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, true)
             ->Unit(benchmark::kMillisecond);
         add_figure({name, section, std::string(to_string(m)), Metric::mega_items_per_s, baseline, "lbs",
                     sc.fn == random_scene ? target_for(m, normals) : std::nullopt, {}});
       }
+      // The A/B of the hand-written AVX2 / AVX-512 loops: the same jobs on the generated portable loop
+      // (use_simd = false), for the methods that have SIMD loops (dqs and cga-log always run generated).
+      if (sc.fn == random_scene)
+        for (SkinningMethod m : {SkinningMethod::lbs, SkinningMethod::cga_points, SkinningMethod::cga_motors}) {
+          const std::string name = prefix + std::string(to_string(m)) + "-generated";
+          benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, false)
+              ->Unit(benchmark::kMillisecond);
+          add_figure({name, section, std::string(to_string(m)) + ", generated portable loop",
+                      Metric::mega_items_per_s, prefix + std::string(to_string(m)), std::string(to_string(m)),
+                      std::nullopt, {}});
+        }
       if (sc.fn != random_scene) continue;
       for (SkinningMethod m : kAllSkinningMethods) {
         const std::string name = std::string("skinning/interleaved1M/") + kind + "/" + std::string(to_string(m));

@@ -215,21 +215,36 @@ inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSim
     }
     case SkinningMethod::cga_log: {
       // The twists (w, v) of the rigid parts (w the rotation vector, t = V(w) v) and the log scales, blended
-      // with the skin weights and exponentiated: Rodrigues for the rotation, V(w) for the translation.
+      // with the skin weights and exponentiated: Rodrigues for the rotation, V(w) for the translation. Each
+      // influence takes the branch of its rotation (angle theta or theta - 2 pi) nearer the first's.
+      struct Twist {
+        glm::dvec3 w, v;
+      };
+      auto twist = [](const DoubleSimilarity& x, bool other) {
+        glm::dquat q = x.rotation;
+        if (q.w < 0.0) q = -q;
+        const glm::dvec3 axis_sin(q.x, q.y, q.z);
+        const double s = glm::length(axis_sin);
+        double theta = 2.0 * std::atan2(s, q.w);
+        if (other && s > 1e-3) theta -= 2.0 * M_PI;
+        const glm::dvec3 w = s > 0.0 ? axis_sin * (theta / s) : glm::dvec3(0.0);
+        // V^-1 = I - [w]x / 2 + (1 - (theta/2) cot(theta/2)) / theta^2 [w]x^2, cot(theta/2) = q.w / s
+        const double c2 = std::abs(theta) > 1e-8 ? (1.0 - 0.5 * theta * q.w / s) / (theta * theta) : 1.0 / 12.0;
+        const glm::dvec3 wt = glm::cross(w, x.translation);
+        return Twist{w, x.translation - 0.5 * wt + c2 * glm::cross(w, wt)};
+      };
+      const Twist first = twist(pal[js[0]], false);
       glm::dvec3 w_sum(0.0), v_sum(0.0);
       double log_scale = 0.0;
       for (int k = 0; k < 4; ++k) {
         const DoubleSimilarity& x = pal[js[k]];
-        glm::dquat q = x.rotation;
-        if (q.w < 0.0) q = -q;
-        const glm::dvec3 axis_sin(q.x, q.y, q.z);
-        const double s = glm::length(axis_sin), theta = 2.0 * std::atan2(s, q.w);
-        const glm::dvec3 w = s > 0.0 ? axis_sin * (theta / s) : glm::dvec3(0.0);
-        // V^-1 = I - [w]x / 2 + (1 - (theta/2) cot(theta/2)) / theta^2 [w]x^2
-        const double c2 = theta > 1e-8 ? (1.0 - 0.5 * theta * q.w / s) / (theta * theta) : 1.0 / 12.0;
-        const glm::dvec3 wt = glm::cross(w, x.translation);
-        w_sum += double(ws[k]) * w;
-        v_sum += double(ws[k]) * (x.translation - 0.5 * wt + c2 * glm::cross(w, wt));
+        Twist t = twist(x, false);
+        if (k > 0) {
+          const Twist o = twist(x, true);
+          if (glm::length(o.w - first.w) < glm::length(t.w - first.w)) t = o;
+        }
+        w_sum += double(ws[k]) * t.w;
+        v_sum += double(ws[k]) * t.v;
         log_scale += double(ws[k]) * std::log(x.scale);
       }
       const double theta = glm::length(w_sum);

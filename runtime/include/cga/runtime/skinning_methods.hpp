@@ -23,7 +23,7 @@
   X(dqs, "dqs", dual_quats, bone_dual_quat, skin_dual_quats, 2, 0.45f, 0.65f, 0.85f) \
   X(cga_points, "cga-points", motors, bone_motor_rows, skin_matrices, 3, 0.85f, 0.75f, 0.35f) \
   X(cga_motors, "cga-motors", motors, bone_motor_split, skin_motors, 3, 0.45f, 0.80f, 0.50f) \
-  X(cga_log, "cga-log", motors, bone_motor_log, skin_motor_logs, 2, 0.70f, 0.50f, 0.85f)
+  X(cga_log, "cga-log", motors, bone_motor_log, skin_motor_logs, 4, 0.70f, 0.50f, 0.85f)
 // clang-format on
 
 namespace cga {
