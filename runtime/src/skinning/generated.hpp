@@ -52,8 +52,8 @@ CGA_ALWAYS_INLINE void prepare_from_dual_quat(const glm::dualquat& q, float* ent
 
 // The blend of one vertex on the entries e[0..3].
 template <class K, std::size_t... I>
-CGA_ALWAYS_INLINE void blend_vertex(const float* const e[4], const std::array<float, 4>& w, float x, float y,
-                                    float z, float nx, float ny, float nz, float p[3], float n[3],
+CGA_ALWAYS_INLINE void blend_vertex(const float* const e[4], const float w[4], float x, float y, float z,
+                                    float nx, float ny, float nz, float p[3], float n[3],
                                     std::index_sequence<I...>) {
   K::blend_fn((e[I / K::kVec4s] + 4 * (I % K::kVec4s))..., w[0], w[1], w[2], w[3], x, y, z, nx, ny, nz, p, n);
 }
@@ -62,16 +62,21 @@ template <class K, bool kNormals>
 CGA_ALWAYS_INLINE void generated_block(const float* __restrict pal, const Streams& s, std::size_t begin,
                                        std::size_t end) {
   constexpr std::size_t kFloats = 4 * K::kVec4s;
+  // One vertex per iteration: GCC 12 vectorizes neither the four entry gathers nor (in cga-log) the libm
+  // calls, so this loop stays scalar (docs/skinning.md has the A/B against the SIMD loops).
+  const std::uint16_t* __restrict joints = s.joints[0].data();
+  const float* __restrict weights = s.weights[0].data();
+#pragma GCC ivdep
   for (std::size_t i = begin; i < end; ++i) {
-    const std::array<std::uint16_t, 4> j = s.joints[i];
-    const float* const e[4] = {pal + kFloats * j[0], pal + kFloats * j[1], pal + kFloats * j[2],
-                               pal + kFloats * j[3]};
+    const float* const e[4] = {pal + kFloats * joints[4 * i], pal + kFloats * joints[4 * i + 1],
+                               pal + kFloats * joints[4 * i + 2], pal + kFloats * joints[4 * i + 3]};
+    const float w[4] = {weights[4 * i], weights[4 * i + 1], weights[4 * i + 2], weights[4 * i + 3]};
     float p[3], n[3];
     if constexpr (kNormals)
-      blend_vertex<K>(e, s.weights[i], s.px[i], s.py[i], s.pz[i], s.nx[i], s.ny[i], s.nz[i], p, n,
+      blend_vertex<K>(e, w, s.px[i], s.py[i], s.pz[i], s.nx[i], s.ny[i], s.nz[i], p, n,
                       std::make_index_sequence<4 * K::kVec4s>{});
     else
-      blend_vertex<K>(e, s.weights[i], s.px[i], s.py[i], s.pz[i], 0.0f, 0.0f, 0.0f, p, n,
+      blend_vertex<K>(e, w, s.px[i], s.py[i], s.pz[i], 0.0f, 0.0f, 0.0f, p, n,
                       std::make_index_sequence<4 * K::kVec4s>{});
     s.ox[i] = p[0];
     s.oy[i] = p[1];
