@@ -298,6 +298,22 @@ namespace {
 
 std::string as_text(const Syntax& sx, const std::string& s) { return sx.text ? sx.text(s) : s; }
 
+// Whether any temporary or output of the program reads one of the symbols (an input's blades).
+template <class Symbols>
+bool reads_any(const opt::Program& program, const Symbols& symbols) {
+  auto reads = [&](const GiNaC::ex& value) {
+    for (const auto& sym : symbols)
+      if (value.has(sym)) return true;
+    return false;
+  };
+  for (const auto& t : program.temps)
+    if (reads(t.value)) return true;
+  for (const auto& o : program.outputs)
+    for (const auto& slot : o.slots)
+      if (reads(slot.value)) return true;
+  return false;
+}
+
 // The dot target: the program's dataflow, one node per input blade, temporary and output blade, an edge
 // from every symbol an expression reads.
 template <class Label>
@@ -465,6 +481,9 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     std::string return_type = "void";
     std::string body;
     if (!sx.prologue.empty()) body += line(fill_pattern(sx.prologue, {{"splat", splat}}));
+    if (!sx.unused.empty())
+      for (const auto& in : program.inputs)
+        if (!reads_any(program, in.symbols)) body += line(fill_pattern(sx.unused, {{"name", id(in.name)}}));
     std::string ret_line;
     std::string items;
     for (const auto& o : program.outputs) {

@@ -60,6 +60,7 @@ struct Syntax {
   std::string out_decl;                // ${T} ${name} ${n}
   std::string return_item = "${name}";  // ${name}
   std::string return_stmt;             // ${items}, joined by ", "
+  std::string unused;                  // a statement for an input no value reads (${name}); empty: none
   std::string prologue;                // first body line(s); ${splat}: inputs joined by ", " with
   std::string splat_scalar = "${name}", splat_mv = "${name}";  // these forms
   std::string blade_list;              // one line per output: ${fn} ${out} ${n} ${list}

@@ -55,6 +55,8 @@ std::vector<Syntax> make_targets() {
   cpp.math_prefix = "std::";
   cpp.qualifiers = "inline";
   cpp.blade_list = "inline constexpr std::array<std::string_view, ${n}> ${fn}_${out}_blades = {${list}};";
+  // An input listed by `#pragma in2out` that no value reads (-Wunused-parameter in the includer's build).
+  cpp.unused = "(void)${name};";
   cpp.blade_quote = "\"";
   t.push_back(cpp);
 
