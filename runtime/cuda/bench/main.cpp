@@ -160,7 +160,7 @@ int main(int argc, char** argv) try {
                describe(joint_coherence(mesh)));
     for (SkinningMethod m : kAllSkinningMethods)
       fmt::print("{} {:.2f}{}", to_string(m), modelled_palette_wavefronts(palette_layout(m, opt.bones), m, mesh.joints),
-                 m == SkinningMethod::cga_motors ? "\n" : ", ");
+                 m == kAllSkinningMethods.back() ? "\n" : ", ");
   }
   fmt::print("palette in shared memory: {} copies over the bank groups ({} B per block, lbs)\n\n",
              palette_layout(SkinningMethod::lbs, opt.bones).copies,
@@ -206,7 +206,7 @@ int main(int argc, char** argv) try {
       }
       const SkinnedMesh& reference_mesh = use_compact ? compact : mesh;
       for (SkinningMethod method : kAllSkinningMethods) {
-        // Palettes of all instances (cycled), in the kernels' layout.
+        // Palettes of all instances (cycled), prepared: the entries the kernels' blends read.
         const std::vector<float> palettes = cycled_packed_palettes(method, mats, dqs, mots, opt.instances);
         DeviceBuffer d_pal(palettes.size() * 4);
         check(cudaMemcpy(d_pal.ptr, palettes.data(), d_pal.bytes, cudaMemcpyHostToDevice), "palette upload");

@@ -1,9 +1,11 @@
-// The boundary between the host library (C++ compiler) and crowd_skinning.cu (nvcc): plain types only,
-// no GLM, so nvcc never parses the runtime's headers.
+// The boundary between the host library (C++ compiler) and crowd_skinning.cu (nvcc): plain types only, no
+// GLM; of the runtime's headers nvcc parses only the method table (skinning_methods.hpp, plain C++).
 #pragma once
 
 #include <cstddef>
 #include <string>
+
+#include "cga/runtime/skinning_methods.hpp"
 
 #ifdef __CUDACC__
 #define CGA_HOST_DEVICE __host__ __device__
@@ -16,8 +18,7 @@ namespace cga::cuda::detail {
 // The shared-memory palette layout, shared by the kernels and the host (which sizes the launch and models
 // the bank conflicts). Shared memory serves a warp's 128-bit loads a quarter warp (8 lanes) at a time in
 // wavefronts of 128 B: 8 bank groups of 16 B (4 banks each), at most one distinct 16-B slot per group per
-// wavefront. A palette entry is `units`
-// 16-B units (3 for 3x4 matrices and split motors, 2 for dual quaternions). The palette is stored `copies`
+// wavefront. A palette entry is `units` 16-B units (the method's entry_vec4s, 2 or 3). The palette is stored `copies`
 // times (1, 2, 4 or 8) and copy c of unit u sits in bank groups [c * 8 / copies, (c + 1) * 8 / copies): lane
 // l reads copy l % copies. With 8 copies each copy owns one bank group, so whatever joints a quarter warp's
 // lanes read, they hit 8 different groups: one wavefront per quarter, 4 per instruction, the minimum of a
@@ -52,7 +53,7 @@ inline unsigned copy_shift_for(std::size_t bones, unsigned units) {
   return shift;
 }
 
-// method: 0 lbs, 1 dqs, 2 cga_points, 3 cga_motors (the order of cga::SkinningMethod).
+// method: the method's row in the method table (skinning_methods.hpp), i.e. its cga::SkinningMethod value.
 struct LaunchArgs {
   int method = 0;
   std::size_t vertex_count = 0, instances = 0, bones = 0;
@@ -68,10 +69,17 @@ struct LaunchArgs {
   float* out_normals = nullptr;
 };
 
-// The palette's 16-B units per entry: 2 for dqs (method 1), else 3.
-inline unsigned palette_units(int method) { return method == 1 ? 2u : 3u; }
+// The palette's 16-B units per entry: the prepared entry's vec4s (prepared_entry_floats / 4). `method` must be
+// a row of the table.
+inline unsigned palette_units(int method) {
+  return static_cast<unsigned>(kSkinningMethods[static_cast<std::size_t>(method)].entry_vec4s);
+}
 
 // Launches (asynchronously) on `stream`; returns the CUDA error text, empty on success.
 std::string launch(const LaunchArgs& args, void* stream);
+
+// Runs the kernels' code on the host instead, on host pointers (the same staging into the shared-memory
+// layout, the same gathers and blends, block by block): the check without a GPU. Same return value.
+std::string run_on_host(const LaunchArgs& args);
 
 }  // namespace cga::cuda::detail

@@ -1,6 +1,7 @@
-// CUDA crowd skinning: many instances, one palette each, positions and optionally normals, for the four
-// methods of cga::SkinningMethod. The cga methods run on the kernels cgagen emits with --target cuda
-// (transform_point_split.cuh). Plain C++ header (no CUDA types) so host code built by the
+// CUDA crowd skinning: many instances, one palette each, positions and optionally normals, for every method
+// of the method table (cga::SkinningMethod, skinning_methods.hpp). Each method runs its per-vertex blend as
+// cgagen emits it with --target cuda (runtime/scripts/skin); the palettes come prepared by the method's
+// per-bone kernel (cga::append_packed_palette). Plain C++ header (no CUDA types) so host code built by the
 // C++ compiler can call it; the kernels live in crowd_skinning.cu.
 //
 // Layouts: positions 3 floats packed, joints 4 x uint16 (or 4 x uint8 in the compact
@@ -33,7 +34,8 @@ struct CudaError : std::runtime_error {
 };
 
 // Palettes in the kernels' layout: cga::packed_palette_floats / cga::append_packed_palette
-// (cga/runtime/packed_palette.hpp), the layout the GL shaders read too.
+// (cga/runtime/packed_palette.hpp), prepared_entry_floats(method) floats per entry, the layout the GL shaders
+// read too.
 inline std::size_t palette_floats(SkinningMethod m) { return packed_palette_floats(m); }
 using cga::append_packed_palette;
 
@@ -55,7 +57,7 @@ struct CrowdArgs {
   float* out_normals = nullptr;        // required when normals is given
 };
 
-// Palettes are staged in shared memory per block: 256 entries * 12 floats = 12 KiB.
+// Palettes are staged in shared memory per block: 256 entries of at most 12 floats = 12 KiB per copy.
 inline constexpr std::size_t kMaxBones = 256;
 
 // Bytes read and written per skinned vertex by the layout (palettes not counted: they are per instance).
