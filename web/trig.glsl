@@ -1,10 +1,11 @@
 // sin and cos for the generated blends of the page's WebGL 2 shader (skin.vert.glsl maps sin and cos to these
-// around the blends). Why not the built-ins: GLSL ES and Vulkan allow sin and cos an absolute error of 2^-11
-// on [-pi, pi], and SwiftShader (the browser's software GPU) uses it; a blend that takes sin of an angle and
-// divides by a small one (cga-log's closed-form exp) then misses the CPU's vertices by ~2e-4 of the size,
-// over the page's 1e-4 bound. These are within a few float ulps: Cody-Waite reduction by pi/2 (exact for
-// |x| < 2^9 pi/2, far above a blend's half-angles), then the Taylor polynomials on [-pi/4, pi/4] (truncation
-// below 1e-11).
+// around the blends: GLSL ES forbids redefining a built-in). Why not the built-ins: GLSL ES and Vulkan allow
+// sin and cos an absolute error of 2^-11 on [-pi, pi], and SwiftShader (the browser's software GPU) uses it;
+// a blend that takes sin of an angle and divides by a small one (cga-log's closed-form exp) then misses the
+// CPU's vertices by ~2e-4 of the size, over the page's 1e-4 bound. These err by less than 1e-7 (float32
+// against double on [-10, 10]): Cody-Waite reduction by pi/2 (exact for |x| < 2^9 pi/2, far above a blend's
+// half-angles), then the Taylor polynomials on [-pi/4, pi/4] (truncation below 1e-11). trig.wgsl is the same
+// for WebGPU.
 int cga_quadrant(float x, out float r) {
   float k = floor(x * 0.63661977236758134 + 0.5);
   r = ((x - k * 1.5703125) - k * 4.8375129699707031e-4) - k * 7.5497899548918822e-8;

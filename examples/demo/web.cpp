@@ -90,7 +90,6 @@ void append_entries(const std::vector<Palettes>& per_mesh, std::size_t entries, 
     throw std::runtime_error("web: the poses' palettes do not have one entry per joint of the meshes");
 }
 
-
 // Meshes concatenated: one vertex array, one index array, joints offset into one concatenated palette.
 struct PageMesh {
   std::vector<float> vertices;
