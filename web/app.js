@@ -1,6 +1,7 @@
 // The page's program (after web/ui.js, which holds the words and controls): decodes CGA_DATA (written by
 // cga-demo --web), starts WebGPU when navigator.gpu gives an adapter and its first frame comes back in time,
-// else WebGL 2, draws the four methods in four panels with one orbit camera, and keeps the status line told.
+// else WebGL 2, draws every method of CGA_DATA.methods (the runtime's method table, in its order) in a panel
+// of its own with one orbit camera, and keeps the status line told.
 // Opened as index.html#selftest it skins a fixed frame with every method, reads the vertices back,
 // compares them with the CPU jobs' vertices in CGA_DATA and writes "PATH ok|fail MAXDEV" into #cga-result
 // (also the first line of the promise window.cgagenResult, which tests/targets/browser_run.py waits for).
@@ -11,7 +12,11 @@
 // can). No libraries: a few matrices are all the page needs.
 "use strict";
 
-const METHOD_COLORS = [[0.85, 0.55, 0.35], [0.45, 0.65, 0.85], [0.85, 0.75, 0.35], [0.45, 0.80, 0.50]];
+// The methods come from the data, never from this file: CGA_DATA.methods is the runtime's method table (name,
+// colour, vec4s per prepared entry), and a method's index is its code in the shaders, whose skin() is
+// generated from the same table. One pose's palette holds every method's prepared palette in this order.
+const METHODS = CGA_DATA.methods;
+const ENTRY_FLOATS = METHODS.reduce((n, m) => n + 4 * m.vec4s, 0);  // one entry, every method
 const TOLERANCE = 1e-4;  // of the character's size: the bound every GPU path is held to
 
 function decodeFloats(b64) {
@@ -23,8 +28,13 @@ function decodeFloats(b64) {
 function decodeUints(b64) { return new Uint32Array(decodeFloats(b64).buffer); }
 
 // ---- the scenes: rest mesh, palettes, framing
-function makeScene(src, floatsPerPalette) {
+function makeScene(src, poses) {
   const vertices = decodeFloats(src.vertices);
+  const floatsPerPalette = src.entries * ENTRY_FLOATS;
+  const palettes = decodeFloats(src.palettes);
+  if (palettes.length !== poses * floatsPerPalette)
+    throw new Error("the data's palettes (" + palettes.length + " floats) are not " + poses + " poses of " +
+                    src.entries + " entries x " + ENTRY_FLOATS + " floats (the methods' prepared entries)");
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (let v = 0; v < src.vertexCount; ++v)
     for (let k = 0; k < 3; ++k) {
@@ -35,13 +45,13 @@ function makeScene(src, floatsPerPalette) {
   const up = extent.indexOf(Math.max(...extent));  // a character stands along its longest side
   return {
     vertexCount: src.vertexCount, entries: src.entries, vertices, indices: decodeUints(src.indices),
-    palettes: decodeFloats(src.palettes), floatsPerPalette,
+    palettes, floatsPerPalette,
     center: [0, 1, 2].map((k) => 0.5 * (lo[k] + hi[k])), radius: 0.5 * Math.hypot(...extent), up,
   };
 }
 
-const character = makeScene(CGA_DATA.character, CGA_DATA.character.entries * CGA_DATA.entryFloats);
-const twist = makeScene(CGA_DATA.twist, CGA_DATA.twist.entries * CGA_DATA.entryFloats);
+const character = makeScene(CGA_DATA.character, CGA_DATA.modes.length * CGA_DATA.times * CGA_DATA.weights);
+const twist = makeScene(CGA_DATA.twist, CGA_DATA.twist.angles);
 // Where the character is in each pose (bounding box centre, same order as the palettes): the camera follows.
 const characterCenters = decodeFloats(CGA_DATA.character.centers);
 
@@ -96,7 +106,8 @@ function viewProjection(scene, aspect, zeroToOne) {
   return mul4(proj, view);
 }
 
-// ---- WebGL 2: one program (skin.vert.glsl with the generated kernel), the palette in an RGBA32F texture
+// ---- WebGL 2: one program (skin.vert.glsl with the generated blends and the table's skin()), the palette in
+// an RGBA32F texture
 async function createWebGL2(canvas) {
   const gl = canvas.getContext("webgl2", {antialias: true, preserveDrawingBuffer: true});
   if (!gl) throw new Error("no WebGL 2 context");
@@ -114,7 +125,7 @@ async function createWebGL2(canvas) {
   gl.linkProgram(prog);
   if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error("link: " + gl.getProgramInfoLog(prog));
   const loc = {};
-  for (const n of ["u_palette", "u_view_proj", "u_method", "u_heat", "u_heat_a", "u_heat_b", "u_heat_scale",
+  for (const n of ["u_palette", "u_entries", "u_view_proj", "u_method", "u_heat", "u_heat_a", "u_heat_b", "u_heat_scale",
                    "u_color", "u_light"]) loc[n] = gl.getUniformLocation(prog, n);
 
   function upload(scene) {
@@ -134,7 +145,7 @@ async function createWebGL2(canvas) {
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, ibo);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, scene.indices, gl.STATIC_DRAW);
     gl.bindVertexArray(null);
-    const texels = scene.entries * 5, rows = Math.ceil(texels / 1024);
+    const texels = scene.floatsPerPalette / 4, rows = Math.ceil(texels / 1024);
     const tex = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, tex);
     gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, 1024, rows);
@@ -161,23 +172,24 @@ async function createWebGL2(canvas) {
       gl.activeTexture(gl.TEXTURE0);
       gl.bindTexture(gl.TEXTURE_2D, gpu[which].tex);
       gl.uniform1i(loc.u_palette, 0);
+      gl.uniform1i(loc.u_entries, gpu[which].scene.entries);
       gl.uniform1i(loc.u_method, method);
       gl.uniform1i(loc.u_heat, heat.on ? 1 : 0);
       gl.uniform1i(loc.u_heat_a, heat.a);
       gl.uniform1i(loc.u_heat_b, heat.b);
       gl.uniform1f(loc.u_heat_scale, heat.scale);
-      gl.uniform3fv(loc.u_color, METHOD_COLORS[method]);
+      gl.uniform3fv(loc.u_color, METHODS[method].colour);
       gl.bindVertexArray(gpu[which].vao);
     },
-    // Draws the four panels; resolves when the GPU is done (the frame time includes the work).
+    // Draws a panel per method; resolves when the GPU is done (the frame time includes the work).
     async draw(which, heat) {
       const scene = gpu[which].scene;
       gl.enable(gl.DEPTH_TEST);
       gl.enable(gl.SCISSOR_TEST);
-      const pw = Math.floor(canvas.width / 4), h = canvas.height;
+      const pw = Math.floor(canvas.width / METHODS.length), h = canvas.height;
       const vp = viewProjection(scene, pw / h, false);
       const light = normalize3([0.3, 0.5, 0.8]);
-      for (let m = 0; m < 4; ++m) {
+      for (let m = 0; m < METHODS.length; ++m) {
         gl.viewport(m * pw, 0, pw, h);
         gl.scissor(m * pw, 0, pw, h);
         gl.clearColor(0.11 + 0.02 * (m % 2), 0.12, 0.14, 1);
@@ -220,7 +232,8 @@ async function createWebGL2(canvas) {
   };
 }
 
-// ---- WebGPU: skin.wgsl (with the generated kernel): a render pipeline and a compute pipeline.
+// ---- WebGPU: skin.wgsl (with the generated blends and the table's skin()): a render pipeline and a compute
+// pipeline.
 // present "canvas": draw into the canvas's WebGPU context. "copy": draw into a texture, read it back and put
 // it into a 2D canvas; slower, but headless Chromium (no compositor) loses the WebGPU instance on the first
 // frame presented to a canvas (the next await fails with "A valid external Instance reference no longer
@@ -263,7 +276,7 @@ async function createWebGPU(canvas, present) {
       skinned: device.createBuffer({size: 12 * scene.vertexCount, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC}),
       uniforms: [], renderGroups: [], computeGroups: [],
     };
-    for (let m = 0; m < 4; ++m) {
+    for (let m = 0; m < METHODS.length; ++m) {
       const u = device.createBuffer({size: 128, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST});
       g.uniforms.push(u);
       g.renderGroups.push(device.createBindGroup({layout: render.getBindGroupLayout(0), entries: [
@@ -279,11 +292,12 @@ async function createWebGPU(canvas, present) {
   function writeUniforms(g, m, vp, heat) {
     const data = new ArrayBuffer(128), f = new Float32Array(data), i = new Int32Array(data);
     f.set(vp, 0);
-    f.set(METHOD_COLORS[m], 16);
+    f.set(METHODS[m].colour, 16);
     f.set(normalize3([0.3, 0.5, 0.8]), 20);
     i[24] = m, i[25] = heat.on ? 1 : 0, i[26] = heat.a, i[27] = heat.b;
     f[28] = heat.scale;
     new Uint32Array(data)[29] = g.scene.vertexCount;
+    i[30] = g.scene.entries;
     device.queue.writeBuffer(g.uniforms[m], 0, data);
   }
   let depth = null;
@@ -300,9 +314,9 @@ async function createWebGPU(canvas, present) {
         if (present === "copy")
           target = device.createTexture({size: [canvas.width, canvas.height], format, usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC});
       }
-      const pw = Math.floor(canvas.width / 4), h = canvas.height;
+      const pw = Math.floor(canvas.width / METHODS.length), h = canvas.height;
       const vp = viewProjection(g.scene, pw / h, true);
-      for (let m = 0; m < 4; ++m) writeUniforms(g, m, vp, heat);
+      for (let m = 0; m < METHODS.length; ++m) writeUniforms(g, m, vp, heat);
       const enc = device.createCommandEncoder();
       const pass = enc.beginRenderPass({
         colorAttachments: [{view: (present === "canvas" ? context.getCurrentTexture() : target).createView(), loadOp: "clear", storeOp: "store",
@@ -311,7 +325,7 @@ async function createWebGPU(canvas, present) {
       });
       pass.setPipeline(render);
       pass.setIndexBuffer(g.index, "uint32");
-      for (let m = 0; m < 4; ++m) {
+      for (let m = 0; m < METHODS.length; ++m) {
         pass.setViewport(m * pw, 0, pw, h, 0, 1);
         pass.setScissorRect(m * pw, 0, pw, h);
         pass.setBindGroup(0, g.renderGroups[m]);
@@ -358,7 +372,7 @@ async function createWebGPU(canvas, present) {
 }
 
 // ---- the page
-const state = {scene: "character", playing: true, time: 0, weight: 0, mode: 0, twist: 0, heat: {on: false, a: 0, b: 3, scale: 0.01}};
+const state = {scene: "character", playing: true, time: 0, weight: 0, mode: 0, twist: 0, heat: {on: false, a: 0, b: METHODS.length - 1, scale: 0.01}};
 let frameMs = null;  // smoothed time of one frame (draw calls + waiting for the GPU)
 
 function heatUniforms(scene) {
@@ -376,7 +390,7 @@ function resize(canvas) {
 }
 
 // Max distance between the GPU's and the CPU's skinned positions over every method, relative to the size.
-// shift = 1 compares method m with method m + 1's reference (the mismatch check).
+// shift = 1 compares method m with the next method's reference (the mismatch check).
 async function selftest(renderer, shift) {
   const mode = CGA_DATA.modes.indexOf(CGA_DATA.selftest.mode);
   renderer.setPalette("character", characterPalette(mode, CGA_DATA.selftest.time, CGA_DATA.selftest.weight));
@@ -386,15 +400,15 @@ async function selftest(renderer, shift) {
   const details = [];
   let worst = 0;
   for (const [which, ref, n, size] of cases) {
-    for (let m = 0; m < 4; ++m) {
+    for (let m = 0; m < METHODS.length; ++m) {
       const got = await renderer.readback(which, m);
       let dev = 0;
       for (let v = 0; v < n; ++v) {
-        const r = 3 * (((m + shift) % 4) * n + v);
+        const r = 3 * (((m + shift) % METHODS.length) * n + v);
         const d = Math.hypot(got[3 * v] - ref[r], got[3 * v + 1] - ref[r + 1], got[3 * v + 2] - ref[r + 2]);
         dev = Math.max(dev, Number.isFinite(d) ? d / size : Infinity);
       }
-      details.push(which + "/" + CGA_DATA.methods[m] + " " + dev.toExponential(2));
+      details.push(which + "/" + METHODS[m].name + " " + dev.toExponential(2));
       worst = Math.max(worst, dev);
     }
   }
@@ -482,6 +496,7 @@ async function main() {
     // Where the panels are (CSS pixels), for tests/web's look at a screenshot.
     const r = $("view").getBoundingClientRect();
     document.body.dataset.canvas = [r.left, r.top, r.width, r.height].map((v) => v.toFixed(0)).join(" ");
+    document.body.dataset.panels = METHODS.length;
     setStatus(why ? "fallback" : "ready", backend + extra);
   };
   report("");
@@ -495,7 +510,7 @@ async function main() {
     const line = renderer.name + " " + (r.worst <= TOLERANCE ? "ok" : "fail") + " " + r.worst.toExponential(2);
     $("cga-result").textContent = line;
     lines.push(line, "detail " + r.details.join(", "));
-    // Frame time: 8 frames of the character (4 panels each), every one waited for (1 for the mismatch
+    // Frame time: 8 frames of the character (a panel per method), every one waited for (1 for the mismatch
     // check, which needs no timing); the self-test's frame stays on the screen.
     state.playing = false;
     $("play").textContent = "play";
@@ -507,7 +522,7 @@ async function main() {
     for (let i = 0; i < frames; ++i) await renderer.draw("character", heatUniforms("character"));
     if (state.scene !== "character") await renderer.draw(state.scene, heatUniforms(state.scene));
     const ms = (performance.now() - t0) / frames;
-    lines.push("frame_ms " + ms.toFixed(2) + " (" + character.vertexCount + " vertices x 4 panels; " +
+    lines.push("frame_ms " + ms.toFixed(2) + " (" + character.vertexCount + " vertices x " + METHODS.length + " panels; " +
                renderer.describe() + ")");
     report(" \u2014 frame " + ms.toFixed(1) + " ms");
     lines.push("status " + $("status").textContent);

@@ -1,34 +1,72 @@
 cmake_minimum_required(VERSION 3.20)  # new policies: "@NAME@" in the placeholders stays literal
-# Assembles the page template at build time (cmake -P): page.html with the WebGL 2 shaders (cgagen's
-# generated GLSL ES transform_point_split + skin.vert.glsl, and skin.frag.glsl), the WebGPU module (cgagen's
-# generated WGSL transform_point_split + skin.wgsl) and the program (ui.js, then app.js) put in its placeholders; the data placeholder
-# /*@CGA_DATA@*/ stays for cga-demo --web. Writes OUT_HTML (to look at) and OUT_CPP (cga::web::page_template(),
-# which cga-demo compiles in, so the executable needs no files at run time).
-#   -DWEB_DIR=<web/> -DESSL=<generated .essl> -DWGSL=<generated .wgsl> -DOUT_HTML=<file> -DOUT_CPP=<file>
-foreach(_v WEB_DIR ESSL WGSL OUT_HTML OUT_CPP)
+# Assembles the page template at build time (cmake -P): page.html with the WebGL 2 shaders
+# (skin.vert.glsl with trig.glsl in place of its TRIG marker and the methods' generated GLSL ES blends and
+# the table's glue in place of its SKINNING marker, and skin.frag.glsl), the WebGPU module (skin.wgsl,
+# trig.wgsl, then the generated WGSL blends and the table's glue) and the program (ui.js, then app.js) put in its placeholders; the data placeholder /*@CGA_DATA@*/
+# stays for cga-demo --web. Writes OUT_HTML (to look at), OUT_CPP (cga::web::page_template(), which cga-demo
+# compiles in, so the executable needs no files at run time) and the shaders as SHADER_DIR/skin.vert,
+# skin.frag (with their #version line, for glslangValidator) and skin.wgsl.
+#   -DWEB_DIR=<web/> -DESSL=<blend.essl|...> -DWGSL=<blend.wgsl|...> -DESSL_GLUE=<file> -DWGSL_GLUE=<file>
+#   -DSHADER_DIR=<dir> -DOUT_HTML=<file> -DOUT_CPP=<file>
+foreach(_v WEB_DIR ESSL WGSL ESSL_GLUE WGSL_GLUE SHADER_DIR OUT_HTML OUT_CPP)
   if(NOT DEFINED ${_v})
     message(FATAL_ERROR "assemble_page.cmake: -D${_v}=... is required")
   endif()
 endforeach()
 
+function(_read_parts out files)
+  set(_text "")
+  string(REPLACE "|" ";" _files "${files}")
+  foreach(_f ${_files})
+    if(NOT EXISTS ${_f})
+      message(FATAL_ERROR "assemble_page.cmake: missing ${_f}")
+    endif()
+    file(READ ${_f} _part)
+    string(APPEND _text "${_part}\n")
+  endforeach()
+  set(${out} "${_text}" PARENT_SCOPE)
+endfunction()
+
+# Writes SHADER_DIR/<name>, keeping the file (and its glslangValidator stamp) when nothing changed.
+function(_emit name text)
+  file(WRITE ${SHADER_DIR}/${name}.tmp "${text}")
+  execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different ${SHADER_DIR}/${name}.tmp ${SHADER_DIR}/${name})
+  file(REMOVE ${SHADER_DIR}/${name}.tmp)
+endfunction()
+
 file(READ ${WEB_DIR}/page.html _page)
-file(READ ${ESSL} _essl)
-file(READ ${WGSL} _wgsl)
+_read_parts(_essl "${ESSL}|${ESSL_GLUE}")
+_read_parts(_wgsl "${WGSL}|${WGSL_GLUE}")
 file(READ ${WEB_DIR}/skin.vert.glsl _vert)
 file(READ ${WEB_DIR}/skin.frag.glsl _frag)
 file(READ ${WEB_DIR}/skin.wgsl _skin_wgsl)
+file(READ ${WEB_DIR}/trig.glsl _trig_glsl)
+file(READ ${WEB_DIR}/trig.wgsl _trig_wgsl)
 file(READ ${WEB_DIR}/ui.js _ui)
 file(READ ${WEB_DIR}/app.js _app)
-foreach(_text _essl _wgsl _vert _frag _skin_wgsl _ui _app)
+foreach(_text _essl _wgsl _vert _frag _skin_wgsl _trig_glsl _trig_wgsl _ui _app)
   string(FIND "${${_text}}" "</script" _bad)
   if(NOT _bad EQUAL -1)
     message(FATAL_ERROR "assemble_page.cmake: a part contains </script, which would end its element")
   endif()
 endforeach()
-# The kernels come first: the page's shaders call them.
-string(REPLACE "/*@GLSL_VERTEX@*/" "${_essl}\n${_vert}" _page "${_page}")
+# GLSL needs a function before its call: the blends and the glue go where the marker is, after palette_at().
+foreach(_marker TRIG SKINNING)
+  string(FIND "${_vert}" "/*@${_marker}@*/" _at)
+  if(_at EQUAL -1)
+    message(FATAL_ERROR "assemble_page.cmake: skin.vert.glsl has no /*@${_marker}@*/ marker")
+  endif()
+endforeach()
+string(REPLACE "/*@TRIG@*/" "${_trig_glsl}" _vert "${_vert}")
+string(REPLACE "/*@SKINNING@*/" "${_essl}" _vert "${_vert}")
+set(_module "${_skin_wgsl}\n${_trig_wgsl}\n${_wgsl}")
+file(MAKE_DIRECTORY ${SHADER_DIR})
+_emit(skin.vert "#version 300 es\n${_vert}")
+_emit(skin.frag "#version 300 es\n${_frag}")
+_emit(skin.wgsl "${_module}")
+string(REPLACE "/*@GLSL_VERTEX@*/" "${_vert}" _page "${_page}")
 string(REPLACE "/*@GLSL_FRAGMENT@*/" "${_frag}" _page "${_page}")
-string(REPLACE "/*@WGSL@*/" "${_wgsl}\n${_skin_wgsl}" _page "${_page}")
+string(REPLACE "/*@WGSL@*/" "${_module}" _page "${_page}")
 string(REPLACE "/*@APP_JS@*/" "${_ui}\n${_app}" _page "${_page}")
 file(WRITE ${OUT_HTML} "${_page}")
 

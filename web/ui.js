@@ -14,7 +14,8 @@ function setStatus(state, text) {
 // An error before main() runs (bad data, a syntax error) must not leave "Loading" on the screen.
 window.addEventListener("error", (e) => setStatus("error", "The page failed: " + e.message));
 
-// One caption per panel, in CGA_DATA.methods' order.
+// The words of each panel's caption, by the method's name: the methods themselves (which, in what order, their
+// colours) come from CGA_DATA.methods, the runtime's table; a method with no words here gets its name only.
 const METHOD_NOTES = {
   "lbs": ["linear blend skinning",
           "each bone's matrix moves the vertex and the moved points are averaged (the games-industry default)",
@@ -28,14 +29,18 @@ const METHOD_NOTES = {
   "cga-motors": ["CGA, blended motors (the paper's method)",
                  "the bones' motors (rotation + translation + uniform scale in one versor) are blended, then applied once",
                  "no candy wrapper, like dqs, and scaled bones keep their scale"],
+  "cga-log": ["CGA, blended motor logarithms",
+              "the bones' motor logarithms are blended, and the sum's closed-form exponential moves the vertex once",
+              "no candy wrapper: the blend is a screw about its own axis; scales blend geometrically"],
 };
 
 function labelPanels() {
   const stage = $("stage"), captions = $("captions");
-  CGA_DATA.methods.forEach((m, i) => {
+  const count = CGA_DATA.methods.length;
+  CGA_DATA.methods.forEach(({name: m}, i) => {
     const d = document.createElement("div");
     d.className = "panel-label";
-    d.style.left = (25 * i + 1) + "%";
+    d.style.left = (100 * i / count + 1) + "%";
     d.textContent = m;
     stage.appendChild(d);
     const [title, what, look] = METHOD_NOTES[m] || [m, "", ""];
@@ -55,8 +60,8 @@ function heatLegend(heat, scene) {
   const of = scene === "twist" ? "the strip's length" : "the character's size (its bounding box's diagonal)";
   const red = +(100 * heat.scale).toPrecision(2) + "%";
   legend.replaceChildren(
-      "Heat map: every panel colours each vertex by how far apart " + CGA_DATA.methods[heat.a] + " and " +
-      CGA_DATA.methods[heat.b] + " put it. blue: the same place",
+      "Heat map: every panel colours each vertex by how far apart " + CGA_DATA.methods[heat.a].name + " and " +
+      CGA_DATA.methods[heat.b].name + " put it. blue: the same place",
       Object.assign(document.createElement("span"), {className: "bar"}),
       "red: " + red + " of " + of + " apart or more (green: half that). " +
       (heat.a === heat.b ? "Both are the same method: all blue." : "The panels' own methods do not matter here."));
@@ -73,7 +78,7 @@ function setupControls(renderer, state) {
   CGA_DATA.modes.forEach((m, i) => $("mode").add(new Option(m, i)));
   state.mode = CGA_DATA.modes.indexOf("screw");
   $("mode").value = state.mode;
-  for (const id of ["heat-a", "heat-b"]) CGA_DATA.methods.forEach((m, i) => $(id).add(new Option(m, i)));
+  for (const id of ["heat-a", "heat-b"]) CGA_DATA.methods.forEach((m, i) => $(id).add(new Option(m.name, i)));
   $("heat-a").value = state.heat.a, $("heat-b").value = state.heat.b;
   state.twist = CGA_DATA.twist.angles - 1;
   twistSlider.value = state.twist;

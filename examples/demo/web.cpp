@@ -1,8 +1,9 @@
-// cga-demo --web: exports the character, its per-frame bone palettes (computed by the C++ runtime), the twist
-// strip and the CPU skinning jobs' vertices of one frame into the page template that web/ assembles at build
-// time from cgagen's generated WGSL and GLSL ES kernels (cga/web/page_template.hpp). The page is one file:
-// data is base64 little-endian float32/uint32 inside a <script>, since a page opened from file:// cannot
-// fetch() its neighbours.
+// cga-demo --web: exports the character, its per-frame bone palettes (computed by the C++ runtime and
+// prepared for every method of the method table), the table's names and colours, the twist strip and the
+// CPU skinning jobs' vertices of one frame into the page template that web/ assembles at build time from
+// cgagen's generated WGSL and GLSL ES blends (cga/web/page_template.hpp). The page is one file: data is
+// base64 little-endian float32/uint32 inside a <script>, since a page opened from file:// cannot fetch()
+// its neighbours.
 #include "web.hpp"
 
 #include <cmath>
@@ -28,10 +29,6 @@ namespace {
 
 using namespace cga;
 
-// Floats per palette entry in the page: the motor's 12 blades (Gaalop order = the paper's mat3x4, which
-// lbs, cga-points and cga-motors read through the generated transform_point_split_prepare) + the dual quaternion of
-// its rigid part (real xyzw, dual xyzw: cga::append_packed_palette's dqs layout) for dqs.
-constexpr int kEntryFloats = 20;
 // Floats per vertex: position 3, normal 3, 4 palette indices (as floats: exact below 2^24), 4 weights.
 constexpr int kVertexFloats = 14;
 
@@ -75,14 +72,22 @@ Palettes from_motors(const MotorPalette& motors) {
   return p;
 }
 
-void append_entries(const Palettes& p, std::vector<float>& out) {
-  std::vector<float> dq;
-  append_packed_palette(SkinningMethod::dqs, p.matrices, p.dual_quats, p.motors, dq);
-  if (dq.size() != 8 * p.motors.size()) throw std::runtime_error("web: unexpected dqs palette layout");
-  for (std::size_t e = 0; e < p.motors.size(); ++e) {
-    out.insert(out.end(), p.motors[e].c.begin(), p.motors[e].c.end());
-    out.insert(out.end(), dq.begin() + 8 * e, dq.begin() + 8 * e + 8);
-  }
+// Floats of one palette entry over every method: the page's palette of one pose holds each method's prepared
+// palette (the entries its generated blend reads) one after the other, in table order.
+std::size_t all_methods_entry_floats() {
+  std::size_t n = 0;
+  for (SkinningMethod method : kAllSkinningMethods) n += prepared_entry_floats(method);
+  return n;
+}
+
+// One pose of the page: for every method in table order, its prepared palette of every mesh (meshes one
+// after the other, as concatenate() numbers their entries). `entries` is the meshes' entry count.
+void append_entries(const std::vector<Palettes>& per_mesh, std::size_t entries, std::vector<float>& out) {
+  const std::size_t at = out.size();
+  for (SkinningMethod method : kAllSkinningMethods)
+    for (const Palettes& p : per_mesh) append_packed_palette(method, p.matrices, p.dual_quats, p.motors, out);
+  if (out.size() - at != entries * all_methods_entry_floats())
+    throw std::runtime_error("web: the poses' palettes do not have one entry per joint of the meshes");
 }
 
 // Meshes concatenated: one vertex array, one index array, joints offset into one concatenated palette.
@@ -139,6 +144,18 @@ std::string json_string(const std::string& s) {  // a JSON string (names of clip
   return q + "\"";
 }
 
+// The method table for the page (CGA_DATA.methods): name, colour and vec4s per prepared entry, in table order
+// (a method's index is its code in the page's shaders).
+std::string methods_json() {
+  std::vector<std::string> rows;
+  for (SkinningMethod method : kAllSkinningMethods) {
+    const SkinningMethodInfo& info = skinning_method_info(method);
+    rows.push_back(fmt::format("{{name: {}, colour: [{:g}, {:g}, {:g}], vec4s: {}}}", json_string(std::string(info.name)),
+                               info.colour[0], info.colour[1], info.colour[2], info.entry_vec4s));
+  }
+  return fmt::format("[{}]", fmt::join(rows, ", "));
+}
+
 }  // namespace
 
 std::string write_web_page(const WebInput& in, const std::string& dir) {
@@ -161,7 +178,8 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
         const std::vector<MotorPalette> per_mesh =
             in.pose(mode, float(t) / float(in.times - 1), float(w) / float(in.weights - 1));
         std::vector<Palettes> pal;
-        for (const MotorPalette& mp : per_mesh) pal.push_back(from_motors(mp)), append_entries(pal.back(), palettes);
+        for (const MotorPalette& mp : per_mesh) pal.push_back(from_motors(mp));
+        append_entries(pal, body.entries, palettes);
         // The camera follows the character: the centre of its bounding box in this pose (cga-motors).
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (std::size_t m = 0; m < meshes.size(); ++m) {
@@ -195,16 +213,16 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
       p.motors.push_back(motor_from_transform(x));
     }
     p = from_motors(p.motors);
-    append_entries(p, twist_palettes);
+    append_entries({p}, strip.entries, twist_palettes);
     if (a == angles - 1) twist_last = {p};
   }
   const std::vector<float> twist_reference = cpu_reference({&cyl.mesh}, twist_last);
 
   std::string data = "const CGA_DATA = {\n";
   data += fmt::format("  model: {}, fade: {}, size: {:.9g},\n", json_string(in.model), json_string(in.fade_description), in.size);
-  data += "  methods: [\"lbs\", \"dqs\", \"cga-points\", \"cga-motors\"],\n";
-  data += fmt::format("  modes: [{}], times: {}, weights: {}, entryFloats: {}, vertexFloats: {},\n",
-                      fmt::join(mode_names, ", "), in.times, in.weights, kEntryFloats, kVertexFloats);
+  data += fmt::format("  methods: {},\n", methods_json());
+  data += fmt::format("  modes: [{}], times: {}, weights: {}, vertexFloats: {},\n", fmt::join(mode_names, ", "),
+                      in.times, in.weights, kVertexFloats);
   if (in.time_label) {
     std::vector<std::string> labels;
     for (int t = 0; t < in.times; ++t) labels.push_back(json_string(in.time_label(float(t) / float(in.times - 1))));
@@ -233,9 +251,9 @@ std::string write_web_page(const WebInput& in, const std::string& dir) {
   std::ofstream f(path, std::ios::binary);
   f << page;
   if (!f.flush()) throw std::runtime_error("cannot write " + path);
-  return fmt::format("{} ({:.0f} KiB: {} vertices, {} palette entries x {} modes x {} times x {} weights)", path,
-                     double(page.size()) / 1024.0, body.vertices.size() / kVertexFloats, body.entries,
-                     in.modes.size(), in.times, in.weights);
+  return fmt::format("{} ({:.0f} KiB: {} vertices, {} palette entries x {} methods x {} modes x {} times x {} weights)",
+                     path, double(page.size()) / 1024.0, body.vertices.size() / kVertexFloats, body.entries,
+                     kSkinningMethodCount, in.modes.size(), in.times, in.weights);
 }
 
 }  // namespace demo

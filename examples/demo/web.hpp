@@ -1,6 +1,6 @@
 // cga-demo --web DIR: writes the interactive page (DIR/index.html, everything embedded) that skins the
-// character and the twist strip on the GPU in the browser with the shaders assembled from cgagen's WGSL and
-// GLSL ES kernels (web/). See docs/web.md.
+// character and the twist strip on the GPU in the browser with every method of the skinning method table,
+// with the shaders assembled from cgagen's WGSL and GLSL ES blends (web/). See docs/web.md.
 #pragma once
 
 #include <functional>

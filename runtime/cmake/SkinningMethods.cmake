@@ -124,3 +124,175 @@ void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, 
 }
 " PARENT_SCOPE)
 endfunction()
+
+# ---- One shader for every method (the web page's WebGL 2 and WebGPU shaders): a skin_<id>() per method
+# that reads its entries from anywhere in one palette, and a skin() that picks one by the method's code. The
+# palette holds every method's prepared palette of `entries` entries one after the other, in table order, so
+# method m's entry 0 is vec4 entries x (the VEC4S of the rows before m). Data movement only: the blends are
+# the generated functions (GLSL ES .essl, WGSL .wgsl), which the includer puts in front.
+#
+# cga_skinning_glsl_method_skin(<id> <out>)  GLSL (ES 3.00 and desktop alike), palette_at(int) supplied:
+#   void skin_<id>(int first, ivec4 j, vec4 w, vec3 p, vec3 n, out vec3 op, out vec3 on)
+# cga_skinning_wgsl_method_skin(<id> <out>)  WGSL, fn palette_at(i: i32) -> vec4<f32> supplied:
+#   fn skin_<id>(first: i32, j: vec4<i32>, w: vec4<f32>, p: vec3<f32>, n: vec3<f32>,
+#                op: ptr<function, vec3<f32>>, on: ptr<function, vec3<f32>>)
+# first: the vec4 where the method's entry 0 starts; on: unnormalized (the caller normalizes, once).
+# cga_skinning_glsl_dispatch(<out>), cga_skinning_wgsl_dispatch(<out>): every method's skin_<id>() (as above)
+# and then skin(method, entries, j, w, p, n, op, on) (WGSL: pointers op, on) over the table's codes; an
+# unknown code gives the rest pose. Call cga_read_skinning_methods() first.
+
+# The entry inputs of method <id>'s blend as "ENTRY:SLOT:BLADES", checked against its VEC4S and its outputs
+# (p and n, 3 blades each: what the glue hands back).
+function(_cga_skinning_entry_inputs id out)
+  set(_blend ${CGA_SKIN_${id}_BLEND})
+  set(_k ${CGA_SKIN_${id}_VEC4S})
+  set(_script ${CGA_SKINNING_SCRIPT_DIR}/${_blend}.clu)
+  cga_skinning_script_inputs(${_script} _inputs)
+  list(LENGTH _inputs _n)
+  math(EXPR _expect "4 * ${_k}")
+  if(NOT _n EQUAL _expect)
+    message(FATAL_ERROR "${_blend}.clu: method ${id} has ${_k} vec4s per entry, so 4 x ${_k} multivector inputs, not ${_n}")
+  endif()
+  file(STRINGS ${_script} _outs REGEX "^//#pragma output ")
+  if(NOT _outs MATCHES "^//#pragma output p e1 e2 e3;//#pragma output n e1 e2 e3$")
+    message(FATAL_ERROR "${_blend}.clu: the glue expects the outputs p and n (e1 e2 e3 each), found '${_outs}'")
+  endif()
+  set(_list)
+  set(_i 0)
+  foreach(_in ${_inputs})
+    string(REGEX REPLACE "^.*:" "" _blades "${_in}")
+    if(NOT _blades EQUAL 3 AND NOT _blades EQUAL 4)
+      message(FATAL_ERROR "${_blend}.clu: entry input ${_in} has ${_blades} blades (3 or 4 fit a vec4)")
+    endif()
+    math(EXPR _entry "${_i} / ${_k}")
+    math(EXPR _slot "${_i} % ${_k}")
+    list(APPEND _list ${_entry}:${_slot}:${_blades})
+    math(EXPR _i "${_i} + 1")
+  endforeach()
+  set(${out} ${_list} PARENT_SCOPE)
+endfunction()
+
+function(cga_skinning_glsl_method_skin id out)
+  set(_blend ${CGA_SKIN_${id}_BLEND})
+  set(_k ${CGA_SKIN_${id}_VEC4S})
+  _cga_skinning_entry_inputs(${id} _inputs)
+  set(_args)
+  foreach(_in ${_inputs})
+    string(REPLACE ":" ";" _f "${_in}")
+    list(GET _f 0 _entry)
+    list(GET _f 1 _slot)
+    list(GET _f 2 _blades)
+    set(_arg "palette_at(e${_entry} + ${_slot})")
+    if(_blades EQUAL 3)
+      string(APPEND _arg ".xyz")
+    endif()
+    list(APPEND _args "${_arg}")
+  endforeach()
+  list(JOIN _args ",\n      " _args)
+  set(${out} "// ${CGA_SKIN_${id}_NAME} (from the method table): the generated ${_blend} on four entries of ${_k} vec4s.
+void skin_${id}(int first, ivec4 j, vec4 w, vec3 p, vec3 n, out vec3 op, out vec3 on) {
+  int e0 = first + ${_k} * j[0];
+  int e1 = first + ${_k} * j[1];
+  int e2 = first + ${_k} * j[2];
+  int e3 = first + ${_k} * j[3];
+  ${_blend}(${_args},
+      w[0], w[1], w[2], w[3], p.x, p.y, p.z, n.x, n.y, n.z, op, on);
+}
+" PARENT_SCOPE)
+endfunction()
+
+function(cga_skinning_wgsl_method_skin id out)
+  set(_blend ${CGA_SKIN_${id}_BLEND})
+  set(_k ${CGA_SKIN_${id}_VEC4S})
+  _cga_skinning_entry_inputs(${id} _inputs)
+  # The generated WGSL takes array<f32, N> values: each vec4 is read once and spelled out.
+  set(_reads)
+  set(_args)
+  set(_i 0)
+  foreach(_in ${_inputs})
+    string(REPLACE ":" ";" _f "${_in}")
+    list(GET _f 0 _entry)
+    list(GET _f 1 _slot)
+    list(GET _f 2 _blades)
+    string(APPEND _reads "  let v${_i} = palette_at(e${_entry} + ${_slot});\n")
+    if(_blades EQUAL 3)
+      list(APPEND _args "array<f32, 3>(v${_i}.x, v${_i}.y, v${_i}.z)")
+    else()
+      list(APPEND _args "array<f32, 4>(v${_i}.x, v${_i}.y, v${_i}.z, v${_i}.w)")
+    endif()
+    math(EXPR _i "${_i} + 1")
+  endforeach()
+  list(JOIN _args ",\n      " _args)
+  set(${out} "// ${CGA_SKIN_${id}_NAME} (from the method table): the generated ${_blend} on four entries of ${_k} vec4s.
+fn skin_${id}(first: i32, j: vec4<i32>, w: vec4<f32>, p: vec3<f32>, n: vec3<f32>,
+              op: ptr<function, vec3<f32>>, on: ptr<function, vec3<f32>>) {
+  let e0 = first + ${_k} * j[0];
+  let e1 = first + ${_k} * j[1];
+  let e2 = first + ${_k} * j[2];
+  let e3 = first + ${_k} * j[3];
+${_reads}  var tp: array<f32, 3>;
+  var tn: array<f32, 3>;
+  ${_blend}(${_args},
+      w[0], w[1], w[2], w[3], p.x, p.y, p.z, n.x, n.y, n.z, &tp, &tn);
+  *op = vec3<f32>(tp[0], tp[1], tp[2]);
+  *on = vec3<f32>(tn[0], tn[1], tn[2]);
+}
+" PARENT_SCOPE)
+endfunction()
+
+# The dispatch of either language (lang glsl or wgsl).
+function(_cga_skinning_dispatch lang out)
+  set(_text "// Every method of runtime/include/cga/runtime/skinning_methods.hpp, its code its row; generated by\n")
+  string(APPEND _text "// runtime/cmake/SkinningMethods.cmake.\n")
+  set(_cases "")
+  set(_code 0)
+  set(_vec4s_before 0)
+  foreach(_id ${CGA_SKINNING_METHOD_IDS})
+    if(lang STREQUAL "glsl")
+      cga_skinning_glsl_method_skin(${_id} _skin)
+    else()
+      cga_skinning_wgsl_method_skin(${_id} _skin)
+    endif()
+    # (string(APPEND), not a list: the text holds semicolons)
+    string(APPEND _cases "  if (method == ${_code}) {\n"
+                         "    skin_${_id}(${_vec4s_before} * entries, j, w, p, n, op, on);\n    return;\n  }\n")
+    string(APPEND _text "\n${_skin}")
+    math(EXPR _code "${_code} + 1")
+    math(EXPR _vec4s_before "${_vec4s_before} + ${CGA_SKIN_${_id}_VEC4S}")
+  endforeach()
+  if(lang STREQUAL "glsl")
+    string(APPEND _text "
+// Method `method` (its row in the table) on a palette of every method's `entries` entries in table order
+// (${_vec4s_before} vec4s per entry in all).
+const int SKINNING_METHOD_COUNT = ${_code};
+
+void skin(int method, int entries, ivec4 j, vec4 w, vec3 p, vec3 n, out vec3 op, out vec3 on) {
+${_cases}  op = p;
+  on = n;
+}
+")
+  else()
+    string(APPEND _text "
+// Method `method` (its row in the table) on a palette of every method's `entries` entries in table order
+// (${_vec4s_before} vec4s per entry in all).
+const SKINNING_METHOD_COUNT: i32 = ${_code};
+
+fn skin(method: i32, entries: i32, j: vec4<i32>, w: vec4<f32>, p: vec3<f32>, n: vec3<f32>,
+        op: ptr<function, vec3<f32>>, on: ptr<function, vec3<f32>>) {
+${_cases}  *op = p;
+  *on = n;
+}
+")
+  endif()
+  set(${out} "${_text}" PARENT_SCOPE)
+endfunction()
+
+function(cga_skinning_glsl_dispatch out)
+  _cga_skinning_dispatch(glsl _text)
+  set(${out} "${_text}" PARENT_SCOPE)
+endfunction()
+
+function(cga_skinning_wgsl_dispatch out)
+  _cga_skinning_dispatch(wgsl _text)
+  set(${out} "${_text}" PARENT_SCOPE)
+endfunction()

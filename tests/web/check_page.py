@@ -7,14 +7,17 @@ off, ANGLE on SwiftShader). The first line of the result must be "API ok MAXDEV"
 page compares the GPU's skinned vertices of every method with the CPU jobs' vertices embedded by the
 exporter), and the page must load nothing from elsewhere (no URL, fetch, script src, link or import); with
 --expect-fail it must be "API fail MAXDEV" with MAXDEV > 1e-4 (the mismatch check). Saves
-OUT_PREFIX.png (a screenshot) and OUT_PREFIX.txt; prints the page's frame time, labelled as what it is: a CPU
-emulation. Exit status 0 when the check holds, else 1 with the reason.
+OUT_PREFIX.png (a screenshot) and OUT_PREFIX.txt; the result's detail line must give a deviation for every method
+of the page's data (CGA_DATA.methods, the runtime's method table) on the character and on the strip; prints the
+page's frame time, labelled as what it is: a CPU emulation. Exit status 0 when the check holds, else 1 with the reason.
 """
 import os
 import re
 import subprocess
 import sys
 import time
+
+from screenshot_page import method_names
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 RUNNER = os.path.join(HERE, "..", "targets", "browser_run.py")
@@ -63,6 +66,14 @@ def main():
     path, verdict, dev = m.group(1), m.group(2), float(m.group(3))
     if path != api:
         print("FAIL the page ran the %s path, expected %s" % (path, api))
+        return 1
+    methods = method_names(html)
+    detail = re.search(r"^detail (.*)$", text, re.M)
+    tested = set(re.findall(r"(character|twist)/([a-z0-9-]+) ", detail.group(1) + " ")) if detail else set()
+    missing = [w + "/" + m for m in methods for w in ("character", "twist") if (w, m) not in tested]
+    if not methods or missing:
+        print("FAIL the self-test did not compare every method of the data (%s): missing %s"
+              % (", ".join(methods) or "no methods found", ", ".join(missing)))
         return 1
     frame = re.search(r"^frame_ms ([0-9.]+)", text, re.M)
     if frame:

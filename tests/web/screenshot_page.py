@@ -6,7 +6,8 @@ Runs Chromium's own one-shot screenshot with the flags of a WebGPU try on SwiftS
     --use-webgpu-adapter=swiftshader --virtual-time-budget=15000 --screenshot=OUT.png PAGE_DIR/index.html
 with --dump-dom in the same run for what the page says about itself. Passes when, within the budget, the
 page reports body[data-status] "ready" (it draws: WebGPU, or WebGL 2) or "fallback" with the reason in its
-status line, and every one of the four panels in the screenshot shows a coloured character. Fails (exit 1,
+status line, and every panel in the screenshot (one per skinning method: body[data-panels], the length of
+the runtime's method table) shows a coloured character. Fails (exit 1,
 a line saying why) on "loading" (nothing came up in time: the blank page), "error", no status, or an empty
 panel. --fragment adds #F to the address; --copy-to copies the screenshot there when the check passes (the
 web-page-picture target refreshes docs/img/web-page.png this way).
@@ -24,7 +25,7 @@ import zlib
 FLAGS = ["--headless", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--enable-unsafe-webgpu",
          "--use-webgpu-adapter=swiftshader", "--virtual-time-budget=15000"]
 # Not part of the try above, but needed here: root in a container (no sandbox), a throwaway profile, a
-# small /dev/shm, and a window wide enough for the controls and the four captions.
+# small /dev/shm, and a window wide enough for the controls and the captions.
 HOUSEKEEPING = ["--no-sandbox", "--no-first-run", "--disable-extensions", "--disable-dev-shm-usage",
                 "--hide-scrollbars", "--window-size=1280,760"]
 
@@ -71,6 +72,13 @@ def read_png(path, max_rows=None):
     return width, height, [[tuple(r[x * bpp:x * bpp + 3]) for x in range(width)] for r in rows]
 
 
+def method_names(html):
+    """The names of CGA_DATA.methods (the exporter writes the runtime's method table there, one
+    {name: "...", colour: [...], vec4s: N} per method) in the page's text."""
+    m = re.search(r"^\s*methods: \[(.*)\],$", html, re.M)
+    return re.findall(r'\{name: "([^"]*)"', m.group(1)) if m else []
+
+
 def run(chromium, what, url, profile):
     cmd = [chromium, *FLAGS, *HOUSEKEEPING, "--user-data-dir=" + profile, *what, url]
     return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=90, text=True)
@@ -112,15 +120,22 @@ def main():
         print("FAIL the page fell back without saying why: %s" % line)
         return 1
     rect = re.search(r'<body[^>]*\bdata-canvas="([0-9.]+) ([0-9.]+) ([0-9.]+) ([0-9.]+)"', dom)
-    if not os.path.isfile(out_png) or not rect:
-        print("FAIL no screenshot, or the page gave no canvas position")
+    panels = re.search(r'<body[^>]*\bdata-panels="([0-9]+)"', dom)
+    if not os.path.isfile(out_png) or not rect or not panels:
+        print("FAIL no screenshot, or the page gave no canvas position or panel count")
+        return 1
+    panels = int(panels.group(1))
+    methods = method_names(dom)
+    if panels != len(methods):
+        print("FAIL the page draws %d panels for the %d methods of its data (%s)" % (panels, len(methods),
+                                                                                      ", ".join(methods)))
         return 1
     x0, y0, w, h = (float(v) for v in rect.groups())
     width, height, pixels = read_png(out_png, int(y0 + h) + 1)
     height = min(height, len(pixels))
     # A character's pixels are coloured (the methods' colours, shaded); the page around them is grey.
-    for panel in range(4):
-        xs = range(max(0, int(x0 + panel * w / 4) + 2), min(width, int(x0 + (panel + 1) * w / 4) - 2))
+    for panel in range(panels):
+        xs = range(max(0, int(x0 + panel * w / panels) + 2), min(width, int(x0 + (panel + 1) * w / panels) - 2))
         ys = range(max(0, int(y0) + 24), min(height, int(y0 + h) - 2))  # below the panel's name
         coloured = sum(1 for y in ys for x in xs if max(pixels[y][x]) - min(pixels[y][x]) > 50)
         share = coloured / max(1, len(xs) * len(ys))
@@ -131,7 +146,7 @@ def main():
     if copy_to:
         shutil.copyfile(out_png, copy_to)
         print("copied to %s" % copy_to)
-    print("PASS the page came up (%s) and draws all four panels" % status)
+    print("PASS the page came up (%s) and draws all %d panels" % (status, panels))
     return 0
 
 
