@@ -262,8 +262,8 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
   PosePipeline mat(Interpolation::glm_matrix, ch.skeleton, ch.meshes, inverse_binds);
   PosePipeline dq(Interpolation::glm_dualquat, ch.skeleton, ch.meshes, inverse_binds);
   PosePipeline mot(Interpolation::nlerp, ch.skeleton, ch.meshes, inverse_binds);
-  auto has = [&](SkinningMethod m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
-  float points_vs_lbs = 0.0f, motors_vs_dqs = 0.0f;
+  // worst[a][b]: the largest distance between methods[a] and methods[b] (b < a) over the key frames.
+  std::vector<std::vector<float>> worst(methods.size(), std::vector<float>(methods.size(), 0.0f));
   for (float t : times) {
     Fade at = fade;
     at.b = at.a, at.a0 = at.a1 = at.b0 = at.b1 = t;
@@ -272,13 +272,11 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
       MethodPalettes pal;
       pal.matrices = mat.matrix_palettes[m], pal.dual_quats = dq.dq_palettes[m];
       pal.motors = mot.motor_palettes[m];
-      std::map<SkinningMethod, SkinnedOutput> out;
-      for (SkinningMethod method : methods)
-        run_job(job_for(method, ch.meshes[m], pal, out[method]), std::string(to_string(method)));
-      if (has(SkinningMethod::cga_points) && has(SkinningMethod::lbs))
-        points_vs_lbs = std::max(points_vs_lbs, max_distance(out[SkinningMethod::cga_points], out[SkinningMethod::lbs]));
-      if (has(SkinningMethod::cga_motors) && has(SkinningMethod::dqs))
-        motors_vs_dqs = std::max(motors_vs_dqs, max_distance(out[SkinningMethod::cga_motors], out[SkinningMethod::dqs]));
+      std::vector<SkinnedOutput> out(methods.size());
+      for (std::size_t k = 0; k < methods.size(); ++k)
+        run_job(job_for(methods[k], ch.meshes[m], pal, out[k]), std::string(to_string(methods[k])));
+      for (std::size_t a = 0; a < methods.size(); ++a)
+        for (std::size_t b = 0; b < a; ++b) worst[a][b] = std::max(worst[a][b], max_distance(out[a], out[b]));
     }
   }
   fmt::print("  max vertex distance / size over {} key frames of '{}', each method through its own pipeline:\n",
@@ -289,10 +287,15 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
   if (approximated)
     fmt::print("    (the loader approximated non-similarity transforms for motors and dual quaternions, see the "
                "warnings; lbs uses the file's exact matrices, so the cga methods differ from it here)\n");
-  if (has(SkinningMethod::cga_points) && has(SkinningMethod::lbs))
-    fmt::print("    cga-points vs lbs  {:<10.3g} (the same maths: rounding only)\n", points_vs_lbs / size);
-  if (has(SkinningMethod::cga_motors) && has(SkinningMethod::dqs))
-    fmt::print("    cga-motors vs dqs  {:<10.3g} (the same for rigid bones; dqs drops any scale)\n", motors_vs_dqs / size);
+  // cga-points is lbs in other maths (rounding only), cga-motors is dqs for rigid bones (docs/skinning.md).
+  fmt::print("    {:<11}", "");
+  for (std::size_t b = 0; b + 1 < methods.size(); ++b) fmt::print(" {:<11}", to_string(methods[b]));
+  fmt::print("\n");
+  for (std::size_t a = 1; a < methods.size(); ++a) {
+    fmt::print("    {:<11}", to_string(methods[a]));
+    for (std::size_t b = 0; b < a; ++b) fmt::print(" {:<11.3g}", worst[a][b] / size);
+    fmt::print("\n");
+  }
 }
 
 int run(const demo::Options& opt) {
@@ -379,12 +382,13 @@ int run(const demo::Options& opt) {
     }
     fmt::print("\n");
     key_frame_deviations(ch, fade, methods, inverse_binds, size);
-    // On the blended pose itself: how much the method changes the skin (not an error; lbs loses volume).
-    if (posed.count(SkinningMethod::cga_motors) && posed.count(SkinningMethod::lbs)) {
+    // On the blended pose itself: how much each method changes the skin against the first (not an error;
+    // lbs loses volume).
+    for (std::size_t k = 1; k < methods.size(); ++k) {
       float worst = 0.0f;
       for (std::size_t m = 0; m < ch.meshes.size(); ++m)
-        worst = std::max(worst, max_distance(posed[SkinningMethod::cga_motors].meshes[m], posed[SkinningMethod::lbs].meshes[m]));
-      fmt::print("  mid-fade pose: cga-motors vs lbs {:.3g} of the size (what blending motors instead of points changes)\n",
+        worst = std::max(worst, max_distance(posed[methods[k]].meshes[m], posed[methods[0]].meshes[m]));
+      fmt::print("  mid-fade pose: {} vs {} {:.3g} of the size\n", to_string(methods[k]), to_string(methods[0]),
                  worst / size);
     }
     if (scaled)

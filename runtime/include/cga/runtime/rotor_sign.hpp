@@ -1,7 +1,6 @@
-// The cga-motors rotor sign fix, defined once for every backend: the CPU loops (skinning/, jobs.cpp's nlerp
-// blend), the CUDA kernels (which include this header) and the GLSL shaders (runtime/gpu/CMakeLists.txt reads
-// the blade lists below from this file and writes them into the generated rotor_sign.glsl, so they cannot
-// drift).
+// The cga-motors rotor sign fix of the hand-written C++ loops: the SIMD skinning loops (skinning/) and the
+// pose jobs' nlerp blend. The skinning scripts (runtime/scripts/skin) write the same fix as a select, and the
+// tests compare the SIMD loops with the generated ones.
 //
 // A motor M and -M are the same similarity, but a blend of coefficients is not sign-blind: before adding a
 // motor into a blend it is negated when its rotor part points away from the first (reference) motor's. The
@@ -15,16 +14,11 @@
 
 #include <math.h>
 
-#if defined(__CUDACC__)
-#define CGA_ROTOR_SIGN_FN __host__ __device__ inline
-#else
 #define CGA_ROTOR_SIGN_FN inline
-#endif
 
 namespace cga::rotor_sign {
 
-// Blade indices in types.hpp's order. runtime/gpu/CMakeLists.txt reads these three #define lines (keep each
-// on one line) into the generated GLSL.
+// Blade indices in types.hpp's order.
 #define CGA_ROTOR_BLADES 0, 1, 2, 4
 #define CGA_E_BLADES 7, 9, 10, 11
 #define CGA_EINF_BLADES 3, 5, 6, 8
