@@ -9,6 +9,8 @@
 namespace demo {
 
 std::string usage_text(const std::string& default_model) {
+  std::string methods;
+  for (const cga::SkinningMethodInfo& m : cga::kSkinningMethods) methods += (methods.empty() ? "" : ", ") + std::string(m.name);
   return fmt::format(R"(usage: cga-demo [options]
 
 Loads a skinned, animated character, cross-fades two clips (or the two halves of its only clip) with every
@@ -18,24 +20,24 @@ between the methods relative to the character's size. Writes pictures of the pos
 and of the twisted two-bone strip as PNG files.
 
 options:
-  --model FILE     any Assimp-readable skinned, animated character (default: {})
+  --model FILE     any Assimp-readable skinned, animated character (default: {0})
   --clip NAME      the clip to fade from; give it twice to name both clips (default: the first two clips;
                    a file with one clip fades from its first half to its second half)
-  --method M       skinning method, repeatable or comma-separated: lbs, dqs, cga-points, cga-motors
-                   (default: all four)
+  --method M       skinning method, repeatable or comma-separated: {1}
+                   (default: all)
   --mode M         interpolation mode, repeatable or comma-separated: paper, nlerp, screw, glm-matrix,
                    glm-dualquat (default: all five)
   --frames N       poses along the cross-fade, 2..100000 (default 60)
   --out DIR        folder for the PNG pictures, created if missing (default: out)
   --no-pictures    write no pictures
-  --web DIR        also write DIR/index.html: the four methods skinned on the GPU in the browser (WebGPU or
+  --web DIR        also write DIR/index.html: every method skinned on the GPU in the browser (WebGPU or
                    WebGL 2, shaders from cgagen's kernels), time and cross-fade sliders, modes paper/nlerp/
                    screw, the twist strip, a heat map; one self-contained file, opens from file://
   --help           this text
 
 exit status: 0 success, 1 the model cannot be used (the message names the file), 2 bad usage.
 )",
-                     default_model);
+                     default_model, methods);
 }
 
 namespace {

@@ -79,8 +79,12 @@ Options parse(int argc, char** argv) {
   if (o.timing != "auto" && o.timing != "query" && o.timing != "wall")
     throw std::invalid_argument("--timing must be auto, query or wall");
   bool known = o.method == "all";
-  for (SkinningMethod m : kAllSkinningMethods) known = known || o.method == to_string(m);
-  if (!known) throw std::invalid_argument("--method must be lbs, dqs, cga-points, cga-motors or all");
+  std::string names;
+  for (SkinningMethod m : kAllSkinningMethods) {
+    known = known || o.method == to_string(m);
+    names += std::string(to_string(m)) + ", ";
+  }
+  if (!known) throw std::invalid_argument("--method must be " + names + "or all");
   return o;
 }
 

@@ -12,9 +12,10 @@
 namespace cga::gpu {
 
 // The two-bone twist cylinder (cga::make_twist_cylinder) with joint 1 twisted by `angle` radians, skinned
-// on the GPU by each of `methods` (default the four, in the order lbs, dqs, cga-points, cga-motors), side by
-// side, each panel labelled with its method.
-// At 180 degrees lbs and cga-points collapse to a "candy wrapper" in the middle, dqs and cga-motors do not.
+// on the GPU by each of `methods` (default every method, in the table's order), side by side, each panel
+// labelled with its method.
+// At 180 degrees lbs and cga-points collapse to a "candy wrapper" in the middle, dqs, cga-motors and cga-log
+// do not.
 // The one camera of every twist-strip panel, on the GPU and in the demo's CPU pictures: the rest cylinder's
 // box, seen from the side and a little above, axis up.
 inline Camera twist_strip_camera(const TwistCylinderSpec& spec) {
