@@ -11,7 +11,8 @@
 #   CGA_SKIN_<id>_VEC4S        vec4s per prepared entry
 #   CGA_SKIN_<id>_COLOUR       r;g;b
 # cga_skinning_script_inputs(<script> <out>) sets <out> to the script's multivector inputs (#pragma input), each
-# as NAME:BLADES (the blade count), in the order of its #pragma in2out line when it has one.
+# as NAME:BLADES (the blade count), in declaration order: a skinning script declares them in the order of its
+# #pragma in2out line (the generated function's parameter order).
 get_filename_component(CGA_SKINNING_METHODS_HPP ${CMAKE_CURRENT_LIST_DIR}/../include/cga/runtime/skinning_methods.hpp ABSOLUTE)
 get_filename_component(CGA_SKINNING_SCRIPT_DIR ${CMAKE_CURRENT_LIST_DIR}/../scripts/skin ABSOLUTE)
 
@@ -46,31 +47,50 @@ function(cga_read_skinning_methods)
   set(CGA_SKINNING_METHOD_IDS ${_ids} PARENT_SCOPE)
 endfunction()
 
-function(cga_skinning_script_inputs script out)
+# The multivectors a script declares with `//#pragma KIND NAME BLADE...` (KIND a regex: input, output or
+# (input|output)), each as NAME:BLADES (the blade count), in declaration order.
+function(_cga_skinning_script_declared script kind out)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${script})
-  file(STRINGS ${script} _decls REGEX "^//#pragma input ")
-  set(_inputs)
+  file(STRINGS ${script} _decls REGEX "^//#pragma ${kind} ")
+  set(_list)
   foreach(_d ${_decls})
-    string(REGEX REPLACE "^//#pragma input +" "" _d "${_d}")
+    string(REGEX REPLACE "^//#pragma ${kind} +" "" _d "${_d}")
     string(REGEX REPLACE " +" ";" _words "${_d}")
     list(POP_FRONT _words _name)
     list(LENGTH _words _count)
-    list(APPEND _inputs ${_name}:${_count})
+    list(APPEND _list ${_name}:${_count})
   endforeach()
+  set(${out} ${_list} PARENT_SCOPE)
+endfunction()
+
+function(cga_skinning_script_inputs script out)
+  _cga_skinning_script_declared(${script} input _inputs)
+  # The glue passes the inputs in this order: it must be the generated function's (#pragma in2out).
+  file(STRINGS ${script} _in2out REGEX "^#pragma in2out ")
+  if(_in2out)
+    string(REGEX REPLACE "^#pragma in2out +| *->.*$" "" _params "${_in2out}")
+    string(REGEX REPLACE " *, *" ";" _params "${_params}")
+    set(_i 0)
+    foreach(_in ${_inputs})
+      string(REGEX REPLACE ":[0-9]+$" "" _name "${_in}")
+      list(GET _params ${_i} _param)
+      if(NOT _param STREQUAL _name)
+        message(FATAL_ERROR "${script}: the #pragma input declarations must follow the #pragma in2out order (parameter ${_i} is ${_param}, declaration ${_i} is ${_name})")
+      endif()
+      math(EXPR _i "${_i} + 1")
+    endforeach()
+  endif()
   set(${out} ${_inputs} PARENT_SCOPE)
 endfunction()
 
 # The --pack arguments of a skinning script for the GLSL targets: every multivector input and output of 3 or
 # 4 blades as vec3 / vec4 (an entry is a run of vec4s; the positions and normals are vec3).
 function(cga_skinning_script_pack script out)
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${script})
-  file(STRINGS ${script} _decls REGEX "^//#pragma (input|output) ")
+  _cga_skinning_script_declared(${script} "(input|output)" _decls)
   set(_pack)
   foreach(_d ${_decls})
-    string(REGEX REPLACE "^//#pragma (input|output) +" "" _d "${_d}")
-    string(REGEX REPLACE " +" ";" _words "${_d}")
-    list(POP_FRONT _words _name)
-    list(LENGTH _words _count)
+    string(REGEX MATCH "[0-9]+$" _count "${_d}")
+    string(REGEX REPLACE ":[0-9]+$" "" _name "${_d}")
     if(_count EQUAL 4)
       list(APPEND _pack ${_name}=vec4)
     elseif(_count EQUAL 3)
