@@ -16,7 +16,7 @@
 #include "cga/runtime/additive.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/motor.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/baselines/pose_jobs.hpp"
 #include "summary.hpp"
 

@@ -15,7 +15,7 @@
 #include "bench_common.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/baselines/pose_jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"

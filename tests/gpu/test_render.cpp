@@ -12,6 +12,7 @@
 #include "cga/gpu/pose.hpp"
 #include "cga/gpu/render.hpp"
 #include "cga/gpu/skinning.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/testing/twist_strip.hpp"
 
 using namespace cga;

@@ -10,6 +10,7 @@
 
 #include "cga/gpu/pose.hpp"
 #include "cga/gpu/skinning.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"

@@ -22,7 +22,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 

@@ -18,7 +18,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"

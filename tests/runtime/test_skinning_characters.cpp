@@ -10,7 +10,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/testing/key_times.hpp"
 #include "cga/testing/nan_max.hpp"

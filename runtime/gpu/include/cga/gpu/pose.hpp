@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/baselines/pose_jobs.hpp"
 

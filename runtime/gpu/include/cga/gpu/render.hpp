@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "cga/gpu/context.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/skinning.hpp"
 
 namespace cga::gpu {
