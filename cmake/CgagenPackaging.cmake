@@ -76,7 +76,8 @@ install(TARGETS cga_io EXPORT cgagenTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/io/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.hpp")
-# cga::baselines: the GLM pose jobs cga::gpu's lbs/dqs palettes come from.
+# cga::baselines: the GLM pose jobs and PoseMode, for code that compares the motor modes with them (no
+# installed library links it).
 set_target_properties(cga_baselines PROPERTIES EXPORT_NAME baselines)
 install(TARGETS cga_baselines EXPORT cgagenTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -366,12 +366,18 @@ bool fits(const Span& s, std::size_t n) {
 
 constexpr float kRigidScaleTolerance = 8.0f * 1.1920929e-7f;  // 8 float ulps at 1
 
+// The mode switches of Run() take any mode they do not name for screw, so Validate() admits only the enum's
+// values (an Interpolation cast from an integer may hold another).
+constexpr bool known_mode(Interpolation m) {
+  return m == Interpolation::paper || m == Interpolation::nlerp || m == Interpolation::screw;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------- sampling
 
 bool SamplingJob::Validate() const {
-  if (!clip || !uses_motors(mode)) return false;
+  if (!clip || !known_mode(mode)) return false;
   const std::size_t n = clip->keys.size();
   if (!fits(output, n)) return false;
   if (!std::isfinite(time)) return false;
@@ -478,7 +484,7 @@ void blend_per_joint(Interpolation mode, std::span<const BlendLayer> layers, std
 }  // namespace
 
 bool BlendingJob::Validate() const {
-  if (layers.empty() || !uses_motors(mode)) return false;
+  if (layers.empty() || !known_mode(mode)) return false;
   const std::size_t n = output.size();
   if (!rest_pose.empty() && rest_pose.size() < n) return false;
   float total = 0.0f;
