@@ -60,7 +60,7 @@ struct BlendingJob {
 };
 
 // Model space from local space down the skeleton, by the generated motor product (the 8-blade rigid product
-// when no local motor has a dilation; otherwise the split form, see jobs.cpp).
+// when no local motor has a dilation; otherwise the split form, see src/jobs/common.hpp).
 struct LocalToModelJob {
   const Skeleton* skeleton = nullptr;  // parents[j] < j
   std::span<const Motor> input;        // size >= joint count
