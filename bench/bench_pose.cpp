@@ -16,8 +16,8 @@
 #include "cga/runtime/additive.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/motor.hpp"
-#include "cga/runtime/loader.hpp"
 #include "cga/baselines/pose_jobs.hpp"
+#include "cga/io/loader.hpp"
 #include "summary.hpp"
 
 namespace cga::bench {
@@ -54,7 +54,7 @@ struct PaletteBuffers {
   explicit PaletteBuffers(std::size_t n) : motors(n), matrices(n), dual_quats(n) {}
 };
 
-void bm_pose(benchmark::State& state, Interpolation mode, bool partial) {
+void bm_pose(benchmark::State& state, baseline::PoseMode mode, bool partial) {
   const PoseScene* scene = nullptr;
   try {
     scene = &pose_scene();
@@ -72,13 +72,15 @@ void bm_pose(benchmark::State& state, Interpolation mode, bool partial) {
 
   // One representation's jobs per mode: the runtime's motor jobs, or the GLM baselines'.
   using namespace baseline;
-  SamplingJob motor_a{&clip_a, 0.0f, mode, a.motors}, motor_b{&clip_b, 0.0f, mode, b.motors};
+  // The motor jobs run in motor modes only; for a GLM mode they are made (with any motor mode) but not run.
+  const Interpolation motor_mode = uses_motors(mode) ? to_interpolation(mode) : Interpolation::paper;
+  SamplingJob motor_a{&clip_a, 0.0f, motor_mode, a.motors}, motor_b{&clip_b, 0.0f, motor_mode, b.motors};
   // Partial blending: the second layer weighs 1 on the second half of the joints, 0.3 on the first.
   std::vector<float> mask(joints, 1.0f);
   for (std::size_t j = 0; j < joints / 2; ++j) mask[j] = 0.3f;
   const BlendLayer motor_layers[2] = {{1.0f - kCrossFade, a.motors},
                                       {kCrossFade, b.motors, partial ? std::span<const float>(mask) : std::span<const float>()}};
-  const BlendingJob motor_blend{mode, motor_layers, blended.motors};
+  const BlendingJob motor_blend{motor_mode, motor_layers, blended.motors};
   const LocalToModelJob motor_model{&ch.skeleton, blended.motors, model.motors};
   std::vector<SkinningPaletteJob> motor_palettes;
   TransformSamplingJob trs_a{&clip_a, 0.0f, a.transforms}, trs_b{&clip_b, 0.0f, b.transforms};
@@ -102,11 +104,11 @@ void bm_pose(benchmark::State& state, Interpolation mode, bool partial) {
   }
   const auto run_pose = [&](float ta, float tb) {
     bool ok = true;
-    if (mode == Interpolation::glm_matrix) {
+    if (mode == PoseMode::glm_matrix) {
       trs_a.time = ta, trs_b.time = tb;
       ok = trs_a.Run() && trs_b.Run() && trs_blend.Run() && matrix_model.Run();
       for (const MatrixPaletteJob& job : matrix_palettes) ok &= job.Run();
-    } else if (mode == Interpolation::glm_dualquat) {
+    } else if (mode == PoseMode::glm_dualquat) {
       dq_a.time = ta, dq_b.time = tb;
       ok = dq_a.Run() && dq_b.Run() && dq_blend.Run() && dq_model.Run();
       for (const DualQuatPaletteJob& job : dq_palettes) ok &= job.Run();
@@ -168,10 +170,10 @@ void bm_additive(benchmark::State& state, Interpolation mode) {
 void register_pose_benchmarks() {
   const std::string section = "Pose of BCN_Epileptic (54 joints): sample 2 clips + cross-fade + hierarchy + palette";
   const std::string baseline = "pose/glm-matrix";
-  for (Interpolation mode : kAllInterpolations) {
+  for (baseline::PoseMode mode : baseline::kAllPoseModes) {
     const std::string name = "pose/" + std::string(to_string(mode));
     benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode, false)->Unit(benchmark::kMicrosecond);
-    const bool ours = uses_motors(mode);
+    const bool ours = baseline::uses_motors(mode);
     add_figure({name, section, std::string(to_string(mode)) + (ours ? "" : " (baseline)"), Metric::us_per_iter,
                 baseline, "glm-matrix", ours ? std::optional<Target>(Target{1.0, "<= 1.0 µs"}) : std::nullopt,
                 {}});
@@ -187,7 +189,7 @@ void register_pose_benchmarks() {
   // Partial blending (per-joint weights on the second layer): the per-joint path of BlendingJob.
   for (Interpolation mode : {Interpolation::paper, Interpolation::nlerp}) {
     const std::string name = "pose/" + std::string(to_string(mode)) + "-partial";
-    benchmark::RegisterBenchmark(name.c_str(), bm_pose, mode, true)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(name.c_str(), bm_pose, baseline::to_pose_mode(mode), true)->Unit(benchmark::kMicrosecond);
     add_figure({name, section, std::string(to_string(mode)) + ", per-joint weights", Metric::us_per_iter, baseline,
                 "glm-matrix", std::nullopt, {}});
   }

@@ -15,7 +15,7 @@
 #include "bench_common.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/baselines/pose_jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
@@ -119,7 +119,8 @@ bool add_pose_palettes(const Character& ch, float time, SkinScene& scene) {
   scene.matrices.assign(scene.meshes.size(), {});
   scene.dual_quats.assign(scene.meshes.size(), {});
   scene.motors.assign(scene.meshes.size(), {});
-  for (Interpolation mode : {Interpolation::paper, Interpolation::glm_matrix, Interpolation::glm_dualquat}) {
+  using baseline::PoseMode;
+  for (PoseMode mode : {PoseMode::paper, PoseMode::glm_matrix, PoseMode::glm_dualquat}) {
     baseline::PoseBuffer local(n), model(n);
     if (!baseline::sample(mode, clip, time, local) || !baseline::local_to_model(mode, ch.skeleton, local, model))
       return false;
@@ -127,9 +128,9 @@ bool add_pose_palettes(const Character& ch, float time, SkinScene& scene) {
       const SkinnedMesh& mesh = scene.meshes[m];
       baseline::PaletteBuffer pal(mesh.joint_remap.size());
       if (!baseline::palette(mode, mesh.joint_remap, baseline::make_inverse_bind(mesh), model, pal)) return false;
-      if (mode == Interpolation::paper) scene.motors[m] = pal.motors;
-      if (mode == Interpolation::glm_matrix) scene.matrices[m] = pal.matrices;
-      if (mode == Interpolation::glm_dualquat) scene.dual_quats[m] = pal.dual_quats;
+      if (mode == PoseMode::paper) scene.motors[m] = pal.motors;
+      if (mode == PoseMode::glm_matrix) scene.matrices[m] = pal.matrices;
+      if (mode == PoseMode::glm_dualquat) scene.dual_quats[m] = pal.dual_quats;
     }
   }
   return true;

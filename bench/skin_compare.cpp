@@ -20,7 +20,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "cga/baselines/pose_jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/testing/key_times.hpp"
@@ -193,9 +193,9 @@ void character_section(const std::string& models, bool quick) {
       for (const SkinnedMesh& mesh : ch.meshes) {
         baseline::PoseBuffer local(n), model(n);
         baseline::PaletteBuffer pal(mesh.joint_remap.size());
-        if (!baseline::sample(Interpolation::paper, clip, t, local) ||
-            !baseline::local_to_model(Interpolation::paper, ch.skeleton, local, model) ||
-            !baseline::palette(Interpolation::paper, mesh.joint_remap, baseline::make_inverse_bind(mesh), model, pal))
+        if (!baseline::sample(baseline::PoseMode::paper, clip, t, local) ||
+            !baseline::local_to_model(baseline::PoseMode::paper, ch.skeleton, local, model) ||
+            !baseline::palette(baseline::PoseMode::paper, mesh.joint_remap, baseline::make_inverse_bind(mesh), model, pal))
           throw std::runtime_error(std::string(file) + ": the pose jobs failed");
         palettes.push_back(pal.motors);
       }

@@ -8,13 +8,15 @@
 #   share/cgagen/cmake/                   cgagenConfig.cmake, cgagenConfigVersion.cmake, cgagenTargets*.cmake,
 #                                         Cgagen.cmake (cgagen_generate(); ../templates is the folder above)
 #   share/cgagen/glsl/, share/cgagen/scripts/   the runtime's generated GLSL kernels and their CluScripts
-#   include/cga/runtime/, include/cga/gpu/      public headers of cga::runtime and cga::gpu
+#   include/cga/runtime/, include/cga/io/, include/cga/gpu/, include/cga/baselines/
+#                                         public headers of cga::runtime, cga::io, cga::gpu and cga::baselines
 #   include/cga/kernels/                  the runtime's generated kernels (*.hpp, *.cuh), included as <motor_mul.hpp>
-#   lib/libcga_runtime.a, lib/libcga_gpu.a
+#   lib/libcga_runtime.a, lib/libcga_io.a, lib/libcga_gpu.a, lib/libcga_baselines.a
 #   share/man/man1/cgagen.1, share/doc/cgagen/
 #
 # find_package(cgagen 0.2 REQUIRED) then gives cgagen::cgagen (imported executable), cgagen_generate(),
-# cgagen::kernels (the runtime's generated headers), cgagen::runtime, cgagen::gpu (when this build had it),
+# cgagen::kernels (the runtime's generated headers), cgagen::runtime, cgagen::io (the Assimp importer),
+# cgagen::baselines (the GLM comparison pose jobs), cgagen::gpu (when this build had it),
 # and CGAGEN_TEMPLATES_DIR / CGAGEN_GLSL_DIR / CGAGEN_SCRIPTS_DIR.
 #
 # Version compatibility is SameMinorVersion: before 1.0 a minor release may change the generated interface,
@@ -67,7 +69,15 @@ install(TARGETS cga_runtime EXPORT cgagenTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.hpp")
-# cga::baselines: the GLM pose jobs cga::gpu's lbs/dqs palettes come from.
+# cga::io: the Assimp importer (cga/io/loader.hpp), the only installed library that links Assimp.
+set_target_properties(cga_io PROPERTIES EXPORT_NAME io)
+install(TARGETS cga_io EXPORT cgagenTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/io/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.hpp")
+# cga::baselines: the GLM pose jobs and PoseMode, for code that compares the motor modes with them (no
+# installed library links it).
 set_target_properties(cga_baselines PROPERTIES EXPORT_NAME baselines)
 install(TARGETS cga_baselines EXPORT cgagenTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -111,7 +121,7 @@ endif()
 # Debian package: cd build && cpack -G DEB -> cgagen_<version>_<arch>.deb, installed under /usr.
 # Depends: the shared libraries of bin/cgagen (libginac11, libcln6, libfmt9, libstdc++6, libc6 by
 # dpkg-shlibdeps, from dpkg-dev), plus the -dev packages that find_package(cgagen)'s find_dependency() and
-# the exported cgagen::runtime need (glm, fmt, assimp headers and CMake files). cgagen::gpu links EGL and
+# the exported cgagen::runtime and cgagen::io need (glm, fmt; assimp's CMake files for cgagen::io). cgagen::gpu links EGL and
 # libOpenGL: recommended, not required, as a consumer of the generator and the CPU runtime does not need GL.
 set(CPACK_PACKAGE_NAME cgagen)
 set(CPACK_PACKAGE_VENDOR "cgagen")
@@ -119,7 +129,7 @@ set(CPACK_PACKAGE_CONTACT "cgagen maintainers <cgagen@localhost>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "CGA code generator (CluScript -> C++/GLSL/CUDA) and animation runtime")
 set(CPACK_PACKAGE_DESCRIPTION "cgagen compiles Gaalop/CLUCalc scripts of conformal geometric algebra into\n\
 optimized straight-line C++, GLSL and CUDA. The package also holds the CGA animation runtime\n\
-(static library cga::runtime, cga::gpu) and the CMake package find_package(cgagen) with cgagen_generate().")
+(static libraries cga::runtime, cga::io, cga::gpu) and the CMake package find_package(cgagen) with cgagen_generate().")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)

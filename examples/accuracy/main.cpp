@@ -12,14 +12,14 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 
 using namespace cga;
 
 namespace {
 
 // Model-space joint positions of `clip` at time t in `mode`.
-void joint_positions(const Skeleton& sk, const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& local,
+void joint_positions(const Skeleton& sk, const Clip& clip, float t, baseline::PoseMode mode, baseline::PoseBuffer& local,
                      baseline::PoseBuffer& model, std::vector<glm::vec3>& out) {
   if (!baseline::sample(mode, clip, t, local) || !baseline::local_to_model(mode, sk, local, model))
     throw std::runtime_error("sampling or hierarchy job rejected its input");
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     baseline::PoseBuffer local(sk.joint_count()), model(sk.joint_count());
     std::vector<std::vector<glm::vec3>> truth(frames.size());
     for (std::size_t f = 0; f < frames.size(); ++f)
-      joint_positions(sk, clip, frames[f], Interpolation::glm_matrix, local, model, truth[f]);
+      joint_positions(sk, clip, frames[f], baseline::PoseMode::glm_matrix, local, model, truth[f]);
     float extent = 0.0f;
     for (const auto& pose : truth)
       for (const glm::vec3& p : pose) extent = std::max(extent, glm::length(p - truth[0][0]));
@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
       for (std::size_t f = 0; f < frames.size(); f += k) kept.push_back(frames[f]);
       if (kept.back() != frames.back()) kept.push_back(frames.back());
       const Clip reduced = decimate(clip, kept);
-      for (Interpolation mode : kAllInterpolations) {
+      for (baseline::PoseMode mode : baseline::kAllPoseModes) {
         double sum = 0.0, worst = 0.0;
         std::size_t count = 0;
         for (std::size_t f = 0; f < frames.size(); ++f) {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 
 namespace demo {
 

@@ -21,7 +21,7 @@
 #include "cga/gpu/skinning.hpp"
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
@@ -120,7 +120,7 @@ Fade choose_fade(const Character& ch, const std::vector<std::string>& names, con
 
 // One mode's pose pipeline with its buffers: two samples, the cross-fade, the hierarchy, a palette per mesh.
 struct PosePipeline {
-  Interpolation mode;
+  baseline::PoseMode mode;
   const Skeleton* skeleton;
   const std::vector<SkinnedMesh>* meshes;
   const std::vector<baseline::InverseBind>* inverse_binds;
@@ -129,7 +129,7 @@ struct PosePipeline {
   std::vector<MatrixPalette> matrix_palettes;
   std::vector<DualQuatPalette> dq_palettes;
 
-  PosePipeline(Interpolation m, const Skeleton& sk, const std::vector<SkinnedMesh>& ms,
+  PosePipeline(baseline::PoseMode m, const Skeleton& sk, const std::vector<SkinnedMesh>& ms,
                const std::vector<baseline::InverseBind>& ib)
       : mode(m), skeleton(&sk), meshes(&ms), inverse_binds(&ib), a(sk.joint_count()), b(sk.joint_count()),
         blended(sk.joint_count()), model(sk.joint_count()) {
@@ -146,7 +146,7 @@ struct PosePipeline {
     using namespace baseline;
     const float ta = f.time_a(u), tb = f.time_b(u);
     bool ok = true;
-    if (mode == Interpolation::glm_matrix) {
+    if (mode == PoseMode::glm_matrix) {
       const TransformLayer layers[2] = {{1.0f - u, a.transforms}, {u, b.transforms}};
       ok = TransformSamplingJob{f.a, ta, a.transforms}.Run() && TransformSamplingJob{f.b, tb, b.transforms}.Run() &&
            TransformBlendingJob{layers, blended.transforms}.Run() &&
@@ -154,7 +154,7 @@ struct PosePipeline {
       for (std::size_t m = 0; ok && m < meshes->size(); ++m)
         ok = MatrixPaletteJob{(*meshes)[m].joint_remap, (*inverse_binds)[m].matrices, model.matrices,
                               matrix_palettes[m]}.Run();
-    } else if (mode == Interpolation::glm_dualquat) {
+    } else if (mode == PoseMode::glm_dualquat) {
       const DualQuatLayer layers[2] = {{1.0f - u, a.dual_quats, a.scales}, {u, b.dual_quats, b.scales}};
       ok = DualQuatSamplingJob{f.a, ta, a.dual_quats, a.scales}.Run() &&
            DualQuatSamplingJob{f.b, tb, b.dual_quats, b.scales}.Run() &&
@@ -164,9 +164,10 @@ struct PosePipeline {
         ok = DualQuatPaletteJob{(*meshes)[m].joint_remap, (*inverse_binds)[m].dual_quats, model.dual_quats,
                                 model.scales, dq_palettes[m]}.Run();
     } else {
+      const Interpolation motor_mode = to_interpolation(mode);
       const BlendLayer layers[2] = {{1.0f - u, a.motors}, {u, b.motors}};
-      ok = SamplingJob{f.a, ta, mode, a.motors}.Run() && SamplingJob{f.b, tb, mode, b.motors}.Run() &&
-           BlendingJob{mode, layers, blended.motors}.Run() && LocalToModelJob{skeleton, blended.motors, model.motors}.Run();
+      ok = SamplingJob{f.a, ta, motor_mode, a.motors}.Run() && SamplingJob{f.b, tb, motor_mode, b.motors}.Run() &&
+           BlendingJob{motor_mode, layers, blended.motors}.Run() && LocalToModelJob{skeleton, blended.motors, model.motors}.Run();
       for (std::size_t m = 0; ok && m < meshes->size(); ++m)
         ok = SkinningPaletteJob{(*meshes)[m].joint_remap, (*inverse_binds)[m].motors, model.motors,
                                 motor_palettes[m]}.Run();
@@ -178,8 +179,8 @@ struct PosePipeline {
 
   glm::vec3 joint_position(int j) const {
     switch (mode) {
-      case Interpolation::glm_matrix: return glm::vec3(model.matrices[j][3]);
-      case Interpolation::glm_dualquat: return baseline::dual_quat_translation(model.dual_quats[j]);
+      case baseline::PoseMode::glm_matrix: return glm::vec3(model.matrices[j][3]);
+      case baseline::PoseMode::glm_dualquat: return baseline::dual_quat_translation(model.dual_quats[j]);
       default: return motor_transform_point(model.motors[j], glm::vec3(0.0f));
     }
   }
@@ -259,9 +260,9 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
     for (int i = 0; i < 12; ++i) some.push_back(times[i * (times.size() - 1) / 11]);
     times = some;
   }
-  PosePipeline mat(Interpolation::glm_matrix, ch.skeleton, ch.meshes, inverse_binds);
-  PosePipeline dq(Interpolation::glm_dualquat, ch.skeleton, ch.meshes, inverse_binds);
-  PosePipeline mot(Interpolation::nlerp, ch.skeleton, ch.meshes, inverse_binds);
+  PosePipeline mat(baseline::PoseMode::glm_matrix, ch.skeleton, ch.meshes, inverse_binds);
+  PosePipeline dq(baseline::PoseMode::glm_dualquat, ch.skeleton, ch.meshes, inverse_binds);
+  PosePipeline mot(baseline::PoseMode::nlerp, ch.skeleton, ch.meshes, inverse_binds);
   // worst[a][b]: the largest distance between methods[a] and methods[b] (b < a) over the key frames.
   std::vector<std::vector<float>> worst(methods.size(), std::vector<float>(methods.size(), 0.0f));
   for (float t : times) {
@@ -300,7 +301,7 @@ void key_frame_deviations(const Character& ch, const Fade& fade, const std::vect
 
 int run(const demo::Options& opt) {
   Progress progress;
-  const std::vector<Interpolation>& modes = opt.modes;
+  const std::vector<baseline::PoseMode>& modes = opt.modes;
   const std::vector<SkinningMethod>& methods = opt.methods;
 
   progress.stage("loading " + opt.model);
@@ -332,7 +333,7 @@ int run(const demo::Options& opt) {
   auto step = [&](int f) { return float(f) / float(frames - 1); };
   std::vector<std::vector<glm::vec3>> baseline(frames, std::vector<glm::vec3>(sk.joint_count()));
   {
-    PosePipeline ref(Interpolation::glm_matrix, sk, ch.meshes, inverse_binds);
+    PosePipeline ref(baseline::PoseMode::glm_matrix, sk, ch.meshes, inverse_binds);
     for (int f = 0; f < frames; ++f) {
       ref.run(fade, step(f));
       for (int j = 0; j < sk.joint_count(); ++j) baseline[f][j] = ref.joint_position(j);
@@ -341,7 +342,7 @@ int run(const demo::Options& opt) {
   fmt::print("pose: sample 2 clips + cross-fade + hierarchy ({} joints) + palettes ({} meshes), one core\n",
              sk.joint_count(), ch.meshes.size());
   fmt::print("  {:<13} {:>10}   {}\n", "mode", "us/pose", "max joint distance to glm-matrix / size");
-  for (Interpolation mode : modes) {
+  for (baseline::PoseMode mode : modes) {
     PosePipeline p(mode, sk, ch.meshes, inverse_binds);
     float worst = 0.0f;
     for (int f = 0; f < frames; ++f) {
@@ -359,7 +360,7 @@ int run(const demo::Options& opt) {
   if (ch.meshes.empty()) {
     fmt::print("skinning: the file has no skinned mesh, nothing to skin\n\n");
   } else {
-    const Interpolation pose_mode = Interpolation::screw;
+    const baseline::PoseMode pose_mode = baseline::PoseMode::screw;
     progress.stage(fmt::format("skinning {} vertices with {} methods", vertices, methods.size()));
     PosePipeline p(pose_mode, sk, ch.meshes, inverse_binds);
     int scaled = 0;
@@ -455,7 +456,7 @@ int run(const demo::Options& opt) {
     };
     web.modes = {Interpolation::paper, Interpolation::nlerp, Interpolation::screw};
     std::map<Interpolation, PosePipeline> pipelines;
-    for (Interpolation m : web.modes) pipelines.emplace(m, PosePipeline(m, sk, ch.meshes, inverse_binds));
+    for (Interpolation m : web.modes) pipelines.emplace(m, PosePipeline(baseline::to_pose_mode(m), sk, ch.meshes, inverse_binds));
     web.pose = [&](Interpolation m, float u, float w) {
       // The clip times of step u held fixed, so that the fade's step w only sets the weight.
       Fade at = fade;

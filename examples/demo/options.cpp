@@ -65,7 +65,7 @@ Options parse_options(int argc, const char* const* argv, const std::string& defa
   Options o;
   o.model = default_model;
   std::vector<cga::SkinningMethod> methods;
-  std::vector<cga::Interpolation> modes;
+  std::vector<cga::baseline::PoseMode> modes;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     // "--opt=value" and "--opt value" both work.
@@ -108,7 +108,7 @@ Options parse_options(int argc, const char* const* argv, const std::string& defa
     } else if (name == "--mode") {
       for (const std::string& m : split_commas(value())) {
         try {
-          add_unique(modes, cga::parse_interpolation(m));
+          add_unique(modes, cga::baseline::parse_pose_mode(m));
         } catch (const std::invalid_argument& e) {
           throw UsageError(std::string("--mode: ") + e.what());
         }

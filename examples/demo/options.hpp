@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cga/runtime/animation.hpp"
+#include "cga/baselines/pose_mode.hpp"
 #include "cga/runtime/skinning.hpp"
 
 namespace demo {
@@ -20,7 +20,10 @@ struct Options {
   std::string model;                      // --model FILE
   std::vector<std::string> clips;         // --clip NAME (0, 1 or 2 of them)
   std::vector<cga::SkinningMethod> methods = {cga::kAllSkinningMethods.begin(), cga::kAllSkinningMethods.end()};
-  std::vector<cga::Interpolation> modes = {cga::kAllInterpolations.begin(), cga::kAllInterpolations.end()};
+  // --mode NAME,...: the motor modes and the GLM baselines they are compared with (paper, nlerp, screw,
+  // glm-matrix, glm-dualquat).
+  std::vector<cga::baseline::PoseMode> modes = {cga::baseline::kAllPoseModes.begin(),
+                                                cga::baseline::kAllPoseModes.end()};
   std::string out_dir = "out";            // --out DIR
   bool pictures = true;                   // --no-pictures
   std::string web_dir;                    // --web DIR: also write the interactive page (empty: none)

@@ -11,7 +11,7 @@
 
 #include "cga/gpu/context.hpp"
 #include "cga/gpu/render.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/types.hpp"
 
 namespace demo {

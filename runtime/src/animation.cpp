@@ -13,20 +13,14 @@ std::string_view to_string(Interpolation mode) {
     case Interpolation::paper: return "paper";
     case Interpolation::nlerp: return "nlerp";
     case Interpolation::screw: return "screw";
-    case Interpolation::glm_matrix: return "glm-matrix";
-    case Interpolation::glm_dualquat: return "glm-dualquat";
   }
   return "?";
 }
 
 Interpolation parse_interpolation(std::string_view text) {
-  for (Interpolation m : kAllInterpolations) {
-    std::string alt(to_string(m));
-    std::replace(alt.begin(), alt.end(), '-', '_');
-    if (text == to_string(m) || text == alt) return m;
-  }
-  throw std::invalid_argument(
-      fmt::format("unknown interpolation mode '{}' (choose paper, nlerp, screw, glm-matrix, glm-dualquat)", text));
+  for (Interpolation m : kAllInterpolations)
+    if (text == to_string(m)) return m;
+  throw std::invalid_argument(fmt::format("unknown interpolation mode '{}' (choose paper, nlerp, screw)", text));
 }
 
 namespace {

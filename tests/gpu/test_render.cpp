@@ -9,9 +9,10 @@
 #include <filesystem>
 #include <string>
 
-#include "cga/gpu/pose.hpp"
 #include "cga/gpu/render.hpp"
 #include "cga/gpu/skinning.hpp"
+#include "cga/io/loader.hpp"
+#include "cga/testing/character_poser.hpp"
 #include "cga/testing/twist_strip.hpp"
 
 using namespace cga;
@@ -58,8 +59,9 @@ TEST_CASE("a posed character renders to a PNG per method") {
   REQUIRE(!ch.clips.empty());
   const Clip& clip = ch.clips.front();
   const float t = 0.5f * clip.duration;
+  cga::testing::CharacterPoser poser(ch);
   for (SkinningMethod method : kAllSkinningMethods) {
-    const Image im = render_posed_character(ctx, ch, clip, t, method, 256, 256);
+    const Image im = render_posed_character(ctx, ch, poser.pose(clip, t, method), method, 256, 256);
     check_png(im, std::string(CGA_GPU_PICTURES_DIR) + "/bcn_" + shader_method_name(method) + ".png");
   }
 }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "../runtime/scaled_rig.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/testing/key_times.hpp"
 #include "cga/gpu/skinning.hpp"
 

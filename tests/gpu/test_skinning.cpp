@@ -8,15 +8,20 @@
 #include <cmath>
 #include <string>
 
-#include "cga/gpu/pose.hpp"
+#include "cga/gpu/palette.hpp"
 #include "cga/gpu/skinning.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
+#include "cga/testing/character_poser.hpp"
+#include "cga/testing/key_times.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 #include "cga/testing/nan_max.hpp"
 
 using namespace cga;
 using namespace cga::gpu;
+using cga::testing::CharacterPoser;
+using cga::testing::key_times;
 
 namespace {
 

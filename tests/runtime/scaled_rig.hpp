@@ -22,7 +22,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning.hpp"
 
@@ -130,7 +130,7 @@ inline Character make_centimetre_rig() {
   return ch;
 }
 
-// The double-precision reference: the clip's local transforms at `time` (as the glm_matrix sampler gives
+// The double-precision reference: the clip's local transforms at `time` (as the glm-matrix sampler gives
 // them; at key times these are the keys), composed in double into each palette entry's similarity
 // (scale, rotation, translation); then each method in double.
 struct DoubleSimilarity {
@@ -267,7 +267,7 @@ struct Palettes {
   MotorPalette motors;
 };
 inline Palettes job_palettes(const Character& ch, std::size_t mesh_index, const Clip& clip, float time,
-                             Interpolation mode) {
+                             baseline::PoseMode mode) {
   const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
   const SkinnedMesh& mesh = ch.meshes[mesh_index];
   baseline::PoseBuffer local(n), model(n);
@@ -284,11 +284,11 @@ inline Palettes job_palettes(const Character& ch, std::size_t mesh_index, const 
 
 // The pose mode each method's pipeline uses here: lbs GLM matrices, dqs GLM dual quaternions, the cga methods
 // the motor modes given.
-inline Interpolation pipeline_mode(SkinningMethod method, Interpolation motor_mode) {
+inline baseline::PoseMode pipeline_mode(SkinningMethod method, Interpolation motor_mode) {
   switch (method) {
-    case SkinningMethod::lbs: return Interpolation::glm_matrix;
-    case SkinningMethod::dqs: return Interpolation::glm_dualquat;
-    default: return motor_mode;
+    case SkinningMethod::lbs: return baseline::PoseMode::glm_matrix;
+    case SkinningMethod::dqs: return baseline::PoseMode::glm_dualquat;
+    default: return baseline::to_pose_mode(motor_mode);
   }
 }
 

@@ -18,12 +18,14 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 
 using namespace cga;
+using baseline::kAllPoseModes;
+using baseline::PoseMode;
 namespace fs = std::filesystem;
 
 namespace {
@@ -157,27 +159,27 @@ Clip one_joint_clip(const std::vector<float>& times, const std::vector<Transform
 struct Sampler {
   const Clip* clip;
   float time;
-  Interpolation mode;
+  PoseMode mode;
   baseline::PoseBuffer* pose;
   bool Validate() const {
     switch (mode) {
-      case Interpolation::glm_matrix: return baseline::TransformSamplingJob{clip, time, pose->transforms}.Validate();
-      case Interpolation::glm_dualquat:
+      case PoseMode::glm_matrix: return baseline::TransformSamplingJob{clip, time, pose->transforms}.Validate();
+      case PoseMode::glm_dualquat:
         return baseline::DualQuatSamplingJob{clip, time, pose->dual_quats, pose->scales}.Validate();
-      default: return SamplingJob{clip, time, mode, pose->motors}.Validate();
+      default: return SamplingJob{clip, time, baseline::to_interpolation(mode), pose->motors}.Validate();
     }
   }
   bool Run() const { return baseline::sample(mode, *clip, time, *pose); }
 };
-Sampler sampler(const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& pose) {
+Sampler sampler(const Clip& clip, float t, PoseMode mode, baseline::PoseBuffer& pose) {
   return {&clip, t, mode, &pose};
 }
 
 // Where joint 0's sampled transform puts point p, in the pose's own representation.
-glm::vec3 apply(Interpolation mode, const baseline::PoseBuffer& pose, glm::vec3 p) {
+glm::vec3 apply(PoseMode mode, const baseline::PoseBuffer& pose, glm::vec3 p) {
   switch (mode) {
-    case Interpolation::glm_matrix: return glm::vec3(to_mat4(pose.transforms[0]) * glm::vec4(p, 1.0f));
-    case Interpolation::glm_dualquat:
+    case PoseMode::glm_matrix: return glm::vec3(to_mat4(pose.transforms[0]) * glm::vec4(p, 1.0f));
+    case PoseMode::glm_dualquat:
       return pose.dual_quats[0].real * (pose.scales[0] * p) + baseline::dual_quat_translation(pose.dual_quats[0]);
     default: return motor_transform_point(pose.motors[0], p);
   }
@@ -433,7 +435,7 @@ TEST_CASE("a clip with zero keys is refused") {
     c.duration = 1.0f;
     c.keys.resize(1);  // a joint with no keys at all
     baseline::PoseBuffer pose(1);
-    for (Interpolation mode : kAllInterpolations) {
+    for (PoseMode mode : kAllPoseModes) {
       INFO(to_string(mode));
       const Sampler s = sampler(c, 0.5f, mode, pose);
       CHECK_FALSE(s.Validate());
@@ -448,11 +450,11 @@ TEST_CASE("a clip with one key holds it at every time, in every mode") {
   baseline::PoseBuffer pose(1);
   const glm::vec3 p(0.5f, 0.25f, -1.0f);
   const glm::vec3 want = glm::vec3(to_mat4(k) * glm::vec4(p, 1.0f));
-  for (Interpolation mode : kAllInterpolations) {
+  for (PoseMode mode : kAllPoseModes) {
     for (float t : {-3.0f, 0.0f, 0.25f, 1.0f, 2.0f, 100.0f}) {
       INFO(to_string(mode) << " t=" << t);
       REQUIRE(sampler(clip, t, mode, pose).Run());
-      // glm_dualquat carries the scale apart from the rigid part; every mode must place p where the key does.
+      // glm-dualquat carries the scale apart from the rigid part; every mode must place p where the key does.
       CHECK(glm::length(apply(mode, pose, p) - want) < 1e-5f);
     }
   }
@@ -466,7 +468,7 @@ TEST_CASE("times outside the clip are clamped to its first and last key, non-fin
   const glm::vec3 p(0.1f, 0.2f, 0.3f);
   const glm::vec3 at_a = glm::vec3(to_mat4(a) * glm::vec4(p, 1.0f));
   const glm::vec3 at_b = glm::vec3(to_mat4(b) * glm::vec4(p, 1.0f));
-  for (Interpolation mode : kAllInterpolations) {
+  for (PoseMode mode : kAllPoseModes) {
     for (float t : {-1e30f, -1.0f, 0.0f, 0.5f}) {
       INFO(to_string(mode) << " t=" << t);
       REQUIRE(sampler(clip, t, mode, pose).Run());
@@ -489,16 +491,16 @@ TEST_CASE("times outside the clip are clamped to its first and last key, non-fin
 TEST_CASE("a cross-fade whose weights are all zero, negative or NaN is refused") {
   baseline::PoseBuffer x(2), y(2), out(2);
   for (const std::vector<float>& w : std::vector<std::vector<float>>{{0.0f, 0.0f}, {-1.0f, 0.0f}, {kNaN, 1.0f}}) {
-    for (Interpolation mode : kAllInterpolations) {
+    for (PoseMode mode : kAllPoseModes) {
       INFO(to_string(mode) << " weights " << w[0] << ", " << w[1]);
       const BlendLayer motor_layers[2] = {{w[0], x.motors}, {w[1], y.motors}};
       const baseline::TransformLayer trs_layers[2] = {{w[0], x.transforms}, {w[1], y.transforms}};
       const baseline::DualQuatLayer dq_layers[2] = {{w[0], x.dual_quats, x.scales}, {w[1], y.dual_quats, y.scales}};
-      const bool valid = mode == Interpolation::glm_matrix
+      const bool valid = mode == PoseMode::glm_matrix
                              ? baseline::TransformBlendingJob{trs_layers, out.transforms}.Validate()
-                         : mode == Interpolation::glm_dualquat
+                         : mode == PoseMode::glm_dualquat
                              ? baseline::DualQuatBlendingJob{dq_layers, out.dual_quats, out.scales}.Validate()
-                             : BlendingJob{mode, motor_layers, out.motors}.Validate();
+                             : BlendingJob{baseline::to_interpolation(mode), motor_layers, out.motors}.Validate();
       CHECK_FALSE(valid);
       const baseline::PoseLayer layers[2] = {{w[0], &x}, {w[1], &y}};
       CHECK_FALSE(baseline::blend(mode, layers, out));

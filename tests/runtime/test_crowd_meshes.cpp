@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/testing/crowd_meshes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
 

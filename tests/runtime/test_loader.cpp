@@ -13,7 +13,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/skinning.hpp"
 
 using namespace cga;
@@ -200,9 +200,10 @@ TEST_CASE("a skinned bone without a node loads as a static joint, with a warning
   // Every method through its own pipeline at the end of the clip (joint2 turned by 90 degrees).
   for (SkinningMethod method : kAllSkinningMethods) {
     INFO("method " << to_string(method));
-    const Interpolation mode = method == SkinningMethod::lbs   ? Interpolation::glm_matrix
-                               : method == SkinningMethod::dqs ? Interpolation::glm_dualquat
-                                                               : Interpolation::paper;
+    using baseline::PoseMode;
+    const PoseMode mode = method == SkinningMethod::lbs   ? PoseMode::glm_matrix
+                          : method == SkinningMethod::dqs ? PoseMode::glm_dualquat
+                                                          : PoseMode::paper;
     const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
     baseline::PoseBuffer local(n), model(n);
     REQUIRE(baseline::sample(mode, clip, clip.duration, local));

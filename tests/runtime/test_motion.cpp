@@ -11,7 +11,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/motion.hpp"
 #include "cga/runtime/motor.hpp"
 

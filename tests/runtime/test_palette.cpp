@@ -8,7 +8,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/testing/nan_max.hpp"
 
 using namespace cga;
@@ -28,7 +28,7 @@ struct Palettes {
 };
 
 // Samples `clip` at t in `mode`, runs the hierarchy and the palette of `mesh`.
-void pose_palette(const Character& ch, const Clip& clip, float t, Interpolation mode, const SkinnedMesh& mesh,
+void pose_palette(const Character& ch, const Clip& clip, float t, baseline::PoseMode mode, const SkinnedMesh& mesh,
                   const baseline::InverseBind& ib, baseline::PoseBuffer& local, baseline::PoseBuffer& model_pose,
                   Palettes& out) {
   REQUIRE(baseline::sample(mode, clip, t, local));
@@ -61,9 +61,9 @@ TEST_CASE("motor palette equals matrix palette on every key frame") {
         INFO(file << " mesh " << mesh.name << " clip " << clip.name << ", " << times.size() << " key times");
         float worst = 0.0f, worst_dq = 0.0f;
         for (float t : times) {
-          pose_palette(ch, clip, t, Interpolation::paper, mesh, ib, local, model_pose, cga_pal);
-          pose_palette(ch, clip, t, Interpolation::glm_matrix, mesh, ib, local, model_pose, glm_pal);
-          pose_palette(ch, clip, t, Interpolation::glm_dualquat, mesh, ib, local, model_pose, dq_pal);
+          pose_palette(ch, clip, t, baseline::PoseMode::paper, mesh, ib, local, model_pose, cga_pal);
+          pose_palette(ch, clip, t, baseline::PoseMode::glm_matrix, mesh, ib, local, model_pose, glm_pal);
+          pose_palette(ch, clip, t, baseline::PoseMode::glm_dualquat, mesh, ib, local, model_pose, dq_pal);
           std::vector<glm::mat3x4> from_motors(cga_pal.motors.size());
           for (std::size_t k = 0; k < from_motors.size(); ++k) from_motors[k] = motor_matrix(cga_pal.motors[k]);
           for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {

@@ -9,10 +9,12 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/testing/nan_max.hpp"
 
 using namespace cga;
+using baseline::kAllPoseModes;
+using baseline::PoseMode;
 
 namespace {
 
@@ -23,13 +25,13 @@ glm::vec3 glm_apply(const Transform& x, const glm::vec3& p) {
 }
 
 // Where the local pose of a joint in `pose` moves p, whatever the mode's representation.
-glm::vec3 pose_apply(Interpolation mode, const baseline::PoseBuffer& pose, std::size_t j, const glm::vec3& p) {
+glm::vec3 pose_apply(PoseMode mode, const baseline::PoseBuffer& pose, std::size_t j, const glm::vec3& p) {
   switch (mode) {
-    case Interpolation::paper:
-    case Interpolation::nlerp:
-    case Interpolation::screw: return motor_transform_point(pose.motors[j], p);
-    case Interpolation::glm_matrix: return glm_apply(pose.transforms[j], p);
-    case Interpolation::glm_dualquat: {
+    case PoseMode::paper:
+    case PoseMode::nlerp:
+    case PoseMode::screw: return motor_transform_point(pose.motors[j], p);
+    case PoseMode::glm_matrix: return glm_apply(pose.transforms[j], p);
+    case PoseMode::glm_dualquat: {
       const glm::dualquat& q = pose.dual_quats[j];
       return q.real * (pose.scales[j] * p) + baseline::dual_quat_translation(q);
     }
@@ -41,12 +43,15 @@ glm::vec3 pose_apply(Interpolation mode, const baseline::PoseBuffer& pose, std::
 struct Sampler {
   const Clip* clip;
   float time;
-  Interpolation mode;
+  PoseMode mode;
   baseline::PoseBuffer* pose;
   bool Run() const { return baseline::sample(mode, *clip, time, *pose); }
 };
-Sampler sampler(const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& pose) {
+Sampler sampler(const Clip& clip, float t, PoseMode mode, baseline::PoseBuffer& pose) {
   return {&clip, t, mode, &pose};
+}
+Sampler sampler(const Clip& clip, float t, Interpolation mode, baseline::PoseBuffer& pose) {
+  return sampler(clip, t, baseline::to_pose_mode(mode), pose);
 }
 
 const glm::vec3 kProbe[3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.3f, -0.7f, 0.5f}};
@@ -98,7 +103,7 @@ TEST_CASE("every mode reproduces the keys at key times, and its interpolant at a
         if (clip.keys[j].size() > clip.keys[busiest].size()) busiest = j;
       const std::vector<float>& times = clip.keys[busiest].times;
       const std::size_t step = std::max<std::size_t>(1, times.size() / 40);
-      for (Interpolation mode : kAllInterpolations) {
+      for (PoseMode mode : kAllPoseModes) {
         INFO(file << " clip " << clip.name << " mode " << to_string(mode));
         for (std::size_t ti = 0; ti < times.size(); ti += step) {
           REQUIRE(sampler(clip, times[ti], mode, pose).Run());
@@ -206,7 +211,7 @@ TEST_CASE("time is clamped to the clip") {
   b.translation = glm::vec3(1.0f, 0.0f, 0.0f);
   const Clip clip = one_joint_clip({0.0f, 1.0f}, {a, b});
   baseline::PoseBuffer pose(1);
-  for (Interpolation mode : kAllInterpolations) {
+  for (PoseMode mode : kAllPoseModes) {
     REQUIRE(sampler(clip, 5.0f, mode, pose).Run());
     CHECK(glm::length(pose_apply(mode, pose, 0, glm::vec3(0.0f)) - b.translation) < 1e-6f);
     REQUIRE(sampler(clip, -5.0f, mode, pose).Run());
@@ -215,9 +220,8 @@ TEST_CASE("time is clamped to the clip") {
   SamplingJob bad{&clip, 0.0f, Interpolation::paper, {}};
   CHECK_FALSE(bad.Validate());
   CHECK_FALSE(bad.Run());
-  // A motor job runs the motor modes only.
-  for (Interpolation mode : {Interpolation::glm_matrix, Interpolation::glm_dualquat})
-    CHECK_FALSE(SamplingJob{&clip, 0.0f, mode, pose.motors}.Validate());
+  // A mode outside the enum (an integer cast to Interpolation) is refused, not taken for one of the modes.
+  CHECK_FALSE(SamplingJob{&clip, 0.0f, static_cast<Interpolation>(kAllInterpolations.size()), pose.motors}.Validate());
 }
 
 TEST_CASE("blending: edge weights give a layer back, equal poses give the pose") {
@@ -226,7 +230,7 @@ TEST_CASE("blending: edge weights give a layer back, equal poses give the pose")
   const Clip& walk = *ch.find_clip("Wuson_Walk");
   const std::size_t n = ch.skeleton.joint_count();
   const float size = character_size(ch);
-  for (Interpolation mode : kAllInterpolations) {
+  for (PoseMode mode : kAllPoseModes) {
     INFO("mode " << to_string(mode));
     baseline::PoseBuffer a(n), b(n), out(n);
     REQUIRE(sampler(run, 0.3f, mode, a).Run());
@@ -394,7 +398,7 @@ TEST_CASE("joints whose keys start late or end early hold them while other joint
   build_joint_keys(clip);
   REQUIRE(clip.intervals.times == std::vector<float>{0.0f, 1.0f, 1.5f, 2.0f, 3.0f});
   baseline::PoseBuffer pose(2);
-  for (Interpolation mode : kAllInterpolations)
+  for (PoseMode mode : kAllPoseModes)
     for (float t : {0.0f, 0.5f, 1.0f, 1.25f, 1.5f, 1.75f, 2.0f, 2.5f, 3.0f}) {
       INFO(to_string(mode) << " t " << t);
       REQUIRE(sampler(clip, t, mode, pose).Run());

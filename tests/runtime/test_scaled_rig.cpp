@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scaled_rig.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/testing/key_times.hpp"
 
 using namespace cga;

@@ -10,7 +10,7 @@
 
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/io/loader.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/testing/key_times.hpp"
 #include "cga/testing/nan_max.hpp"
@@ -35,15 +35,16 @@ MeshPalettes palettes_at(const Character& ch, const SkinnedMesh& mesh, const bas
   const std::size_t n = static_cast<std::size_t>(ch.skeleton.joint_count());
   const std::size_t p = mesh.joint_remap.size();
   MeshPalettes out{MotorPalette(p), MatrixPalette(p), DualQuatPalette(p)};
-  for (Interpolation mode : {Interpolation::paper, Interpolation::glm_matrix, Interpolation::glm_dualquat}) {
+  using baseline::PoseMode;
+  for (PoseMode mode : {PoseMode::paper, PoseMode::glm_matrix, PoseMode::glm_dualquat}) {
     baseline::PoseBuffer local(n), model_pose(n);
     REQUIRE(baseline::sample(mode, ch.clips.front(), time, local));
     REQUIRE(baseline::local_to_model(mode, ch.skeleton, local, model_pose));
     baseline::PaletteBuffer pal(p);
     REQUIRE(baseline::palette(mode, mesh.joint_remap, ib, model_pose, pal));
-    if (mode == Interpolation::paper) out.motors = pal.motors;
-    if (mode == Interpolation::glm_matrix) out.matrices = pal.matrices;
-    if (mode == Interpolation::glm_dualquat) out.dual_quats = pal.dual_quats;
+    if (mode == PoseMode::paper) out.motors = pal.motors;
+    if (mode == PoseMode::glm_matrix) out.matrices = pal.matrices;
+    if (mode == PoseMode::glm_dualquat) out.dual_quats = pal.dual_quats;
   }
   return out;
 }

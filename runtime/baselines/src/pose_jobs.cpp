@@ -264,6 +264,14 @@ bool DualQuatPaletteJob::Run() const {
 
 // ------------------------------------------------------------------------------------ any-mode pipeline
 
+namespace {
+
+// The Interpolation of a motor PoseMode (the values are shared). A value outside the enum stays one, and the
+// motor job's Validate() refuses it, so the pipeline returns false where to_interpolation() would throw.
+Interpolation motor_mode(PoseMode mode) { return static_cast<Interpolation>(mode); }
+
+}  // namespace
+
 InverseBind make_inverse_bind(const SkinnedMesh& mesh) {
   InverseBind ib;
   const std::size_t n = mesh.joint_remap.size();
@@ -278,26 +286,26 @@ InverseBind make_inverse_bind(const SkinnedMesh& mesh) {
   return ib;
 }
 
-bool sample(Interpolation mode, const Clip& clip, float time, PoseBuffer& out) {
+bool sample(PoseMode mode, const Clip& clip, float time, PoseBuffer& out) {
   switch (mode) {
-    case Interpolation::glm_matrix: return TransformSamplingJob{&clip, time, out.transforms}.Run();
-    case Interpolation::glm_dualquat: return DualQuatSamplingJob{&clip, time, out.dual_quats, out.scales}.Run();
-    default: return SamplingJob{&clip, time, mode, out.motors}.Run();
+    case PoseMode::glm_matrix: return TransformSamplingJob{&clip, time, out.transforms}.Run();
+    case PoseMode::glm_dualquat: return DualQuatSamplingJob{&clip, time, out.dual_quats, out.scales}.Run();
+    default: return SamplingJob{&clip, time, motor_mode(mode), out.motors}.Run();
   }
 }
 
-bool blend(Interpolation mode, std::span<const PoseLayer> layers, PoseBuffer& out) {
+bool blend(PoseMode mode, std::span<const PoseLayer> layers, PoseBuffer& out) {
   constexpr std::size_t kMaxLayers = 16;
   if (layers.size() > kMaxLayers) return false;
   for (const PoseLayer& l : layers)
     if (!l.pose) return false;
   switch (mode) {
-    case Interpolation::glm_matrix: {
+    case PoseMode::glm_matrix: {
       TransformLayer t[kMaxLayers];
       for (std::size_t k = 0; k < layers.size(); ++k) t[k] = {layers[k].weight, layers[k].pose->transforms};
       return TransformBlendingJob{{t, layers.size()}, out.transforms}.Run();
     }
-    case Interpolation::glm_dualquat: {
+    case PoseMode::glm_dualquat: {
       DualQuatLayer d[kMaxLayers];
       for (std::size_t k = 0; k < layers.size(); ++k)
         d[k] = {layers[k].weight, layers[k].pose->dual_quats, layers[k].pose->scales};
@@ -306,36 +314,36 @@ bool blend(Interpolation mode, std::span<const PoseLayer> layers, PoseBuffer& ou
     default: {
       BlendLayer m[kMaxLayers];
       for (std::size_t k = 0; k < layers.size(); ++k) m[k] = {layers[k].weight, layers[k].pose->motors};
-      return BlendingJob{mode, {m, layers.size()}, out.motors}.Run();
+      return BlendingJob{motor_mode(mode), {m, layers.size()}, out.motors}.Run();
     }
   }
 }
 
-bool local_to_model(Interpolation mode, const Skeleton& skeleton, const PoseBuffer& local, PoseBuffer& model) {
+bool local_to_model(PoseMode mode, const Skeleton& skeleton, const PoseBuffer& local, PoseBuffer& model) {
   switch (mode) {
-    case Interpolation::glm_matrix: return MatrixLocalToModelJob{&skeleton, local.transforms, model.matrices}.Run();
-    case Interpolation::glm_dualquat:
+    case PoseMode::glm_matrix: return MatrixLocalToModelJob{&skeleton, local.transforms, model.matrices}.Run();
+    case PoseMode::glm_dualquat:
       return DualQuatLocalToModelJob{&skeleton, local.dual_quats, local.scales, model.dual_quats, model.scales}.Run();
     default: return LocalToModelJob{&skeleton, local.motors, model.motors}.Run();
   }
 }
 
-bool palette(Interpolation mode, std::span<const int> joint_remap, const InverseBind& inverse_bind,
+bool palette(PoseMode mode, std::span<const int> joint_remap, const InverseBind& inverse_bind,
              const PoseBuffer& model, PaletteBuffer& out) {
   switch (mode) {
-    case Interpolation::glm_matrix:
+    case PoseMode::glm_matrix:
       return MatrixPaletteJob{joint_remap, inverse_bind.matrices, model.matrices, out.matrices}.Run();
-    case Interpolation::glm_dualquat:
+    case PoseMode::glm_dualquat:
       return DualQuatPaletteJob{joint_remap, inverse_bind.dual_quats, model.dual_quats, model.scales, out.dual_quats}
           .Run();
     default: return SkinningPaletteJob{joint_remap, inverse_bind.motors, model.motors, out.motors}.Run();
   }
 }
 
-glm::vec3 joint_position(Interpolation mode, const PoseBuffer& model, int j) {
+glm::vec3 joint_position(PoseMode mode, const PoseBuffer& model, int j) {
   switch (mode) {
-    case Interpolation::glm_matrix: return glm::vec3(model.matrices[j][3]);
-    case Interpolation::glm_dualquat: return dual_quat_translation(model.dual_quats[j]);
+    case PoseMode::glm_matrix: return glm::vec3(model.matrices[j][3]);
+    case PoseMode::glm_dualquat: return dual_quat_translation(model.dual_quats[j]);
     default: return motor_transform_point(model.motors[j], glm::vec3(0.0f));
   }
 }

@@ -14,7 +14,7 @@
 #include <GL/glcorearb.h>
 
 #include "cga/gpu/label.hpp"
-#include "cga/gpu/pose.hpp"
+#include "cga/gpu/palette.hpp"
 #include "cga/gpu/skinning.hpp"
 #include "cga/runtime/motor.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
@@ -246,10 +246,11 @@ Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, co
   return image;
 }
 
-Image render_posed_character(const Context& context, const Character& character, const Clip& clip, float time,
-                             SkinningMethod method, int width, int height) {
-  CharacterPoser poser(character);
-  const std::vector<MeshPalette> palettes = poser.pose(clip, time, method);
+Image render_posed_character(const Context& context, const Character& character,
+                             std::span<const MeshPalette> palettes, SkinningMethod method, int width, int height) {
+  if (palettes.size() != character.meshes.size())
+    throw std::invalid_argument("cga::gpu::render_posed_character: " + std::to_string(palettes.size()) +
+                                " palettes for " + std::to_string(character.meshes.size()) + " meshes");
   Skinner skinner(context, method);
   std::vector<SkinnedVertices> skinned;
   for (std::size_t m = 0; m < character.meshes.size(); ++m) {

@@ -1,5 +1,5 @@
 // The runtime's one SIMD vector header: 4- and 8-float GCC vector types with unaligned loads and stores, a
-// lane-wise square root and the 8x8 transpose, shared by the pose jobs (jobs.cpp) and the skinning loops
+// lane-wise square root and the 8x8 transpose, shared by the pose jobs (jobs/) and the skinning loops
 // (skinning/). GCC's vector extensions keep it portable: an 8-float operation is one AVX instruction in the
 // x86-64-v3 clones and two SSE ones in the default clones. Everything is always inlined into its caller, so
 // it is built for the caller's ISA and the AVX argument ABI that -Wpsabi warns about never applies.

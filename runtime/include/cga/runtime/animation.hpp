@@ -1,7 +1,7 @@
 // Animation data: a clip's per-joint key tracks as loaded (translation / rotation / scale keys at their own
 // times) and, per joint, the merged keys the sampler reads: every key time of the joint's three tracks,
 // with the full TRS at each and its precomputed representations (motor T*R*D, rigid T*R for the paper's
-// lerp, dual quaternion for the baseline). Also the interpolation modes.
+// lerp, dual quaternion for the GLM baseline). Also the interpolation modes.
 #pragma once
 
 #include <array>
@@ -15,26 +15,21 @@
 
 namespace cga {
 
-// How the sampler interpolates between two keys (and the blender between two poses).
-//   paper         the paper's eq. 25/27: linear lerp of the rigid motors T*R, linear lerp of the dilators,
-//                 their product (generated motor_lerp_paper). Not a unit motor; points divide by the weight.
-//   nlerp         lerp of the 12 motor coefficients with the antipodal sign fix, then normalized (projected
-//                 back onto T*R*D, see motor_to_transform).
-//   screw         motor log/exp: constant-speed screw motion for the rigid part, geometric scale.
-//   glm_matrix    baseline: quaternion slerp + vector lerp + scale lerp (GLM), to matrices in the hierarchy.
-//   glm_dualquat  baseline: dual-quaternion lerp (GLM dualquat, sign fix) normalized; scale lerped apart.
-enum class Interpolation { paper, nlerp, screw, glm_matrix, glm_dualquat };
-inline constexpr std::array<Interpolation, 5> kAllInterpolations{
-    Interpolation::paper, Interpolation::nlerp, Interpolation::screw, Interpolation::glm_matrix,
-    Interpolation::glm_dualquat};
-// "paper", "nlerp", "screw", "glm-matrix", "glm-dualquat".
+// How the sampler interpolates between two keys (and the blender between two poses): the motor modes.
+//   paper   the paper's eq. 25/27: linear lerp of the rigid motors T*R, linear lerp of the dilators, their
+//           product (generated motor_lerp_paper). Not a unit motor; points divide by the weight.
+//   nlerp   lerp of the 12 motor coefficients with the antipodal sign fix, then normalized (projected back
+//           onto T*R*D, see motor_to_transform).
+//   screw   motor log/exp: constant-speed screw motion for the rigid part, geometric scale.
+// The GLM matrix and dual-quaternion pipelines the motor modes are compared against are no Interpolation:
+// cga::baselines names them (cga::baseline::PoseMode, cga/baselines/pose_mode.hpp).
+enum class Interpolation { paper, nlerp, screw };
+inline constexpr std::array<Interpolation, 3> kAllInterpolations{Interpolation::paper, Interpolation::nlerp,
+                                                                 Interpolation::screw};
+// "paper", "nlerp", "screw".
 std::string_view to_string(Interpolation mode);
-// Accepts to_string()'s names and the enum spelling; throws std::invalid_argument listing the choices.
+// Accepts to_string()'s names; throws std::invalid_argument listing the choices.
 Interpolation parse_interpolation(std::string_view text);
-// Which pose representation a mode produces.
-inline bool uses_motors(Interpolation m) {
-  return m == Interpolation::paper || m == Interpolation::nlerp || m == Interpolation::screw;
-}
 
 struct VectorKey {
   float time;  // seconds

@@ -8,7 +8,7 @@
 //   SkinningPaletteJob  model motors -> a mesh's palette (model[remap[k]] * inverse_bind[k])
 //
 // A pose is an array of Motor, one per joint (types.hpp). The GLM matrix and dual-quaternion pipelines that
-// the benchmarks and tests compare against are not part of cga::runtime: they live in cga::test_support
+// the benchmarks and tests compare against are not part of cga::runtime: they live in cga::baselines
 // (cga/baselines/pose_jobs.hpp). See docs/runtime.md for where a new job goes.
 #pragma once
 
@@ -20,7 +20,7 @@
 
 namespace cga {
 
-// Interpolation modes a motor job runs: paper, nlerp, screw (uses_motors()); the glm_* modes are rejected.
+// The clip sampled at `time` in one of the motor modes (Interpolation: paper, nlerp, screw).
 struct SamplingJob {
   const Clip* clip = nullptr;  // its keys built (build_joint_keys)
   // Seconds; clamped to [0, clip->duration] (before the first key: the first key; after the last: the last).
@@ -60,7 +60,7 @@ struct BlendingJob {
 };
 
 // Model space from local space down the skeleton, by the generated motor product (the 8-blade rigid product
-// when no local motor has a dilation; otherwise the split form, see jobs.cpp).
+// when no local motor has a dilation; otherwise the split form, see src/jobs/common.hpp).
 struct LocalToModelJob {
   const Skeleton* skeleton = nullptr;  // parents[j] < j
   std::span<const Motor> input;        // size >= joint count

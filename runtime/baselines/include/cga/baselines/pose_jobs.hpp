@@ -3,12 +3,14 @@
 //   Transform   quaternion slerp + vector lerp + scale lerp locally, glm::mat4 in model space, mat3x4 palettes
 //   DualQuat    glm::dualquat (rigid part) + float uniform scale per joint, dual-quaternion palettes
 // Not part of cga::runtime's API (they exist only for comparison). At the bottom: an any-mode pose pipeline
-// (PoseBuffer, sample/blend/local_to_model/palette over every Interpolation) for code that compares modes.
+// (PoseBuffer, sample/blend/local_to_model/palette over every PoseMode, pose_mode.hpp) for code that compares
+// the motor modes with the baselines.
 #pragma once
 
 #include <span>
 #include <vector>
 
+#include "cga/baselines/pose_mode.hpp"
 #include "cga/runtime/animation.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/types.hpp"
@@ -156,13 +158,14 @@ struct PoseLayer {
   const PoseBuffer* pose = nullptr;
 };
 
-// Each runs the job of the mode's representation (motor modes: cga::runtime's jobs) and returns its Run().
-bool sample(Interpolation mode, const Clip& clip, float time, PoseBuffer& out);
-bool blend(Interpolation mode, std::span<const PoseLayer> layers, PoseBuffer& out);
-bool local_to_model(Interpolation mode, const Skeleton& skeleton, const PoseBuffer& local, PoseBuffer& model);
-bool palette(Interpolation mode, std::span<const int> joint_remap, const InverseBind& inverse_bind,
+// Each runs the job of the mode's representation (motor modes: cga::runtime's jobs in that Interpolation)
+// and returns its Run().
+bool sample(PoseMode mode, const Clip& clip, float time, PoseBuffer& out);
+bool blend(PoseMode mode, std::span<const PoseLayer> layers, PoseBuffer& out);
+bool local_to_model(PoseMode mode, const Skeleton& skeleton, const PoseBuffer& local, PoseBuffer& model);
+bool palette(PoseMode mode, std::span<const int> joint_remap, const InverseBind& inverse_bind,
              const PoseBuffer& model, PaletteBuffer& out);
 // The model-space position of joint j of a model pose.
-glm::vec3 joint_position(Interpolation mode, const PoseBuffer& model, int j);
+glm::vec3 joint_position(PoseMode mode, const PoseBuffer& model, int j);
 
 }  // namespace cga::baseline

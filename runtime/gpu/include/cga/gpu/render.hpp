@@ -1,7 +1,8 @@
 // Pictures on the GL backend: skinned meshes drawn into an offscreen framebuffer (depth test, two-sided
 // Lambert shading, orthographic camera fitted to the meshes), read back as RGBA images and written as PNG.
-// render_posed_character() and render_method_strip() are what the demo calls (the latter through
-// render_twist_strip() of tests/support).
+// render_posed_character() draws palettes posed elsewhere (the GPU tests pose them with the GLM baselines
+// and the motor jobs); render_method_strip() is what the demo calls (through render_twist_strip() of
+// tests/support).
 #pragma once
 
 #include <array>
@@ -13,7 +14,8 @@
 #include <glm/glm.hpp>
 
 #include "cga/gpu/context.hpp"
-#include "cga/runtime/loader.hpp"
+#include "cga/gpu/palette.hpp"
+#include "cga/runtime/character.hpp"
 #include "cga/runtime/skinning.hpp"
 
 namespace cga::gpu {
@@ -76,10 +78,12 @@ Image render_meshes(const Context& context, std::span<const DrawMesh> meshes, co
 // The colour each method is drawn in (the demo's colours).
 glm::vec3 method_colour(SkinningMethod method);
 
-// Every mesh of the character posed at `time` of `clip` and skinned on the GPU (vertex shader + transform
-// feedback) with `method`.
-Image render_posed_character(const Context& context, const Character& character, const Clip& clip, float time,
-                             SkinningMethod method, int width = 512, int height = 512);
+// Every mesh of the character skinned on the GPU (vertex shader + transform feedback) with `method` and its
+// palette in `palettes` (one per mesh, in order, in the method's representation). Throws
+// std::invalid_argument when the counts differ.
+Image render_posed_character(const Context& context, const Character& character,
+                             std::span<const MeshPalette> palettes, SkinningMethod method, int width = 512,
+                             int height = 512);
 
 // `mesh` skinned on the GPU (vertex shader + transform feedback) with the mesh-space skinning transforms
 // `skinning_transforms` (one per palette entry) by each of `methods` (default: the four, in the order lbs,
