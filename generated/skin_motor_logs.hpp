@@ -38,6 +38,8 @@ inline constexpr std::array<std::string_view, 3> skin_motor_logs_p_blades = {"e1
 inline constexpr std::array<std::string_view, 3> skin_motor_logs_n_blades = {"e1", "e2", "e3"};
 
 inline void skin_motor_logs(const float Lr0[4], const float Lt0[3], const float Kr0[4], const float Kt0[3], const float Lr1[4], const float Lt1[3], const float Kr1[4], const float Kt1[3], const float Lr2[4], const float Lt2[3], const float Kr2[4], const float Kt2[3], const float Lr3[4], const float Lt3[3], const float Kr3[4], const float Kt3[3], float w0, float w1, float w2, float w3, float x, float y, float z, float nx, float ny, float nz, float p[3], float n[3]) {
+  (void)Kr0;
+  (void)Kt0;
   const float t0 = Lr0[0] * Lr0[0];
   const float t1 = Lr0[1] * Lr0[1];
   const float t2 = Lr0[2] * Lr0[2];
@@ -118,6 +120,8 @@ inline void skin_motor_logs(const float Lr0[4], const float Lt0[3], const float 
 }
 
 inline void skin_motor_logs(const double Lr0[4], const double Lt0[3], const double Kr0[4], const double Kt0[3], const double Lr1[4], const double Lt1[3], const double Kr1[4], const double Kt1[3], const double Lr2[4], const double Lt2[3], const double Kr2[4], const double Kt2[3], const double Lr3[4], const double Lt3[3], const double Kr3[4], const double Kt3[3], double w0, double w1, double w2, double w3, double x, double y, double z, double nx, double ny, double nz, double p[3], double n[3]) {
+  (void)Kr0;
+  (void)Kt0;
   const double t0 = Lr0[0] * Lr0[0];
   const double t1 = Lr0[1] * Lr0[1];
   const double t2 = Lr0[2] * Lr0[2];

@@ -263,6 +263,7 @@ TEST_CASE("the shared palette copies: every (unit, copy) has its own slot, each 
 }
 
 TEST_CASE("modelled wavefronts of the palette reads: 8 copies take the minimum on random joints") {
+  // (Every method whose 64-bone palette fits 8 copies; a larger entry gets fewer copies, see below.)
   const SkinnedMesh random = make_random_skinned_mesh(4096, 64, 1234u);
   const SkinnedMesh coherent = make_coherent_skinned_mesh(4096, 64, 1234u);
   for (SkinningMethod m : kAllSkinningMethods) {
@@ -274,10 +275,18 @@ TEST_CASE("modelled wavefronts of the palette reads: 8 copies take the minimum o
     INFO(to_string(m) << ": random " << random_one << " -> " << random_copies << ", coherent " << coherent_one
                       << " -> " << coherent_copies);
     CHECK(random_one > 8.0);        // Nsight Compute on an H200, lbs: 9.3
-    CHECK(random_copies == 4.0);    // one wavefront per quarter warp: the 128-bit minimum
     CHECK(coherent_one >= 4.0);
     CHECK(coherent_one < 5.0);
-    CHECK(coherent_copies == 4.0);
+    if (copies.copies == 8) {
+      CHECK(random_copies == 4.0);  // one wavefront per quarter warp: the 128-bit minimum
+      CHECK(coherent_copies == 4.0);
+    } else {
+      // An entry too large for 8 copies of 64 bones in the shared budget (cga-log's 4 vec4s: 4 copies) still
+      // gains from its copies on random joints.
+      INFO(copies.copies << " copies");
+      CHECK(copies.copies >= 4);
+      CHECK(random_copies < random_one);
+    }
   }
   // One warp, all lanes on one joint: a broadcast, one wavefront per quarter warp in either layout.
   const std::vector<std::array<std::uint16_t, 4>> same(32, {5, 5, 5, 5});
