@@ -157,6 +157,42 @@ Multivector up(const ex& x, const ex& y, const ex& z, const ex& r2) {
          Multivector::blade(4, (x * x + y * y + z * z - r2) / 2) + Multivector::e0();
 }
 
+// A binary product of the table below (lcont, rcont, ...).
+Builtin binary(const std::string& name, Multivector (*f)(const Multivector&, const Multivector&)) {
+  return {name, {2}, false, [f](const Call& c) { return f(c.args[0], c.args[1]); }};
+}
+Builtin unary(const std::string& name, Multivector (*f)(const Multivector&)) {
+  return {name, {1}, false, [f](const Call& c) { return f(c.args[0]); }};
+}
+
+// <X ~X>_0, the squared reverse norm.
+ex reverse_norm_squared(const Multivector& x) {
+  return graded_product(Multivector::Graded::Scalar, x, x.reverse()).scalar();
+}
+
+// grade(X, k): k must be a constant integer from 0 to the algebra's dimension.
+Multivector grade_select(const Call& c) {
+  const Multivector k = c.ctx.scalar_part_if_scalar(c.args[1]);
+  const int dim = algebra::current().dimension();
+  const std::string range = "an integer constant from 0 to " + std::to_string(dim);
+  if (!k.is_scalar() || !GiNaC::is_a<GiNaC::numeric>(k.scalar()))
+    throw CompileError(c.expr.args[1]->loc, "'grade' takes as its second argument " + range +
+                                                " (a number, not a value that depends on the inputs)");
+  const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(k.scalar());
+  if (!n.is_integer() || n.is_negative() || n > dim)
+    throw CompileError(c.expr.args[1]->loc, "'grade' takes as its second argument " + range + " in the algebra '" +
+                                                algebra::current().name() + "'");
+  return c.args[0].grade(n.to_int());
+}
+
+// normalize(X) = X / sqrt(|<X ~X>_0|), in every algebra.
+Multivector normalize(const Call& c) {
+  const Multivector n2 = c.ctx.scalar_part_if_scalar(Multivector(reverse_norm_squared(c.args[0])));
+  if (n2.is_zero())
+    throw CompileError(c.expr.args[0]->loc, "'normalize' of a multivector whose squared norm <X ~X>_0 is 0");
+  return c.args[0] / GiNaC::sqrt(GiNaC::abs(n2.scalar()));
+}
+
 // CLUCalc's DefVars*: they declare the basis names of a space for CLUCalc's interpreter; a script compiled
 // for one algebra has them already, so they do nothing (and return 0, as a statement of their own).
 Builtin no_op(const std::string& name) {
@@ -190,6 +226,32 @@ const std::vector<Builtin>& table() {
       {"invert", {1}, false,
        [](const Call& c) { return c.ctx.divide(Multivector(ex(1)), c.args[0], *c.expr.args[0]); }},
       {"Dual", {1}, false, [](const Call& c) { return c.args[0].dual(); }},
+      // The operator set of GATL, kingdon and ga-benchmark (docs/language.md, "Operators and functions").
+      unary("undual", [](const Multivector& a) { return a.undual(); }),
+      unary("involute", [](const Multivector& a) { return a.involute(); }),
+      unary("conjugate", [](const Multivector& a) { return a.reverse().involute(); }),
+      unary("rnorm_sqr", [](const Multivector& a) { return Multivector(reverse_norm_squared(a)); }),
+      {"normalize", {1}, false, normalize},
+      {"grade", {2}, false, grade_select},
+      binary("lcont", [](const Multivector& a, const Multivector& b) {
+        return graded_product(Multivector::Graded::LeftContraction, a, b);
+      }),
+      binary("rcont", [](const Multivector& a, const Multivector& b) {
+        return graded_product(Multivector::Graded::RightContraction, a, b);
+      }),
+      binary("scp", [](const Multivector& a, const Multivector& b) {
+        return graded_product(Multivector::Graded::Scalar, a, b);
+      }),
+      binary("dot", [](const Multivector& a, const Multivector& b) {
+        return graded_product(Multivector::Graded::Dot, a, b);
+      }),
+      binary("hip", [](const Multivector& a, const Multivector& b) { return inner(a, b); }),
+      binary("cp", [](const Multivector& a, const Multivector& b) {
+        return GiNaC::numeric(1, 2) * (a * b - b * a);
+      }),
+      binary("rp", [](const Multivector& a, const Multivector& b) { return (a.dual() ^ b.dual()).undual(); }),
+      // igp(A, B) = A * invert(B) = A / B.
+      {"igp", {2}, false, [](const Call& c) { return c.ctx.divide(c.args[0], c.args[1], *c.expr.args[1]); }},
       // coefficient(mv, blade): the scalar c with which mv holds c * blade, for a blade given as one basis
       // blade (e1^e2, or e2^e1 = -e1^e2, or 1).
       {"coefficient", {2}, false, [](const Call& c) {

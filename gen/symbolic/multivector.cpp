@@ -246,6 +246,41 @@ Multivector inner(const Multivector& a, const Multivector& b) {
   return Multivector::product(algebra::ProductKind::Inner, a, b);
 }
 
+Multivector graded_product(Multivector::Graded kind, const Multivector& a, const Multivector& b) {
+  using G = Multivector::Graded;
+  std::map<BladeIndex, GiNaC::exvector> acc;
+  std::map<BladeIndex, std::size_t> estimate;
+  for (const auto& [i, ca] : a.terms_) {
+    const int r = algebra::blade_grade(i);
+    for (const auto& [j, cb] : b.terms_) {
+      const int s = algebra::blade_grade(j);
+      int want = 0;
+      switch (kind) {
+        case G::LeftContraction: want = s - r; break;
+        case G::RightContraction: want = r - s; break;
+        case G::Scalar: want = 0; break;
+        case G::Dot: want = r > s ? r - s : s - r; break;
+      }
+      if (want < 0) continue;
+      const auto& terms = algebra::product(algebra::ProductKind::Geometric, i, j);
+      GiNaC::ex ab;
+      bool any = false;
+      for (const auto& t : terms) {
+        if (algebra::blade_grade(t.blade) != want) continue;
+        if (!any) ab = ca * cb, any = true;
+        estimate[t.blade] += term_count(ca) * term_count(cb);
+        acc[t.blade].push_back(t.coeff == algebra::Rational(1) ? ab : to_ex(t.coeff) * ab);
+      }
+    }
+  }
+  for (const auto& [k, n] : estimate)
+    if (n) WorkBudget::charge(n);
+  Multivector out;
+  for (auto& [k, terms] : acc)
+    if (!terms.empty()) out.set(k, GiNaC::add(terms));
+  return out;
+}
+
 Multivector operator*(const GiNaC::ex& s, const Multivector& a) {
   Multivector r;
   for (const auto& [b, c] : a.terms_) {
@@ -301,6 +336,16 @@ Multivector Multivector::dual() const {
   for (const auto& [b, c] : terms_)
     r.terms_[alg.index(alg.bits(b) ^ alg.bits(top))] = c;
   return r;
+}
+
+Multivector Multivector::undual() const {
+  const algebra::Algebra& alg = algebra::current();
+  const bool cga = alg.name() == "cga" && alg.spec().cga_idents;
+  if (!cga && !alg.inverse_pseudoscalar()) return dual();  // the complement map is an involution
+  // dual(A) = A * d with d a multiple of the pseudoscalar, so d * d is a nonzero scalar and d^-1 = d / (d*d).
+  const Multivector d = Multivector(GiNaC::ex(1)).dual();
+  const Multivector dd = d * d;
+  return *this * (d / dd.scalar());
 }
 
 Multivector Multivector::expanded() const {

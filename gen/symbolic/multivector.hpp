@@ -51,6 +51,14 @@ class Multivector {
   friend Multivector operator*(const Multivector& a, const Multivector& b);  // geometric product
   friend Multivector operator^(const Multivector& a, const Multivector& b);  // outer product
   friend Multivector inner(const Multivector& a, const Multivector& b);      // Gaalop inner product
+  // The products that keep one grade of each blade pair's geometric product (docs/language.md, "Products").
+  enum class Graded {
+    LeftContraction,   // grade s - r of A_r B_s, 0 when r > s
+    RightContraction,  // grade r - s of A_r B_s, 0 when r < s
+    Scalar,            // grade 0 of A B
+    Dot,               // grade |r - s| of A_r B_s, scalars included (Gaalop's inner product drops them)
+  };
+  friend Multivector graded_product(Graded kind, const Multivector& a, const Multivector& b);
   // Scalar multiplication and division (coefficient-wise, expanded).
   friend Multivector operator*(const GiNaC::ex& s, const Multivector& a);
   friend Multivector operator*(const Multivector& a, const GiNaC::ex& s) { return s * a; }
@@ -63,6 +71,9 @@ class Multivector {
   // Gaalop's *A: in CGA A * (-e1^e2^e3^einf^e0); in a nondegenerate algebra A * I^-1; in a degenerate one
   // (PGA) the complement map of Gaalop's 3dpga/2dpga (see multivector.cpp, docs/generator.md).
   Multivector dual() const;
+  // The inverse of dual(): undual(dual(A)) = A. In a nondegenerate algebra A * (d)^-1 for dual's factor d; in
+  // a degenerate one the complement map again (it is its own inverse).
+  Multivector undual() const;
   // Re-expands every coefficient and, where a coefficient still has a denominator, normalizes it to find
   // identically-zero ones (normal() is only paid for rational coefficients).
   Multivector expanded() const;

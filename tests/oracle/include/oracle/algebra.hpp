@@ -224,4 +224,80 @@ inline MV dual(const Algebra& alg, const MV& a) {
   return product(alg, a, I, Op::Geometric);
 }
 
+// ---- the operator set of GATL / ga-benchmark, from the definitions (each over the diagonal basis, where a
+// blade's grade is its bit count) ----
+
+inline MV scaled(const MV& a, double f) {
+  MV r;
+  for (const auto& [x, c] : a) add(r, x, f * c);
+  return clean(r);
+}
+inline MV sum(const MV& a, const MV& b, double fb = 1.0) {
+  MV r = a;
+  for (const auto& [x, c] : b) r[x] += fb * c;
+  return clean(r);
+}
+// <A>_k.
+inline MV grade(const MV& a, int k) {
+  MV r;
+  for (const auto& [x, c] : a)
+    if (std::popcount(x) == k) r[x] = c;
+  return r;
+}
+// (-1)^k on grade k.
+inline MV involute(const MV& a) {
+  MV r;
+  for (const auto& [x, c] : a) r[x] = (std::popcount(x) % 2) ? -c : c;
+  return r;
+}
+// Clifford conjugation: (-1)^(k(k+1)/2) on grade k.
+inline MV conjugate(const MV& a) {
+  MV r;
+  for (const auto& [x, c] : a) {
+    const int k = std::popcount(x);
+    r[x] = ((k * (k + 1) / 2) % 2) ? -c : c;
+  }
+  return r;
+}
+
+// Left contraction (grade s - r of A_r B_s, none when r > s), right contraction (r - s, none when r < s),
+// scalar product (grade 0), dot product (|r - s|, scalars included).
+enum class Graded { Left, Right, Scalar, Dot };
+inline MV graded(const Algebra& alg, const MV& a, const MV& b, Graded kind) {
+  MV r;
+  for (const auto& [x, cx] : a)
+    for (const auto& [y, cy] : b) {
+      const int gx = std::popcount(x), gy = std::popcount(y);
+      const int want = kind == Graded::Left     ? gy - gx
+                       : kind == Graded::Right  ? gx - gy
+                       : kind == Graded::Scalar ? 0
+                                                : (gx > gy ? gx - gy : gy - gx);
+      if (want < 0) continue;
+      MV p = product(alg, MV{{x, cx}}, MV{{y, cy}}, Op::Geometric);
+      for (const auto& [z, cz] : grade(p, want)) add(r, z, cz);
+    }
+  return clean(r);
+}
+
+// The undual: A * I when dual is A * I^-1; the complement map (its own inverse) when the metric is degenerate.
+inline MV undual(const Algebra& alg, const MV& a) {
+  bool degenerate = false;
+  for (int m : alg.metric) degenerate = degenerate || m == 0;
+  if (degenerate) return dual(alg, a);
+  const Bits all = alg.dim() >= 32 ? ~0u : ((1u << alg.dim()) - 1u);
+  return product(alg, a, expand_blade(all, alg.user_in_diag), Op::Geometric);
+}
+// Commutator product (AB - BA)/2 and regressive product undual(dual(A) ^ dual(B)).
+inline MV commutator(const Algebra& alg, const MV& a, const MV& b) {
+  return scaled(sum(product(alg, a, b, Op::Geometric), product(alg, b, a, Op::Geometric), -1.0), 0.5);
+}
+inline MV regressive(const Algebra& alg, const MV& a, const MV& b) {
+  return undual(alg, product(alg, dual(alg, a), dual(alg, b), Op::Outer));
+}
+// <A ~A>_0.
+inline double reverse_norm_squared(const Algebra& alg, const MV& a) {
+  const MV s = graded(alg, a, reverse(a), Graded::Scalar);
+  return s.count(0u) ? s.at(0u) : 0.0;
+}
+
 }  // namespace oracle::ga
