@@ -98,7 +98,8 @@ std::map<std::string, Named> run(const std::string& name, const std::string& scr
 }
 
 // Every built-in algebra; the larger ones sample fewer blades of each grade.
-int blade_cap(int dim) { return dim <= 5 ? 6 : dim <= 9 ? 3 : 2; }
+int blade_cap(int dim) { return dim <= 5 ? 10 : dim <= 9 ? 4 : 2; }
+int trials(int dim) { return dim <= 5 ? 3 : 1; }
 
 }  // namespace
 
@@ -112,9 +113,10 @@ TEST_CASE("every operator matches the oracle in every built-in algebra, for ever
     const og::Algebra alg = oracle_algebra(name);
     const int n = alg.dim();
     std::mt19937 rng(20261126u + static_cast<unsigned>(n));
+    for (int t = 0; t < trials(n); ++t)
     for (int r = 0; r <= n; ++r)
       for (int s = 0; s <= n; ++s) {
-        INFO("grades " << r << ", " << s);
+        INFO("grades " << r << ", " << s << ", trial " << t);
         const Input a = random_input(rng, alg, "A", r, blade_cap(n)), b = random_input(rng, alg, "B", s, blade_cap(n));
         const std::string script = pragma(a) + pragma(b) +
                                    "?gp = A * B;\n?op = A ^ B;\n?ip = A . B;\n?hip = hip(A, B);\n?dot = dot(A, B);\n"
@@ -157,7 +159,122 @@ TEST_CASE("every operator matches the oracle in every built-in algebra, for ever
         }
       }
   }
-  CHECK(compared > 21 * 700);
+  CHECK(compared == 21 * (3 * (9 + 16 + 16 + 25 + 25 + 25 + 36) + 81 + 100 + 121 + 289));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   WARN("operators against the oracle: " << compared << " comparisons in " << seconds << " s");
+}
+
+namespace {
+
+// k random vector inputs v1..vk (on every vector blade, or 4 of them in the large algebras): their product is
+// a versor.
+std::vector<Input> random_vectors(std::mt19937& rng, const og::Algebra& alg, int k) {
+  std::vector<Input> vs;
+  const int cap = alg.dim() <= 5 ? alg.dim() : 4;  // sparser vectors in the large algebras
+  for (int i = 1; i <= k; ++i) {
+    Input v = random_input(rng, alg, "v" + std::to_string(i), 1, cap);
+    while (std::abs(og::reverse_norm_squared(alg, v.oracle)) < 0.25)  // not (nearly) null: invertible
+      v = random_input(rng, alg, v.name, 1, cap);
+    vs.push_back(v);
+  }
+  return vs;
+}
+
+}  // namespace
+
+TEST_CASE("igp, invert and normalize match the oracle on versors in every built-in algebra") {
+  for (const std::string& name : algebra::builtin_names()) {
+    INFO("algebra " << name);
+    algebra::Using use(algebra::builtin(name));
+    const og::Algebra alg = oracle_algebra(name);
+    const int n = alg.dim();
+    std::mt19937 rng(7700u + static_cast<unsigned>(n));
+    for (int k = 1; k <= (n <= 5 ? 3 : 2); ++k)
+      for (int r = 0; r <= n; ++r) {
+        INFO("a versor of " << k << " vectors, A of grade " << r);
+        std::vector<Input> ins = random_vectors(rng, alg, k);
+        const Input a = random_input(rng, alg, "A", r, blade_cap(n));
+        std::string script = pragma(a), versor;
+        og::MV V{{0u, 1.0}};
+        for (const Input& v : ins) {
+          script += pragma(v);
+          versor += (versor.empty() ? "" : " * ") + v.name;
+          V = og::product(alg, V, v.oracle, og::Op::Geometric);
+        }
+        ins.push_back(a);
+        script += "V = " + versor + ";\n?q = igp(A, V);\n?vi = invert(V);\n?nv = normalize(V);\n";
+        const auto got = run(name, script, ins);
+        auto get = [&](const std::string& o) { return got.count(o) ? got.at(o) : Named{}; };
+        // The oracle's inverse of a versor: ~V / <V ~V>_0; and igp(A, V) * V must give A back.
+        const double vv = og::reverse_norm_squared(alg, V), aa = og::reverse_norm_squared(alg, a.oracle);
+        REQUIRE(std::abs(vv) > 1e-6);
+        const og::MV vinv = og::scaled(og::reverse(V), 1.0 / vv);
+        const Named q = get("q");
+        CHECK(max_diff(q, from_oracle(alg, og::product(alg, a.oracle, vinv, og::Op::Geometric))) < 1e-9 * (1 + max_abs(q)));
+        og::MV q_oracle;
+        for (const auto& [blade, c] : q)
+          for (const auto& [x, cx] : og::user_blade(alg, blade)) og::add(q_oracle, x, c * cx);
+        const Named back = from_oracle(alg, og::product(alg, q_oracle, V, og::Op::Geometric));
+        CHECK(max_diff(back, from_oracle(alg, a.oracle)) < 1e-8 * (1 + max_abs(back)));
+        CHECK(max_diff(get("vi"), from_oracle(alg, vinv)) < 1e-9 * (1 + max_abs(get("vi"))));
+        CHECK(max_diff(get("nv"), from_oracle(alg, og::scaled(V, 1.0 / std::sqrt(std::abs(vv))))) < 1e-9);
+        // A of one grade: normalize is refused only where <A ~A>_0 is identically 0 (a null blade set: PGA's
+        // blades with e0, CGA's with einf and not e0, ...).
+        std::map<std::string, Named> normalized;
+        try {
+          normalized = run(name, pragma(a) + "?na = normalize(A);\n", {a});
+        } catch (const front::CompileError& e) {
+          CHECK_THAT(e.what(), Catch::Matchers::Contains("squared norm <X ~X>_0 is 0"));
+          CHECK(aa == 0.0);
+        }
+        if (!normalized.empty()) {
+          const Named na = normalized.at("na");
+          CHECK(max_diff(na, from_oracle(alg, og::scaled(a.oracle, 1.0 / std::sqrt(std::abs(aa))))) < 1e-9);
+          og::MV na_oracle;
+          for (const auto& [blade, c] : na)
+            for (const auto& [x, cx] : og::user_blade(alg, blade)) og::add(na_oracle, x, c * cx);
+          CHECK(std::abs(std::abs(og::reverse_norm_squared(alg, na_oracle)) - 1.0) < 1e-9);
+        }
+      }
+  }
+}
+
+namespace {
+
+// The "file:line:col: error: message" text of compiling `script` in algebra `name`, or "no error".
+std::string error_of(const std::string& name, const std::string& script) {
+  front::SourceFile file("bad.clu", script);
+  try {
+    expand(front::parse(file), "bad", algebra::builtin(name));
+  } catch (const front::CompileError& e) {
+    return "bad.clu:" + std::to_string(e.loc().line) + ":" + std::to_string(e.loc().col) + ": error: " + e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("bad calls of the operators are located errors") {
+  using Catch::Matchers::Contains;
+  using Catch::Matchers::StartsWith;
+  CHECK_THAT(error_of("3d", "?z = grade(e1 + e2, k);\n"),
+             StartsWith("bad.clu:1:21: error: 'grade' takes as its second argument an integer constant from 0 to 3"));
+  CHECK_THAT(error_of("cga", "?z = grade(e1, 6);\n"), StartsWith("bad.clu:1:16: error: 'grade'"));
+  CHECK_THAT(error_of("cga", "?z = grade(e1, -1);\n"), StartsWith("bad.clu:1:16: error: 'grade'"));
+  CHECK_THAT(error_of("sta", "?z = grade(e1, 1.5);\n"), StartsWith("bad.clu:1:16: error: 'grade'"));
+  CHECK_THAT(error_of("sta", "?z = grade(e1, e2);\n"), StartsWith("bad.clu:1:16: error: 'grade'"));
+  CHECK(error_of("3d", "?z = grade(e1 + e2, 1);\n") == "no error");
+  CHECK(error_of("3d", "?z = lcont(e1);\n") == "bad.clu:1:6: error: 'lcont' takes 2 arguments, got 1");
+  CHECK(error_of("3dpga", "?z = rp(e1, e2, e3);\n") == "bad.clu:1:6: error: 'rp' takes 2 arguments, got 3");
+  CHECK(error_of("cga", "?z = conjugate();\n") == "bad.clu:1:6: error: 'conjugate' takes 1 argument, got 0");
+  CHECK(error_of("cga", "?z = grade(e1);\n") == "bad.clu:1:6: error: 'grade' takes 2 arguments, got 1");
+  // invert and igp refuse what is not invertible symbolically: X ~X must be a nonzero scalar.
+  CHECK_THAT(error_of("3d", "?x = invert(1 + e1);\n"), StartsWith("bad.clu:1:15: error: cannot divide by this multivector"));
+  CHECK_THAT(error_of("cga", "?x = invert(a*einf);\n"), StartsWith("bad.clu:1:14: error: cannot divide by a null multivector"));
+  CHECK_THAT(error_of("cga", "?y = igp(e1, b*e0 + e0^einf);\n"), StartsWith("bad.clu:1:19: error: cannot divide by this multivector"));
+  CHECK_THAT(error_of("3dpga", "?y = igp(e1, e0);\n"), StartsWith("bad.clu:1:14: error: cannot divide by a null multivector"));
+  CHECK(error_of("3d", "?y = igp(e1, a*e1 + b*e2);\n") == "no error");
+  CHECK_THAT(error_of("cga", "?z = normalize(x*einf + y*(e1^einf));\n"),
+             StartsWith("bad.clu:1:23: error: 'normalize' of a multivector whose squared norm <X ~X>_0 is 0"));
+  CHECK_THAT(error_of("3d", "?z = hip(e1);\n"), Contains("'hip' takes 2 arguments"));
 }
