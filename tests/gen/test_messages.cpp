@@ -86,15 +86,17 @@ TEST_CASE("other libraries' names point at cgagen's spelling or say it does not 
   CHECK(first_line("reverse(A)") == at + "'reverse'; cgagen writes the reverse as ~X");
   CHECK(first_line("dual(A)") == at + "'dual'; did you mean 'Dual'?");  // a near built-in comes first
   CHECK(first_line("norm(A)") == at + "'norm'; did you mean 'abs'? (abs(X) of a multivector is its magnitude)");
-  CHECK(first_line("normalize(A)") == at + "'normalize'; did you mean 'Normalize'?");
-  CHECK(first_line("dot(A, B)") == at + "'dot'; cgagen writes the inner product as A . B");
+  CHECK(first_line("unit(A)") == at + "'unit'; did you mean 'normalize'?");
+  CHECK(first_line("inner(A, B)") == at + "'inner'; cgagen writes Gaalop's (Hestenes') inner product as A . B or "
+                                          "hip(A, B); see also dot, lcont, rcont");
   CHECK(first_line("wedge(A, B)") == at + "'wedge'; cgagen writes the outer product as A ^ B");
-  CHECK(first_line("meet(A, B)") == at + "'meet'; cgagen has no 'meet' yet");
-  CHECK(first_line("lcont(A, B)") == at + "'lcont'; cgagen has no left contraction yet; its inner product is A . B (Gaalop's)");
-  CHECK(first_line("grade(A, 2)") == at + "'grade'; cgagen has no grade selection yet; coefficient(X, blade) reads one blade");
-  // In an algebra without Normalize, no suggestion of it.
-  auto out = run("--algebra 3d " + write_temp("messages/other3d.clu", "?x = normalize(e1);\n")).out;
-  CHECK(out.substr(0, out.find('\n')).find("unknown function 'normalize'") != std::string::npos);
+  CHECK(first_line("meet(A, B)") == at + "'meet'; cgagen has no 'meet'; rp(A, B) is the regressive product");
+  CHECK(first_line("vee(A, B)") == at + "'vee'; did you mean 'rp'? (the regressive product)");
+  CHECK(first_line("left_contraction(A, B)") == at + "'left_contraction'; did you mean 'lcont'? (the left contraction)");
+  CHECK(first_line("conjugation(A)") == at + "'conjugation'; did you mean 'conjugate'? (the Clifford conjugate)");
+  CHECK(first_line("grade_select(A, 2)") == at + "'grade_select'; did you mean 'grade'? (grade(X, k))");
+  // normalize (X / sqrt|<X ~X>_0|) is a built-in of every algebra.
+  CHECK(run("--algebra 3d -o /dev/null " + write_temp("messages/other3d.clu", "?x = normalize(e1);\n")).code == 0);
 }
 
 TEST_CASE("R^2 is warned about as the outer product with 2, 0.5^t is not", "[messages]") {
