@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -277,4 +278,62 @@ TEST_CASE("bad calls of the operators are located errors") {
   CHECK_THAT(error_of("cga", "?z = normalize(x*einf + y*(e1^einf));\n"),
              StartsWith("bad.clu:1:23: error: 'normalize' of a multivector whose squared norm <X ~X>_0 is 0"));
   CHECK_THAT(error_of("3d", "?z = hip(e1);\n"), Contains("'hip' takes 2 arguments"));
+}
+
+TEST_CASE("the oracle's operators satisfy their textbook identities") {
+  // Checks of the oracle itself, not of the generator: for a vector a and any B (B^ the grade involution),
+  // a ⌋ B = (aB − B^a)/2, a ^ B = (aB + B^a)/2, B ⌊ a = (Ba − aB^)/2; A ⌋ dual(B) = dual(A ^ B) where the dual
+  // is A I^-1; undual(dual(A)) = A; the conjugate is the involute of the reverse; the dot product is the
+  // Hestenes inner product plus the scalar parts' multiples.
+  for (const std::string& name : {"3d", "sta", "cga", "3dpga"}) {
+    INFO("algebra " << name);
+    algebra::Using use(algebra::builtin(name));
+    const og::Algebra alg = oracle_algebra(name);
+    std::mt19937 rng(99);
+    for (int t = 0; t < 20; ++t) {
+      const og::MV a = random_input(rng, alg, "a", 1, alg.dim()).oracle;
+      og::MV A, B;
+      for (int k = 0; k <= alg.dim(); ++k) {
+        A = og::sum(A, random_input(rng, alg, "A", k, 3).oracle);
+        B = og::sum(B, random_input(rng, alg, "B", k, 3).oracle);
+      }
+      auto close = [&](const og::MV& x, const og::MV& y) { return max_diff(from_oracle(alg, x), from_oracle(alg, y)) < 1e-9; };
+      const og::MV aB = og::product(alg, a, B, og::Op::Geometric), Ba = og::product(alg, B, a, og::Op::Geometric);
+      const og::MV hBa = og::product(alg, og::involute(B), a, og::Op::Geometric);
+      const og::MV ahB = og::product(alg, a, og::involute(B), og::Op::Geometric);
+      CHECK(close(og::graded(alg, a, B, og::Graded::Left), og::scaled(og::sum(aB, hBa, -1.0), 0.5)));
+      CHECK(close(og::product(alg, a, B, og::Op::Outer), og::scaled(og::sum(aB, hBa), 0.5)));
+      CHECK(close(og::graded(alg, B, a, og::Graded::Right), og::scaled(og::sum(Ba, ahB, -1.0), 0.5)));
+      CHECK(close(og::undual(alg, og::dual(alg, A)), A));
+      CHECK(close(og::conjugate(A), og::involute(og::reverse(A))));
+      CHECK(close(og::graded(alg, A, B, og::Graded::Scalar), og::grade(og::product(alg, A, B, og::Op::Geometric), 0)));
+      const og::MV a0 = og::grade(A, 0), b0 = og::grade(B, 0);
+      CHECK(close(og::graded(alg, A, B, og::Graded::Dot),
+                  og::sum(og::sum(og::sum(og::product(alg, A, B, og::Op::Inner), og::product(alg, a0, B, og::Op::Geometric)),
+                                  og::product(alg, A, b0, og::Op::Geometric)),
+                          og::product(alg, a0, b0, og::Op::Geometric), -1.0)));
+      if (name != std::string("3dpga"))
+        CHECK(close(og::graded(alg, A, og::dual(alg, B), og::Graded::Left), og::dual(alg, og::product(alg, A, B, og::Op::Outer))));
+    }
+  }
+  // The regressive product in 3D PGA: the join of two points is the line through them (a bivector).
+  algebra::Using use(algebra::builtin("3dpga"));
+  const og::Algebra alg = oracle_algebra("3dpga");
+  auto point = [&](double x, double y, double z) {  // e123 - x e023 + y e013 - z e012 (createPoint)
+    og::MV p;
+    const std::pair<const char*, double> parts[] = {{"e1^e2^e3", 1}, {"e0^e2^e3", -x}, {"e0^e1^e3", y}, {"e0^e1^e2", -z}};
+    for (const auto& [n, c] : parts)
+      for (const auto& [b, cb] : og::user_blade(alg, n)) og::add(p, b, c * cb);
+    return og::clean(p);
+  };
+  const og::MV P = point(1, 2, 3), Q = point(-1, 0, 4);
+  const og::MV line = og::regressive(alg, P, Q);
+  for (const auto& [b, c] : line) CHECK(std::popcount(b) == 2);
+  CHECK(!line.empty());
+  // The line contains P and Q: joining it with either gives 0; with a point off the line, a plane (a vector).
+  CHECK(og::clean(og::regressive(alg, line, P), 1e-12).empty());
+  CHECK(og::clean(og::regressive(alg, line, Q), 1e-12).empty());
+  const og::MV plane = og::clean(og::regressive(alg, line, point(0, 0, 0)), 1e-12);
+  CHECK(!plane.empty());
+  for (const auto& [b, c] : plane) CHECK(std::popcount(b) == 1);
 }
