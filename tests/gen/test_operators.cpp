@@ -275,6 +275,9 @@ TEST_CASE("bad calls of the operators are located errors") {
   CHECK_THAT(error_of("cga", "?y = igp(e1, b*e0 + e0^einf);\n"), StartsWith("bad.clu:1:19: error: cannot divide by this multivector"));
   CHECK_THAT(error_of("3dpga", "?y = igp(e1, e0);\n"), StartsWith("bad.clu:1:14: error: cannot divide by a null multivector"));
   CHECK(error_of("3d", "?y = igp(e1, a*e1 + b*e2);\n") == "no error");
+  CHECK(error_of("cga", "?x = invert(0);\n") == "bad.clu:1:13: error: division by zero");
+  CHECK(error_of("sta", "?x = igp(e1, 0);\n") == "bad.clu:1:14: error: division by zero");
+  CHECK_THAT(error_of("cga", "?z = normalize(0);\n"), StartsWith("bad.clu:1:16: error: 'normalize' of a multivector"));
   CHECK_THAT(error_of("cga", "?z = normalize(x*einf + y*(e1^einf));\n"),
              StartsWith("bad.clu:1:23: error: 'normalize' of a multivector whose squared norm <X ~X>_0 is 0"));
   CHECK_THAT(error_of("3d", "?z = hip(e1);\n"), Contains("'hip' takes 2 arguments"));
