@@ -100,46 +100,19 @@ function(cga_skinning_script_pack script out)
   set(${out} ${_pack} PARENT_SCOPE)
 endfunction()
 
-# The GLSL skin() of method <id> (desktop GLSL and GLSL ES alike): its generated blend on four prepared
-# entries read through palette_at(vec4 index), PALETTE_STRIDE vec4s per entry; the normal renormalized.
+# The desktop GL programs' skin() of method <id>: its skin_<id>() (cga_skinning_glsl_method_skin, below) on
+# the instance's palette, PALETTE_STRIDE vec4s per entry read through palette_at(vec4 index); the normal
+# renormalized.
 #   skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on)
 # Data movement only: the blend itself is the generated function.
 function(cga_skinning_glsl_skin id out)
-  set(_blend ${CGA_SKIN_${id}_BLEND})
-  set(_k ${CGA_SKIN_${id}_VEC4S})
-  cga_skinning_script_inputs(${CGA_SKINNING_SCRIPT_DIR}/${_blend}.clu _inputs)
-  list(LENGTH _inputs _n)
-  math(EXPR _expect "4 * ${_k}")
-  if(NOT _n EQUAL _expect)
-    message(FATAL_ERROR "${_blend}.clu: method ${id} has ${_k} vec4s per entry, so 4 x ${_k} multivector inputs, not ${_n}")
-  endif()
-  set(_args)
-  set(_i 0)
-  foreach(_in ${_inputs})
-    string(REGEX REPLACE "^.*:" "" _blades "${_in}")
-    math(EXPR _entry "${_i} / ${_k}")
-    math(EXPR _slot "${_i} % ${_k}")
-    set(_arg "palette_at(e${_entry} + ${_slot})")
-    if(_blades EQUAL 3)
-      string(APPEND _arg ".xyz")
-    elseif(NOT _blades EQUAL 4)
-      message(FATAL_ERROR "${_blend}.clu: entry input ${_in} has ${_blades} blades (3 or 4 fit a vec4)")
-    endif()
-    list(APPEND _args "${_arg}")
-    math(EXPR _i "${_i} + 1")
-  endforeach()
-  list(JOIN _args ",\n        " _args)
-  set(${out} "// skin() of ${id} (from the method table): the generated ${_blend} on four prepared entries.
-const int PALETTE_STRIDE = ${_k};
+  cga_skinning_glsl_method_skin(${id} _method)
+  set(${out} "${_method}
+const int PALETTE_STRIDE = ${CGA_SKIN_${id}_VEC4S};
 
 void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on) {
-  int e0 = PALETTE_STRIDE * (base + j[0]);
-  int e1 = PALETTE_STRIDE * (base + j[1]);
-  int e2 = PALETTE_STRIDE * (base + j[2]);
-  int e3 = PALETTE_STRIDE * (base + j[3]);
   vec3 tn;
-  ${_blend}(${_args},
-        w[0], w[1], w[2], w[3], p.x, p.y, p.z, n.x, n.y, n.z, op, tn);
+  skin_${id}(PALETTE_STRIDE * base, j, w, p, n, op, tn);
   on = normals ? normalize(tn) : vec3(0.0);
 }
 " PARENT_SCOPE)
