@@ -2,6 +2,9 @@
 // from the math independently of gen/algebra; shared by the generator tests that check against it.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,6 +63,23 @@ inline og::Algebra oracle_algebra(const std::string& name) {
     return a;
   }
   throw std::invalid_argument(name);
+}
+
+using Named = std::map<std::string, double>;  // user blade name -> coefficient
+
+// An oracle multivector by the user's blade names.
+inline Named from_oracle(const og::Algebra& alg, const og::MV& diag) {
+  Named r;
+  for (const auto& [u, c] : og::to_user(alg, diag)) r[og::user_name(alg, u)] = c;
+  return r;
+}
+
+// The largest coefficient difference of two multivectors by blade name (a missing blade is 0).
+inline double max_diff(const Named& a, const Named& b) {
+  double d = 0;
+  for (const auto& [k, v] : a) d = std::max(d, std::abs(v - (b.count(k) ? b.at(k) : 0.0)));
+  for (const auto& [k, v] : b) d = std::max(d, std::abs(v - (a.count(k) ? a.at(k) : 0.0)));
+  return d;
 }
 
 }  // namespace

@@ -30,8 +30,6 @@ namespace og = oracle::ga;
 
 namespace {
 
-using Named = std::map<std::string, double>;  // user blade name -> coefficient
-
 Named from_generator(const symbolic::Multivector& m) {
   Named r;
   for (const auto& [b, c] : m.terms()) {
@@ -40,19 +38,6 @@ Named from_generator(const symbolic::Multivector& m) {
     r[algebra::blade_name(b)] = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
   }
   return r;
-}
-
-Named from_oracle(const og::Algebra& alg, const og::MV& diag) {
-  Named r;
-  for (const auto& [u, c] : og::to_user(alg, diag)) r[og::user_name(alg, u)] = c;
-  return r;
-}
-
-double max_diff(const Named& a, const Named& b) {
-  double d = 0;
-  for (const auto& [k, v] : a) d = std::max(d, std::abs(v - (b.count(k) ? b.at(k) : 0.0)));
-  for (const auto& [k, v] : b) d = std::max(d, std::abs(v - (a.count(k) ? a.at(k) : 0.0)));
-  return d;
 }
 
 // A random sparse multivector: `blades` blades anywhere among the algebra's 2^n, small integer coefficients.

@@ -31,21 +31,6 @@ using namespace cgagen;
 
 namespace {
 
-using Named = std::map<std::string, double>;  // user blade name -> coefficient
-
-Named from_oracle(const og::Algebra& alg, const og::MV& diag) {
-  Named r;
-  for (const auto& [u, c] : og::to_user(alg, diag)) r[og::user_name(alg, u)] = c;
-  return r;
-}
-
-double max_diff(const Named& a, const Named& b) {
-  double d = 0;
-  for (const auto& [k, v] : a) d = std::max(d, std::abs(v - (b.count(k) ? b.at(k) : 0.0)));
-  for (const auto& [k, v] : b) d = std::max(d, std::abs(v - (a.count(k) ? a.at(k) : 0.0)));
-  return d;
-}
-
 double max_abs(const Named& a) {
   double m = 0;
   for (const auto& [k, v] : a) m = std::max(m, std::abs(v));
