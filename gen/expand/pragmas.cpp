@@ -97,6 +97,7 @@ void Pragmas::apply(const Stmt& s, Kernel& kernel, PragmaHost& host) {
   const std::string& kind = s.words[0];
   if (kind == "output") {
     // Gaalop also names a group of outputs that share the blades: #pragma output {a, b} e1 e2.
+    if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma output' needs a name and at least one blade");
     size_t last = 1;
     std::vector<std::string> names = output_group(s, last);
     Stmt rest = s;  // the blades after the group, where pragma_blades expects them (words[2...])

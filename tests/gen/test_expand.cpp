@@ -448,6 +448,11 @@ TEST_CASE("pragma diagnostics") {
         "                    ^\n");
   CHECK(diagnostic("#pragma output x\n?x = 1;\n") ==
         "t.clu:1:1: error: '#pragma output' needs a name and at least one blade\n#pragma output x\n^\n");
+  CHECK(diagnostic("#pragma output\n?x = 1;\n") ==
+        "t.clu:1:1: error: '#pragma output' needs a name and at least one blade\n#pragma output\n^\n");
+  for (const char* p : {"#pragma\n?x = 1;\n", "#pragma input\n?x = 1;\n", "#pragma range\n?x = 1;\n",
+                        "#pragma in2out\n?x = 1;\n", "#pragma onlyEvaluate\n?x = 1;\n"})
+    CHECK(diagnostic(p).find("t.clu:1:1: error: ") == 0);
   CHECK(diagnostic("#pragma output y e1\n?x = 1;\n") ==
         "t.clu:1:16: error: '#pragma output' names 'y', which is not an output\n#pragma output y e1\n"
         "               ^\n");
