@@ -21,6 +21,7 @@
 #include "expand/builtins.hpp"
 #include "expand/cost.hpp"
 #include "expand/hints.hpp"
+#include "expand/inverse.hpp"
 #include "expand/pragmas.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
@@ -635,13 +636,14 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
     Multivector b = scalar_part_if_scalar(b_in);
     if (b.is_zero()) throw CompileError(be.loc, "division by zero");
     if (b.is_scalar()) return guarded(be.loc, [&] { return a / b.scalar(); });
-    Multivector rev = b.reverse();
-    Multivector norm = scalar_part_if_scalar(b * rev);
-    if (!norm.is_scalar())
-      throw CompileError(be.loc, "cannot divide by this multivector: d*~d is not a scalar (it has blades " +
-                                     blade_list(norm.grade_above(0)) + "), so d is not a versor or blade");
-    if (norm.is_zero()) throw CompileError(be.loc, "cannot divide by a null multivector (d*~d = 0)");
-    return guarded(be.loc, [&] { return (a * rev) / norm.scalar(); });
+    return guarded(be.loc, [&] {
+      try {
+        const auto inv = expand_inverse::inverse(b, [&](const ex& c) { return vanishes(c); });
+        return (a * inv.numerator) / inv.denominator;
+      } catch (const expand_inverse::NotInvertible& e) {
+        throw CompileError(be.loc, e.message);
+      }
+    });
   }
 
   // Runs f, turning GiNaC's arithmetic faults (division by zero, ...) into diagnostics at loc.

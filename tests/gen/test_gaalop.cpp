@@ -246,7 +246,9 @@ TEST_CASE("scalar functions of Gaalop's MathFunction: floor, ceil, fact, invert"
   check_eval("?b = invert(x*e1); ?c = invert(2*x);", "x=2", {{"b/e1", 0.5}, {"c/1", 0.25}});
   check_error("?p = floor(x);", "1:12", "'floor' takes a constant argument");
   check_error("?p = fact(2.5);", "1:11", "'fact' takes an integer from 0 to 170");
-  check_error("?p = invert(x*e1 + y*e1^einf^e0^e2 + e3);", "1:36", "cannot divide by this multivector");
+  check_error("?p = invert(x*(1 + e1));", "1:14", "cannot divide by this multivector: it has no inverse");
+  // Not a versor (X ~X is not a scalar), still invertible: (2 + e1)^-1 = (2 - e1) / 3.
+  check_eval("?b = invert(x + e1);", "x=2", {{"b/1", 2.0 / 3.0}, {"b/e1", -1.0 / 3.0}});
 }
 
 TEST_CASE("CGA macros: Normalize, Dual, ExtractFirstPoint, ExtractSecondPoint", "[gaalop]") {
