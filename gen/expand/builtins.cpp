@@ -40,94 +40,11 @@ std::vector<ex> Call::scalars() const {
 
 namespace {
 
-// Is the expanded expression e >= 0 for every real value of its symbols, visibly (a sum of positive
-// multiples of even powers)? Used to pick the closed form of exp.
-bool manifestly_nonnegative(const ex& e) {
-  if (GiNaC::is_a<GiNaC::numeric>(e)) {
-    const auto& n = GiNaC::ex_to<GiNaC::numeric>(e);
-    return n.is_real() && !n.is_negative();
-  }
-  if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
-    for (size_t i = 0; i < e.nops(); ++i)
-      if (!manifestly_nonnegative(e.op(i))) return false;
-    return true;
-  }
-  if (GiNaC::is_a<GiNaC::power>(e)) {
-    const ex& p = e.op(1);
-    return GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_even();
-  }
-  return false;
-}
-
-// A square root of a manifestly nonnegative t, taking even powers out of the root where factoring shows
-// them. Its sign may differ from sqrt(t); callers use it only in even functions (cos, sin(x)/x, ...).
-ex root_of_square(const ex& t) {
-  ex f = GiNaC::factor(t);
-  ex out = 1, rest = 1;
-  auto take = [&](const ex& factor) {
-    if (GiNaC::is_a<GiNaC::power>(factor) && GiNaC::is_a<GiNaC::numeric>(factor.op(1)) &&
-        GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).is_even())
-      out *= GiNaC::pow(factor.op(0), factor.op(1) / 2);
-    else if (GiNaC::is_a<GiNaC::numeric>(factor))
-      out *= GiNaC::sqrt(factor);
-    else
-      rest *= factor;
-  };
-  if (GiNaC::is_a<GiNaC::mul>(f))
-    for (size_t i = 0; i < f.nops(); ++i) take(f.op(i));
-  else
-    take(f);
-  return rest.is_equal(1) ? out : out * GiNaC::sqrt(rest);
-}
-
 // floor of a real rational number, exactly.
 GiNaC::numeric floor_numeric(const GiNaC::numeric& x) {
   GiNaC::numeric q = GiNaC::iquo(x.numer(), x.denom());  // truncates toward zero
   if (x.is_negative() && q * x.denom() != x.numer()) q -= 1;
   return q;
-}
-
-// exp of a scalar, or the closed form for a bivector B with scalar square.
-Multivector exponential(const Call& c) {
-  Multivector b = c.ctx.scalar_part_if_scalar(c.args[0]);
-  if (b.is_scalar()) return Multivector(GiNaC::exp(b.scalar()));
-  const front::SourceLoc at = c.expr.args[0]->loc;
-  b = c.ctx.bivector_part_if_bivector(b);
-  if (!b.is_homogeneous(2))
-    throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got " + describe(b));
-  if (b.terms().size() == 1) {
-    // c * blade: B*B = c^2 * blade^2, and blade^2 = u is a number, so the sign needs nothing of c; cos,
-    // sinh(x)/x, ... are even, so c serves as theta. exp(c blade) = cos(c s) + sin(c s)/s blade with
-    // s = sqrt(-u) (u < 0), cosh/sinh with s = sqrt(u) (u > 0): in a user algebra whose basis is not
-    // orthonormal u need not be +-1.
-    const auto& [k, coeff] = *b.terms().begin();
-    const Multivector unit = Multivector::blade(k) * Multivector::blade(k);
-    if (unit.is_scalar() && GiNaC::is_a<GiNaC::numeric>(unit.scalar())) {
-      const GiNaC::numeric u = GiNaC::ex_to<GiNaC::numeric>(unit.scalar());
-      const Multivector unit_blade = Multivector::blade(k);
-      if (u.is_zero()) return Multivector(ex(1)) + b;
-      const ex s = GiNaC::sqrt(GiNaC::abs(u));
-      if (u.is_negative()) return Multivector(GiNaC::cos(coeff * s)) + (GiNaC::sin(coeff * s) / s) * unit_blade;
-      return Multivector(GiNaC::cosh(coeff * s)) + (GiNaC::sinh(coeff * s) / s) * unit_blade;
-    }
-  }
-  Multivector sq = c.ctx.scalar_part_if_scalar(b * b);
-  if (!sq.is_scalar())
-    throw CompileError(at, "'exp' takes a scalar or a bivector whose square is a scalar, got a bivector whose "
-                           "square has blades " + blade_list(sq.grade_above(0)));
-  ex s = sq.scalar();
-  if (s.is_zero()) return Multivector(ex(1)) + b;
-  if (manifestly_nonnegative((-s).expand())) {  // B^2 = -theta^2: rotation
-    ex theta = root_of_square((-s).expand());
-    return Multivector(GiNaC::cos(theta)) + (GiNaC::sin(theta) / theta) * b;
-  }
-  if (manifestly_nonnegative(s)) {  // B^2 = theta^2: boost
-    ex theta = root_of_square(s);
-    return Multivector(GiNaC::cosh(theta)) + (GiNaC::sinh(theta) / theta) * b;
-  }
-  // (The square is not printed: GiNaC's term order differs between processes, and messages must not.)
-  throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument B: B*B must be "
-                         "visibly <= 0 (a rotation) or >= 0 (a boost)");
 }
 
 // A scalar function of one scalar.
@@ -213,7 +130,8 @@ const std::vector<Builtin>& table() {
       scalar_function("asin", [](const ex& x) -> ex { return GiNaC::asin(x); }),
       scalar_function("acos", [](const ex& x) -> ex { return GiNaC::acos(x); }),
       scalar_function("atan", [](const ex& x) -> ex { return GiNaC::atan(x); }),
-      scalar_function("log", [](const ex& x) -> ex { return GiNaC::log(x); }),
+      // log of a positive scalar, or the logarithm of a rotor or motor (exponential.cpp).
+      {"log", {1}, false, logarithm},
       constant_function("floor", [](const GiNaC::numeric& x) -> ex { return ex(floor_numeric(x)); }),
       constant_function("ceil", [](const GiNaC::numeric& x) -> ex { return ex(-floor_numeric(-x)); }),
       constant_function("fact", [](const GiNaC::numeric& x) -> ex { return GiNaC::factorial(x); }),

@@ -24,6 +24,8 @@ class Context {
   virtual Multivector scalar_part_if_scalar(const Multivector& m) = 0;
   // m without the bivector-free blades (grade != 2) that vanish: what exp looks at.
   virtual Multivector bivector_part_if_bivector(const Multivector& m) = 0;
+  // Is the coefficient c zero once earlier values are inlined?
+  virtual bool vanishes(const GiNaC::ex& c) = 0;
   // a / b as the language's division defines it; errors at `divisor`.
   virtual Multivector divide(const Multivector& a, const Multivector& b, const front::Expr& divisor) = 0;
 };
@@ -52,6 +54,10 @@ Multivector magnitude(const Multivector& m);
 // For messages: "e1, e1^e2", and "a multivector with blades e1, e1^e2".
 std::string blade_list(const Multivector& m);
 std::string describe(const Multivector& m);
+
+// exp and log of scalars, rotors and motors (exponential.cpp).
+Multivector exponential(const Call& c);
+Multivector logarithm(const Call& c);
 
 // The built-in called `name`, or null.
 const Builtin* find(const std::string& name);

@@ -523,7 +523,7 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
 
   // ---- zero tests through the value chain (symbolic/zero_test.hpp) --------------------------------
 
-  bool vanishes(const ex& c) { return zeros_.vanishes(c); }
+  bool vanishes(const ex& c) override { return zeros_.vanishes(c); }
 
   // Statements see earlier values only through their symbols, so an identity that holds for the values
   // (c*einf*c is a vector when c is a 2-blade) is invisible here. Where it matters (a divisor, a function
