@@ -6,14 +6,16 @@
 // the series sum_k B^k / k! folds into
 //     exp(B) = C(a) + S(a)/2 b + B (S(a) + S'(a) b),
 //     C(a) = sum_m a^m / (2m)!,  S(a) = sum_m a^m / (2m+1)!,  S'(a) = dS/da = (C(a) - S(a)) / (2a),
-// with C = cos t, S = sin t / t for a = -t^2 (rotations) and cosh t, sinh t / t for a = t^2 (boosts). A b with
-// b b != 0 (a rotation with a dilation in CGA, which has two commuting planes with squares of both signs) is
-// refused: write the product of the exps of its commuting parts.
-// log(M) inverts exp for M = exp(B) with |t| < pi: from <M>_0 = C, <M>_2 = B (S + S' b) and <M>_4 = S/2 b,
-// <<M>_2^2>_0 = a S^2 = -sin^2 t (a rotation) or sinh^2 t (a boost) gives t, and then
-//     B = <M>_2 / S - 2 S' / S^3 <M>_2 <M>_4.
-// Near a = 0 the closed forms are 0/0 (sin t / t) or lose digits to cancellation (C - S); there a select
-// takes their Taylor series instead, so exp(0) = 1 and log(1) = 0 exactly, and a small angle keeps its digits.
+// with C = cos t, S = sin t / t for a = -t^2 (rotations) and cosh t, sinh t / t for a = t^2 (boosts).
+// Where b b = g is not 0, B is the sum of two commuting simple bivectors B1 + B2 (the invariant decomposition)
+// with B_i^2 = l_i, l_1,2 = (a -+ sqrt(a^2 - g)) / 2, b = 2 B1 B2; with C_i = C(l_i), S_i = S(l_i),
+//     exp(B) = exp(B1) exp(B2) = C1 C2 + S1 S2 / 2 b + B (A0 + A1 b),
+//     A0 = (l2 C1 S2 - l1 S1 C2) / (l2 - l1),  A1 = (S1 C2 - C1 S2) / (2 (l2 - l1)).
+// Supported where -g is visibly >= 0, so l1 <= 0 <= l2: a rotation with a dilation (and a translation) in CGA.
+// log(M) inverts exp for M = exp(B) with rotation angle |t| < pi, from <M>_0, <M>_2 = B (A0 + A1 b) and
+// <M>_4 = S1 S2 / 2 b (for one plane: S / 2 b): it finds the l_i, then B = <M>_2 (A0 - A1 b) / (A0^2 - A1^2 g).
+// Near a zero l (and near l1 = l2) the closed forms are 0/0 (sin t / t) or lose digits to cancellation; there a
+// select takes their Taylor series, so exp(0) = 1 and log(1) = 0 exactly, and small angles keep their digits.
 #include <ginac/ginac.h>
 
 #include "algebra/algebra.hpp"
@@ -97,6 +99,73 @@ Series fold(const ex& a, const ex& closed_c, const ex& closed_s) {
           symbolic::make_select(small, taylor_sp, (closed_c - closed_s) / (2 * a))};
 }
 
+
+symbolic::Condition small_square(const ex& v) {
+  symbolic::Condition small;
+  small.op = symbolic::Condition::Op::Lt;
+  small.a = v * v;
+  small.b = numeric(1, 10000);
+  return small;
+}
+
+// A0 and A1 of two commuting planes (top of this file). Their numerators are antisymmetric in (l1, l2), so the
+// Taylor polynomials of C and S give numerators that (l2 - l1) divides exactly: near l1 = l2 the quotients are
+// the series, elsewhere the closed forms.
+struct Mix {
+  ex a0, a1;
+};
+
+Mix mix(const ex& l1, const ex& l2, const Series& f1, const Series& f2) {
+  static const GiNaC::symbol x("x"), y("y");
+  static const std::pair<ex, ex> taylor = [] {
+    auto ct = [](const ex& v) { return 1 + v / 2 + GiNaC::pow(v, 2) / 24 + GiNaC::pow(v, 3) / 720 + GiNaC::pow(v, 4) / 40320; };
+    auto st = [](const ex& v) { return 1 + v / 6 + GiNaC::pow(v, 2) / 120 + GiNaC::pow(v, 3) / 5040 + GiNaC::pow(v, 4) / 362880; };
+    const ex n0 = (y * ct(x) * st(y) - x * st(x) * ct(y)).expand(), n1 = (st(x) * ct(y) - ct(x) * st(y)).expand();
+    return std::make_pair(GiNaC::quo(n0, y - x, y), GiNaC::quo(n1, y - x, y) / 2);
+  }();
+  const GiNaC::lst at{x == l1, y == l2};
+  const ex d = l2 - l1;
+  const symbolic::Condition near = small_square(d);
+  return {symbolic::make_select(near, taylor.first.subs(at), (l2 * f1.c * f2.s - l1 * f1.s * f2.c) / d),
+          symbolic::make_select(near, taylor.second.subs(at), (f1.s * f2.c - f1.c * f2.s) / (2 * d))};
+}
+
+// exp(B) for B*B = a + b with b*b = g, -g >= 0 (two commuting planes, l1 <= 0 <= l2).
+Multivector exp_two_planes(const Multivector& b, const ex& a, const Multivector& four, const ex& g) {
+  const ex r = GiNaC::abs(root_of_square((a * a - g).expand()));
+  const ex l1 = (a - r) / 2, l2 = (a + r) / 2;
+  const ex t1 = GiNaC::sqrt(-l1), t2 = GiNaC::sqrt(l2);
+  const Series f1 = fold(l1, GiNaC::cos(t1), GiNaC::sin(t1) / t1), f2 = fold(l2, GiNaC::cosh(t2), GiNaC::sinh(t2) / t2);
+  const Mix m = mix(l1, l2, f1, f2);
+  return Multivector(f1.c * f2.c) + (f1.s * f2.s / 2) * four + b * (m.a0 * Multivector(ex(1)) + m.a1 * four);
+}
+
+// log(M) for M = exp(B1 + B2) with B1^2 = l1 = -t1^2 <= 0 <= l2 = t2^2 = B2^2. With X = sinh^2 t2 and
+// Y = sin^2 t1: q = <<M>_2^2>_0 = X - Y - 2XY and p = -<<M>_4^2>_0 = XY, so X and Y are the roots of
+// z^2 - d z - p = 0 (X) and of z^2 + d z - p (Y), d = q + 2p; each is taken in the form without cancellation.
+Multivector log_two_planes(const ex& m0, const Multivector& m2, const Multivector& m4, const ex& q, const ex& p) {
+  const ex d = q + 2 * p, e = GiNaC::sqrt(d * d + 4 * p);
+  symbolic::Condition d_nonneg;
+  d_nonneg.op = symbolic::Condition::Op::Ge;
+  d_nonneg.a = d;
+  d_nonneg.b = 0;
+  symbolic::Condition e_zero;
+  e_zero.op = symbolic::Condition::Op::Eq;
+  e_zero.a = e;
+  e_zero.b = 0;
+  const ex x = symbolic::make_select(d_nonneg, (d + e) / 2, symbolic::make_select(e_zero, 0, 2 * p / (e - d)));
+  const ex y = symbolic::make_select(d_nonneg, symbolic::make_select(e_zero, 0, 2 * p / (d + e)), (e - d) / 2);
+  const ex ch2 = GiNaC::sqrt(1 + x), sh2 = GiNaC::sqrt(x), s1 = GiNaC::sqrt(y), c1 = m0 / ch2;
+  const ex t1 = GiNaC::atan2(s1, c1), t2 = GiNaC::log(sh2 + ch2);
+  const ex l1 = -t1 * t1, l2 = t2 * t2;
+  const Series f1 = fold(l1, c1, s1 / t1), f2 = fold(l2, ch2, sh2 / t2);
+  const Mix m = mix(l1, l2, f1, f2);
+  const Multivector b = (2 / (f1.s * f2.s)) * m4;
+  const ex g = 4 * l1 * l2;
+  const Multivector out = m2 * (m.a0 * Multivector(ex(1)) - m.a1 * b);
+  return out.grade(2) / (m.a0 * m.a0 - m.a1 * m.a1 * g);
+}
+
 }  // namespace
 
 Multivector exponential(const Call& c) {
@@ -124,10 +193,17 @@ Multivector exponential(const Call& c) {
   const Multivector sq = nonvanishing(c.ctx, b * b);
   const ex a = sq.scalar();
   const Multivector four = sq.grade(4);
-  if (!(sq - Multivector(a) - four).is_zero() || !nonvanishing(c.ctx, four * four).is_zero())
-    throw CompileError(at, "'exp' of a bivector B whose square's 4-vector part <B*B>_4 does not square to 0 (two "
-                           "commuting planes, such as a rotation with a dilation): write the product of the exps "
-                           "of its commuting parts");
+  if (!(sq - Multivector(a) - four).is_zero())
+    throw CompileError(at, "'exp' of a bivector B whose square has grades other than 0 and 4 (an algebra of more "
+                           "than 5 dimensions): write the product of the exps of its commuting parts");
+  const Multivector g = nonvanishing(c.ctx, four * four);
+  if (!g.is_zero()) {
+    if (!g.is_scalar() || !manifestly_nonnegative((-g.scalar()).expand()))
+      throw CompileError(at, "'exp' of a bivector B of two commuting planes is supported where one is a rotation "
+                             "and the other a boost (<B*B>_4 squared visibly <= 0, as a rotation with a dilation); "
+                             "write the product of the exps of its commuting parts");
+    return exp_two_planes(b, a, four, g.scalar());
+  }
   Series f;
   if (a.is_zero()) {
     f = fold(a, 1, 1);
@@ -155,10 +231,15 @@ Multivector logarithm(const Call& c) {
   if (!(m - Multivector(m0) - m2 - m4).is_zero() || m2.is_zero())
     throw CompileError(at, "'log' takes a positive scalar, or a rotor or motor (a scalar and a bivector, and a "
                            "4-vector for a screw), got " + describe(m));
-  if (!nonvanishing(c.ctx, m4 * m4).is_zero())
-    throw CompileError(at, "'log' of a motor whose 4-vector part does not square to 0 (two commuting planes, "
-                           "such as a rotation with a dilation) is not supported");
-  const ex q = nonvanishing(c.ctx, m2 * m2).scalar();  // a S^2: -sin^2 t or sinh^2 t
+  const ex q = nonvanishing(c.ctx, m2 * m2).scalar();  // one plane: a S^2, -sin^2 t or sinh^2 t
+  const Multivector m44 = nonvanishing(c.ctx, m4 * m4);
+  if (!m44.is_zero()) {
+    if (!m44.is_scalar() || !manifestly_nonnegative((-m44.scalar()).expand()))
+      throw CompileError(at, "'log' of a motor of two commuting planes is supported where one is a rotation and "
+                             "the other a boost (its 4-vector part squared visibly <= 0, as a rotation with a "
+                             "dilation)");
+    return log_two_planes(m0, m2, m4, q, -m44.scalar());
+  }
   Series f;
   if (manifestly_nonnegative((-q).expand())) {
     const ex r = GiNaC::sqrt((-q).expand()), t = GiNaC::atan2(r, m0);
