@@ -24,6 +24,10 @@ class Context {
   virtual Multivector scalar_part_if_scalar(const Multivector& m) = 0;
   // m without the bivector-free blades (grade != 2) that vanish: what exp looks at.
   virtual Multivector bivector_part_if_bivector(const Multivector& m) = 0;
+  // m, or, where its coefficients are long expressions, a reference to it bound to temporaries (the cost
+  // model's binding, expand/cost.hpp): what exp and log take, so their sign tests and expansions work on
+  // symbols and stay bounded in time.
+  virtual Multivector bind_if_long(const Multivector& m, front::SourceLoc loc) = 0;
   // Is the coefficient c zero once earlier values are inlined?
   virtual bool vanishes(const GiNaC::ex& c) = 0;
   // a / b as the language's division defines it; errors at `divisor`.

@@ -397,6 +397,12 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
     return ref;
   }
 
+  Multivector bind_if_long(const Multivector& m, SourceLoc loc) override {
+    for (const auto& [b, c] : m.terms())
+      if (expand_cost::longer_than(c, expand_cost::kBindArgumentNodes)) return bind_part(m, loc);
+    return m;
+  }
+
   // A product of a and b, with the operands the cost model picks bound to temporaries first.
   Multivector product(algebra::ProductKind kind, Multivector a, Multivector b, SourceLoc loc) {
     const expand_cost::BindPlan plan = expand_cost::plan_product(kind, a, b);

@@ -18,6 +18,8 @@
 // select takes their Taylor series, so exp(0) = 1 and log(1) = 0 exactly, and small angles keep their digits.
 #include <ginac/ginac.h>
 
+#include <functional>
+
 #include "algebra/algebra.hpp"
 #include "expand/builtins.hpp"
 #include "front/diagnostics.hpp"
@@ -79,13 +81,17 @@ Multivector nonvanishing(Context& ctx, const Multivector& m) {
   return r;
 }
 
+// A scalar as the expander's temporary where it is a long expression (Context::bind_if_long): the closed
+// forms below nest the previous ones, and on long expressions GiNaC's normal() and expand() take minutes.
+using Bind = std::function<ex(const ex&)>;
+
 // C(a), S(a) and S'(a) (top of this file). `closed_c` and `closed_s` are C and S in closed form, for a whose
 // square is not small; the Taylor series (to a^4, exact to double precision for |a| < 1/100) below it.
 struct Series {
   ex c, s, sp;
 };
 
-Series fold(const ex& a, const ex& closed_c, const ex& closed_s) {
+Series fold(const ex& a, const ex& closed_c, const ex& closed_s, const Bind& bind) {
   const ex taylor_c = 1 + a / 2 + GiNaC::pow(a, 2) / 24 + GiNaC::pow(a, 3) / 720 + GiNaC::pow(a, 4) / 40320;
   const ex taylor_s = 1 + a / 6 + GiNaC::pow(a, 2) / 120 + GiNaC::pow(a, 3) / 5040 + GiNaC::pow(a, 4) / 362880;
   const ex taylor_sp =
@@ -95,8 +101,8 @@ Series fold(const ex& a, const ex& closed_c, const ex& closed_s) {
   small.op = symbolic::Condition::Op::Lt;
   small.a = a * a;
   small.b = numeric(1, 10000);
-  return {symbolic::make_select(small, taylor_c, closed_c), symbolic::make_select(small, taylor_s, closed_s),
-          symbolic::make_select(small, taylor_sp, (closed_c - closed_s) / (2 * a))};
+  return {bind(symbolic::make_select(small, taylor_c, closed_c)), bind(symbolic::make_select(small, taylor_s, closed_s)),
+          bind(symbolic::make_select(small, taylor_sp, (closed_c - closed_s) / (2 * a)))};
 }
 
 
@@ -115,7 +121,7 @@ struct Mix {
   ex a0, a1;
 };
 
-Mix mix(const ex& l1, const ex& l2, const Series& f1, const Series& f2) {
+Mix mix(const ex& l1, const ex& l2, const Series& f1, const Series& f2, const Bind& bind) {
   static const GiNaC::symbol x("x"), y("y");
   static const std::pair<ex, ex> taylor = [] {
     auto ct = [](const ex& v) { return 1 + v / 2 + GiNaC::pow(v, 2) / 24 + GiNaC::pow(v, 3) / 720 + GiNaC::pow(v, 4) / 40320; };
@@ -126,25 +132,27 @@ Mix mix(const ex& l1, const ex& l2, const Series& f1, const Series& f2) {
   const GiNaC::lst at{x == l1, y == l2};
   const ex d = l2 - l1;
   const symbolic::Condition near = small_square(d);
-  return {symbolic::make_select(near, taylor.first.subs(at), (l2 * f1.c * f2.s - l1 * f1.s * f2.c) / d),
-          symbolic::make_select(near, taylor.second.subs(at), (f1.s * f2.c - f1.c * f2.s) / (2 * d))};
+  return {bind(symbolic::make_select(near, taylor.first.subs(at), (l2 * f1.c * f2.s - l1 * f1.s * f2.c) / d)),
+          bind(symbolic::make_select(near, taylor.second.subs(at), (f1.s * f2.c - f1.c * f2.s) / (2 * d)))};
 }
 
 // exp(B) for B*B = a + b with b*b = g, -g >= 0 (two commuting planes, l1 <= 0 <= l2).
-Multivector exp_two_planes(const Multivector& b, const ex& a, const Multivector& four, const ex& g) {
-  const ex r = GiNaC::abs(root_of_square((a * a - g).expand()));
-  const ex l1 = (a - r) / 2, l2 = (a + r) / 2;
-  const ex t1 = GiNaC::sqrt(-l1), t2 = GiNaC::sqrt(l2);
-  const Series f1 = fold(l1, GiNaC::cos(t1), GiNaC::sin(t1) / t1), f2 = fold(l2, GiNaC::cosh(t2), GiNaC::sinh(t2) / t2);
-  const Mix m = mix(l1, l2, f1, f2);
+Multivector exp_two_planes(const Multivector& b, const ex& a, const Multivector& four, const ex& g, const Bind& bind) {
+  const ex r = bind(GiNaC::abs(root_of_square((a * a - g).expand())));
+  const ex l1 = bind((a - r) / 2), l2 = bind((a + r) / 2);
+  const ex t1 = bind(GiNaC::sqrt(-l1)), t2 = bind(GiNaC::sqrt(l2));
+  const Series f1 = fold(l1, GiNaC::cos(t1), GiNaC::sin(t1) / t1, bind),
+               f2 = fold(l2, GiNaC::cosh(t2), GiNaC::sinh(t2) / t2, bind);
+  const Mix m = mix(l1, l2, f1, f2, bind);
   return Multivector(f1.c * f2.c) + (f1.s * f2.s / 2) * four + b * (m.a0 * Multivector(ex(1)) + m.a1 * four);
 }
 
 // log(M) for M = exp(B1 + B2) with B1^2 = l1 = -t1^2 <= 0 <= l2 = t2^2 = B2^2. With X = sinh^2 t2 and
 // Y = sin^2 t1: q = <<M>_2^2>_0 = X - Y - 2XY and p = -<<M>_4^2>_0 = XY, so X and Y are the roots of
 // z^2 - d z - p = 0 (X) and of z^2 + d z - p (Y), d = q + 2p; each is taken in the form without cancellation.
-Multivector log_two_planes(const ex& m0, const Multivector& m2, const Multivector& m4, const ex& q, const ex& p) {
-  const ex d = q + 2 * p, e = GiNaC::sqrt(d * d + 4 * p);
+Multivector log_two_planes(const ex& m0, const Multivector& m2, const Multivector& m4, const ex& q, const ex& p,
+                           const Bind& bind) {
+  const ex d = bind(q + 2 * p), e = bind(GiNaC::sqrt(d * d + 4 * p));
   symbolic::Condition d_nonneg;
   d_nonneg.op = symbolic::Condition::Op::Ge;
   d_nonneg.a = d;
@@ -153,25 +161,27 @@ Multivector log_two_planes(const ex& m0, const Multivector& m2, const Multivecto
   e_zero.op = symbolic::Condition::Op::Eq;
   e_zero.a = e;
   e_zero.b = 0;
-  const ex x = symbolic::make_select(d_nonneg, (d + e) / 2, symbolic::make_select(e_zero, 0, 2 * p / (e - d)));
-  const ex y = symbolic::make_select(d_nonneg, symbolic::make_select(e_zero, 0, 2 * p / (d + e)), (e - d) / 2);
-  const ex ch2 = GiNaC::sqrt(1 + x), sh2 = GiNaC::sqrt(x), s1 = GiNaC::sqrt(y), c1 = m0 / ch2;
-  const ex t1 = GiNaC::atan2(s1, c1), t2 = GiNaC::log(sh2 + ch2);
-  const ex l1 = -t1 * t1, l2 = t2 * t2;
-  const Series f1 = fold(l1, c1, s1 / t1), f2 = fold(l2, ch2, sh2 / t2);
-  const Mix m = mix(l1, l2, f1, f2);
-  const Multivector b = (2 / (f1.s * f2.s)) * m4;
+  const ex x = bind(symbolic::make_select(d_nonneg, (d + e) / 2, symbolic::make_select(e_zero, 0, 2 * p / (e - d))));
+  const ex y = bind(symbolic::make_select(d_nonneg, symbolic::make_select(e_zero, 0, 2 * p / (d + e)), (e - d) / 2));
+  const ex ch2 = bind(GiNaC::sqrt(1 + x)), sh2 = bind(GiNaC::sqrt(x)), s1 = bind(GiNaC::sqrt(y)), c1 = bind(m0 / ch2);
+  const ex t1 = bind(GiNaC::atan2(s1, c1)), t2 = bind(GiNaC::log(sh2 + ch2));
+  const ex l1 = bind(-t1 * t1), l2 = bind(t2 * t2);
+  const Series f1 = fold(l1, c1, s1 / t1, bind), f2 = fold(l2, ch2, sh2 / t2, bind);
+  const Mix m = mix(l1, l2, f1, f2, bind);
+  const Multivector b = bind(2 / (f1.s * f2.s)) * m4;
   const ex g = 4 * l1 * l2;
   const Multivector out = m2 * (m.a0 * Multivector(ex(1)) - m.a1 * b);
-  return out.grade(2) / (m.a0 * m.a0 - m.a1 * m.a1 * g);
+  return out.grade(2) * bind(1 / (m.a0 * m.a0 - m.a1 * m.a1 * g));
 }
 
 }  // namespace
 
 Multivector exponential(const Call& c) {
+  const front::SourceLoc at = c.expr.args[0]->loc;
   Multivector b = c.ctx.scalar_part_if_scalar(c.args[0]);
   if (b.is_scalar()) return Multivector(GiNaC::exp(b.scalar()));
-  const front::SourceLoc at = c.expr.args[0]->loc;
+  b = c.ctx.bind_if_long(b, at);
+  const Bind bind = [&](const ex& e) { return c.ctx.bind_if_long(Multivector(e), at).scalar(); };
   b = c.ctx.bivector_part_if_bivector(b);
   if (!b.is_homogeneous(2)) throw CompileError(at, "'exp' takes a scalar or a bivector, got " + describe(b));
   if (b.terms().size() == 1) {
@@ -202,17 +212,17 @@ Multivector exponential(const Call& c) {
       throw CompileError(at, "'exp' of a bivector B of two commuting planes is supported where one is a rotation "
                              "and the other a boost (<B*B>_4 squared visibly <= 0, as a rotation with a dilation); "
                              "write the product of the exps of its commuting parts");
-    return exp_two_planes(b, a, four, g.scalar());
+    return exp_two_planes(b, a, four, g.scalar(), bind);
   }
   Series f;
   if (a.is_zero()) {
-    f = fold(a, 1, 1);
+    f = fold(a, 1, 1, bind);
   } else if (manifestly_nonnegative((-a).expand())) {  // a = -t^2: a rotation (with a translation)
     const ex t = root_of_square((-a).expand());
-    f = fold(a, GiNaC::cos(t), GiNaC::sin(t) / t);
+    f = fold(a, GiNaC::cos(t), GiNaC::sin(t) / t, bind);
   } else if (manifestly_nonnegative(a)) {  // a = t^2: a boost
     const ex t = root_of_square(a);
-    f = fold(a, GiNaC::cosh(t), GiNaC::sinh(t) / t);
+    f = fold(a, GiNaC::cosh(t), GiNaC::sinh(t) / t, bind);
   } else {
     // (The square is not printed: GiNaC's term order differs between processes, and messages must not.)
     throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument B: <B*B>_0 must be "
@@ -222,10 +232,11 @@ Multivector exponential(const Call& c) {
 }
 
 Multivector logarithm(const Call& c) {
+  const front::SourceLoc at = c.expr.args[0]->loc;
   const Multivector x = c.ctx.scalar_part_if_scalar(c.args[0]);
   if (x.is_scalar()) return Multivector(GiNaC::log(x.scalar()));
-  const front::SourceLoc at = c.expr.args[0]->loc;
-  const Multivector m = nonvanishing(c.ctx, x);
+  const Multivector m = c.ctx.bind_if_long(nonvanishing(c.ctx, x), at);
+  const Bind bind = [&](const ex& e) { return c.ctx.bind_if_long(Multivector(e), at).scalar(); };
   const Multivector m2 = m.grade(2), m4 = m.grade(4);
   const ex m0 = m.scalar();
   if (!(m - Multivector(m0) - m2 - m4).is_zero() || m2.is_zero())
@@ -238,15 +249,15 @@ Multivector logarithm(const Call& c) {
       throw CompileError(at, "'log' of a motor of two commuting planes is supported where one is a rotation and "
                              "the other a boost (its 4-vector part squared visibly <= 0, as a rotation with a "
                              "dilation)");
-    return log_two_planes(m0, m2, m4, q, -m44.scalar());
+    return log_two_planes(m0, m2, m4, q, -m44.scalar(), bind);
   }
   Series f;
   if (manifestly_nonnegative((-q).expand())) {
-    const ex r = GiNaC::sqrt((-q).expand()), t = GiNaC::atan2(r, m0);
-    f = fold(-t * t, m0, r / t);
+    const ex r = bind(GiNaC::sqrt((-q).expand())), t = bind(GiNaC::atan2(r, m0));
+    f = fold(-t * t, m0, r / t, bind);
   } else if (manifestly_nonnegative(q)) {
-    const ex r = GiNaC::sqrt(q), t = GiNaC::log(r + GiNaC::sqrt(q + 1));
-    f = fold(t * t, m0, r / t);
+    const ex r = bind(GiNaC::sqrt(q)), t = bind(GiNaC::log(r + GiNaC::sqrt(q + 1)));
+    f = fold(t * t, m0, r / t, bind);
   } else {
     throw CompileError(at, "'log': cannot tell the sign of <B*B>_0 for the bivector part B of its argument: it "
                            "must be visibly <= 0 (a rotor) or >= 0 (a boost)");

@@ -4,6 +4,7 @@
 #include "symbolic/budget.hpp"
 #include "symbolic/dag.hpp"
 #include "symbolic/node_cache.hpp"
+#include "symbolic/select.hpp"
 
 #include "algebra/algebra.hpp"
 
@@ -509,6 +510,13 @@ std::optional<GiNaC::numeric> evalf_at(const GiNaC::ex& e, const GiNaC::exmap& a
     } else if (symbolic::is_power(x)) {
       auto b = self(self, x.op(0)), k = self(self, x.op(1));
       if (b && k) v = as_number(evalf(pow(*b, *k)));
+    } else if (is_select(x)) {
+      // The branch the comparison takes, only: the other may have a pole here (the closed form beside its
+      // Taylor series at 0), which must not make the whole select fail.
+      // (At a sample point a kernel's real values may be complex; their real parts decide there.)
+      auto a = self(self, x.op(0)), b = self(self, x.op(1));
+      if (a && b)
+        v = self(self, x.op(select_holds(select_operator(x), a->real().to_double(), b->real().to_double()) ? 2 : 3));
     } else if (is_a<function>(x)) {
       exvector args;
       bool ok = true;

@@ -30,9 +30,27 @@ ex eq_eval(const ex& a, const ex& b, const ex& x, const ex& y) {
               select_eq(a, b, x, y).hold());
 }
 
-ex lt_evalf(const ex& a, const ex& b, const ex& x, const ex& y) { return select_lt(a.evalf(), b.evalf(), x.evalf(), y.evalf()); }
-ex le_evalf(const ex& a, const ex& b, const ex& x, const ex& y) { return select_le(a.evalf(), b.evalf(), x.evalf(), y.evalf()); }
-ex eq_evalf(const ex& a, const ex& b, const ex& x, const ex& y) { return select_eq(a.evalf(), b.evalf(), x.evalf(), y.evalf()); }
+// A comparison of numbers evaluates the branch it takes only: nested selects (exp and log nest their Taylor
+// selects) would otherwise cost 2^depth evaluations.
+template <class Cmp>
+ex fold_evalf(const ex& a, const ex& b, const ex& x, const ex& y, Cmp cmp, ex (*make)(const ex&, const ex&, const ex&, const ex&)) {
+  const ex ea = a.evalf(), eb = b.evalf();
+  if (is_a<numeric>(ea) && is_a<numeric>(eb) && ex_to<numeric>(ea).is_real() && ex_to<numeric>(eb).is_real())
+    return (cmp(ex_to<numeric>(ea), ex_to<numeric>(eb)) ? x : y).evalf();
+  return make(ea, eb, x.evalf(), y.evalf());
+}
+ex make_lt(const ex& a, const ex& b, const ex& x, const ex& y) { return select_lt(a, b, x, y); }
+ex make_le(const ex& a, const ex& b, const ex& x, const ex& y) { return select_le(a, b, x, y); }
+ex make_eq(const ex& a, const ex& b, const ex& x, const ex& y) { return select_eq(a, b, x, y); }
+ex lt_evalf(const ex& a, const ex& b, const ex& x, const ex& y) {
+  return fold_evalf(a, b, x, y, [](const numeric& p, const numeric& q) { return p < q; }, make_lt);
+}
+ex le_evalf(const ex& a, const ex& b, const ex& x, const ex& y) {
+  return fold_evalf(a, b, x, y, [](const numeric& p, const numeric& q) { return p <= q; }, make_le);
+}
+ex eq_evalf(const ex& a, const ex& b, const ex& x, const ex& y) {
+  return fold_evalf(a, b, x, y, [](const numeric& p, const numeric& q) { return p == q; }, make_eq);
+}
 
 // The arguments are real (kernel symbols are realsymbols): conjugation acts on the branches only.
 ex lt_conj(const ex& a, const ex& b, const ex& x, const ex& y) { return select_lt(a, b, x.conjugate(), y.conjugate()); }

@@ -5,6 +5,7 @@
 #include "symbolic/multivector.hpp"
 #include <set>
 #include <string>
+#include <vector>
 
 namespace cgagen::symbolic {
 
@@ -138,6 +139,27 @@ bool ZeroTests::analytic(const ex& e) const {
   return !bad;
 }
 
+namespace {
+
+// GiNaC's own evalf walks an expression as a tree, so on a DAG with shared subtrees it can take exponential
+// time. The memoized evalf_at covers every node the expander builds; GiNaC's is the fallback for what it
+// does not, and only where the tree is small: a tree of more than this many nodes counts as not evaluable.
+constexpr size_t kMaxFallbackNodes = 20000;
+
+bool small_tree(const ex& c) {
+  std::vector<ex> todo{c};
+  size_t seen = 0;
+  while (!todo.empty()) {
+    const ex e = todo.back();
+    todo.pop_back();
+    if (++seen > kMaxFallbackNodes) return false;
+    for (size_t i = 0; i < e.nops(); ++i) todo.push_back(e.op(i));
+  }
+  return true;
+}
+
+}  // namespace
+
 bool ZeroTests::probably_nonzero(const ex& c) { return probes_.test(c) == ProbePoints::Verdict::Nonzero; }
 
 // c at signed point k (a number, possibly complex), or 0 where it cannot be evaluated there. The value
@@ -157,6 +179,7 @@ ex ZeroTests::sample_at_signed_point(const ex& c, size_t k) {
   try {
     // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
     auto fast = evalf_at(c, signed_samples_[k]);  // no expression built
+    if (!fast && !small_tree(c)) return GiNaC::numeric(0);
     ex v = fast ? ex(*fast) : GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
     if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
   } catch (const std::exception&) {
@@ -184,6 +207,7 @@ std::optional<ex> ZeroTests::sample(const ex& c) {
 std::optional<ex> ZeroTests::evaluate_at_sample(const ex& c) {
   try {
     auto fast = evalf_at(c, samples_, &kept_sample_values_);  // no expression built
+    if (!fast && !small_tree(c)) return std::nullopt;
     return fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
   } catch (const std::exception&) {
     return std::nullopt;

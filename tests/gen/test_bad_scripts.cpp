@@ -82,6 +82,11 @@ TEST_CASE("unbalanced parentheses: one never closed, one too many") {
   require_diagnostic("unbalanced_close.clu", ")", 1, "expected ';' after statement");
 }
 
+TEST_CASE("a pragma without its words") {
+  require_diagnostic("pragma_output_alone.clu", "#pragma output\n", 1,
+                     "'#pragma output' needs a name and at least one blade");
+}
+
 TEST_CASE("division by a multivector without inverse") {
   require_diagnostic("divide_non_invertible.clu", "d;", 1,
                      "cannot divide by this multivector: it has no inverse (d*conjugate(d) = 0)");
