@@ -338,3 +338,22 @@ TEST_CASE("gpc: the same source gives the same text on every run", "[gpc]") {
   CHECK(!a.empty());
   CHECK(a == b);
 }
+
+// cgagen_generate() rewrote tests/gen/gpc/rotate.hpg at build time (tests/gen/CMakeLists.txt).
+#include "rotate.hpp"
+
+TEST_CASE("gpc: cgagen_generate() turns a .hpg source into a header, against the oracle", "[gpc]") {
+  const double angle = 0.9, v[] = {1.0, -0.5, 2.0};
+  const std::array<double, 3> got = gpc_generated::rotate(angle, v);
+  auto named = [](const std::map<std::string, double>& m) {
+    og::MV r;
+    for (const auto& [n, c] : m) r = og::sum(r, og::scaled(og::user_blade(cga(), n), c));
+    return r;
+  };
+  const og::MV R = named({{"1", std::cos(angle / 2)}, {"e1^e2", -std::sin(angle / 2)}});
+  const og::MV w = og::product(cga(), og::product(cga(), R, named({{"e1", v[0]}, {"e2", v[1]}, {"e3", v[2]}}),
+                                                  og::Op::Geometric),
+                               og::reverse(R), og::Op::Geometric);
+  check_row({got[0], got[1], got[2]}, expected(w).second, "rotate");
+  CHECK(std::abs(got[2] - v[2]) < 1e-12);
+}
