@@ -134,7 +134,19 @@ Compiled compile_block(const front::SourceFile& file, const Text& t, const Block
   script.statements = std::move(statements);
 
   symbolic::NodeCacheScope caches;
-  Kernel kernel = expand(script, "gpc_block_" + std::to_string(b.index));
+  Kernel kernel;
+  try {
+    kernel = expand(script, "gpc_block_" + std::to_string(b.index));
+  } catch (const CompileError& e) {
+    // A fault of the script as a whole ("no outputs") has no place in it: report it at the section's pragma.
+    bool placed = e.loc().line > b.clu_begin.line && e.loc().line < b.clu_end.line;
+    for (const InputDecl& d : inputs) {
+      placed = placed || e.loc().line == d.name_loc.line || e.loc().line == d.fn_loc.line;
+      for (const auto& l : d.blade_locs) placed = placed || e.loc().line == l.line;
+    }
+    if (placed) throw;
+    throw CompileError(b.clu_begin.loc, e.what());
+  }
   warnings.insert(warnings.end(), kernel.warnings.begin(), kernel.warnings.end());
   const opt::Program program = opt::optimize(kernel, o.level);
 
