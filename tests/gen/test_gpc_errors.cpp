@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace {
@@ -128,4 +129,16 @@ TEST_CASE("gpc: --Werror makes a script warning an error, and the options --gpc 
   CHECK(r.out.find("--gpc prints C, C++, CUDA or OpenCL statements") != std::string::npos);
   r = gpc_run("good.hpg", kGood, "--stats");
   CHECK(r.code == 2);
+}
+
+TEST_CASE("gpc: a source without blocks is copied unchanged after its #line", "[gpc]") {
+  const std::string text = "// to_array(x) in a comment, \"#pragma gpc begin\" in a string\n"
+                           "#include <array>\nauto f(const int (&v)[2]) { return std::to_array(v); }\n"
+                           "/*\n#pragma gpc begin\n*/\nint main() { return 0; }";
+  const Shell r = gpc_run("plain.cpp", text);
+  INFO(r.out);
+  CHECK(r.code == 0);
+  std::ifstream in(std::string(CGA_BINARY_DIR) + "/gpc_errors/out.hpp", std::ios::binary);
+  const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(out == "#line 1 \"plain.cpp\"\n" + text);
 }
