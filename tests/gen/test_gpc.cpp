@@ -72,7 +72,7 @@ std::vector<og::Bits> blades_in_order(const std::vector<og::Bits>& set) {
   std::vector<og::Bits> v = set;
   auto key = [](og::Bits b) {
     std::vector<int> idx;
-    for (int k = 0; k < 5; ++k)
+    for (int k = 0; k < 32; ++k)
       if (b & (1u << k)) idx.push_back(k);
     return std::make_pair(static_cast<int>(idx.size()), idx);
   };
@@ -80,18 +80,18 @@ std::vector<og::Bits> blades_in_order(const std::vector<og::Bits>& set) {
   return v;
 }
 
-std::vector<og::Bits> grade_blades(int grade) {
+std::vector<og::Bits> grade_blades(int grade, const og::Algebra& alg = cga()) {
   std::vector<og::Bits> v;
-  for (og::Bits b = 0; b < 32; ++b)
+  for (og::Bits b = 0; b < (1u << alg.dim()); ++b)
     if (std::popcount(b) == grade) v.push_back(b);
   return blades_in_order(v);
 }
 
 // A blade's name with its vectors in the given order (reversed: e2^e1, which mv_from_array reads as -e1^e2).
-std::string blade_text(og::Bits b, bool reversed = false) {
+std::string blade_text(og::Bits b, bool reversed = false, const og::Algebra& alg = cga()) {
   std::vector<std::string> names;
-  for (int k = 0; k < 5; ++k)
-    if (b & (1u << k)) names.push_back(cga().names[static_cast<size_t>(k)]);
+  for (int k = 0; k < alg.dim(); ++k)
+    if (b & (1u << k)) names.push_back(alg.names[static_cast<size_t>(k)]);
   if (names.empty()) return "1";
   if (reversed) std::reverse(names.begin(), names.end());
   std::string s;
@@ -99,25 +99,26 @@ std::string blade_text(og::Bits b, bool reversed = false) {
   return s;
 }
 
-std::string blade_list(const std::vector<og::Bits>& blades, bool reversed = false) {
+std::string blade_list(const std::vector<og::Bits>& blades, bool reversed = false, const og::Algebra& alg = cga()) {
   std::string s;
-  for (og::Bits b : blades) s += (s.empty() ? "" : ", ") + blade_text(b, reversed);
+  for (og::Bits b : blades) s += (s.empty() ? "" : ", ") + blade_text(b, reversed, alg);
   return s;
 }
 
 // The oracle multivector sum_k values[k] * blade k (each named as written, so reversed names count with sign).
-og::MV from_values(const std::vector<og::Bits>& blades, const std::vector<double>& values, bool reversed = false) {
+og::MV from_values(const std::vector<og::Bits>& blades, const std::vector<double>& values, bool reversed = false,
+                   const og::Algebra& alg = cga()) {
   og::MV m;
   for (size_t k = 0; k < blades.size(); ++k)
-    m = og::sum(m, og::scaled(og::user_blade(cga(), blade_text(blades[k], reversed)), values[k]));
+    m = og::sum(m, og::scaled(og::user_blade(alg, blade_text(blades[k], reversed, alg)), values[k]));
   return m;
 }
 
 // An oracle result over the user blades: its nonzero blades in the contract's order and their values.
-std::pair<std::vector<og::Bits>, std::vector<double>> expected(const og::MV& diag) {
+std::pair<std::vector<og::Bits>, std::vector<double>> expected(const og::MV& diag, const og::Algebra& alg = cga()) {
   std::vector<og::Bits> blades;
   std::map<og::Bits, double> by;
-  for (const auto& [u, c] : og::to_user(cga(), diag))
+  for (const auto& [u, c] : og::to_user(alg, diag))
     if (std::abs(c) > 1e-9) blades.push_back(u), by[u] = c;
   blades = blades_in_order(blades);
   std::vector<double> values;
@@ -192,46 +193,65 @@ void check_row(const std::vector<double>& got, const std::vector<double>& want, 
   for (size_t k = 0; k < got.size(); ++k) CHECK(std::abs(got[k] - want[k]) <= tolerance * (1 + std::abs(want[k])));
 }
 
-}  // namespace
-
-TEST_CASE("gpc: binary operations from a template, per pair of grades, against the oracle", "[gpc]") {
+// The binary template for each pair of grades of `alg` (its definition file `algebra_file`, or a built-in
+// name), rewritten, compiled in one driver and compared with the oracle.
+void check_binary(const std::string& tag, const og::Algebra& alg, const std::string& algebra_option,
+                  const std::vector<std::pair<int, int>>& pairs) {
   const std::string tmpl = slurp(std::string(GPC_DIR) + "/binary_ops.hpg.in");
   REQUIRE(!tmpl.empty());
-  const std::vector<std::pair<int, int>> pairs{{1, 1}, {1, 2}, {2, 1}, {2, 2}, {1, 3}, {2, 3}, {1, 4}};
   std::mt19937 rng(20261126);
   std::string driver = kPrint;
   std::string body;
   std::vector<std::vector<std::vector<double>>> want;  // per pair: add, sub, gp, op, ip
   for (const auto& [l, r] : pairs) {
-    const std::string id = "binary_" + std::to_string(l) + "_" + std::to_string(r);
+    const std::string id = tag + "_" + std::to_string(l) + "_" + std::to_string(r);
     // The right operand's blades are written with their vectors reversed (e2^e1): mv_from_array reads the
     // coefficient of that order, i.e. minus the canonical one for an odd permutation.
-    const std::string text = replace_all(replace_all(tmpl, "@LEFT_BASIS_BLADES@", blade_list(grade_blades(l))),
-                                         "@RIGHT_BASIS_BLADES@", blade_list(grade_blades(r), true));
+    const auto lb = grade_blades(l, alg), rb = grade_blades(r, alg);
+    const std::string text = replace_all(replace_all(tmpl, "@LEFT_BASIS_BLADES@", blade_list(lb, false, alg)),
+                                         "@RIGHT_BASIS_BLADES@", blade_list(rb, true, alg));
     const std::string source = write(id + ".hpg", text);
-    gpc(source, work_dir() + "/" + id + ".hpp", "--type double");
+    gpc(source, work_dir() + "/" + id + ".hpp", "--type double " + algebra_option);
     driver += "namespace " + id + " {\n#include \"" + id + ".hpp\"\n}\n";
-    const auto lv = random_values(grade_blades(l).size(), rng), rv = random_values(grade_blades(r).size(), rng);
+    const auto lv = random_values(lb.size(), rng), rv = random_values(rb.size(), rng);
     body += "  {\n    const double lhs[] = " + array_literal(lv) + ";\n    const double rhs[] = " + array_literal(rv) +
             ";\n";
     for (const char* fn : {"gpc_add", "gpc_sub", "gpc_gp", "gpc_op", "gpc_ip"})
       body += "    print(" + id + "::" + fn + "(lhs, rhs));\n";
     body += "  }\n";
-    const og::MV A = from_values(grade_blades(l), lv), B = from_values(grade_blades(r), rv, true);
+    const og::MV A = from_values(lb, lv, false, alg), B = from_values(rb, rv, true, alg);
     std::vector<std::vector<double>> w;
-    for (const og::MV& m : {og::sum(A, B), og::sum(A, B, -1.0), og::product(cga(), A, B, og::Op::Geometric),
-                            og::product(cga(), A, B, og::Op::Outer), og::product(cga(), A, B, og::Op::Inner)})
-      w.push_back(expected(m).second);
+    for (const og::MV& m : {og::sum(A, B), og::sum(A, B, -1.0), og::product(alg, A, B, og::Op::Geometric),
+                            og::product(alg, A, B, og::Op::Outer), og::product(alg, A, B, og::Op::Inner)})
+      w.push_back(expected(m, alg).second);
     want.push_back(w);
   }
   driver += "int main() {\n" + body + "  return 0;\n}\n";
-  const auto rows = parse_lines(build_and_run("binary_driver", driver));
+  const auto rows = parse_lines(build_and_run(tag + "_driver", driver));
   REQUIRE(rows.size() == 5 * pairs.size());
   const char* names[] = {"a + b", "a - b", "a * b", "a ^ b", "a . b"};
   for (size_t p = 0; p < pairs.size(); ++p)
     for (size_t f = 0; f < 5; ++f)
       check_row(rows[p * 5 + f], want[p][f],
                 std::string(names[f]) + " of grades " + std::to_string(pairs[p].first) + ", " + std::to_string(pairs[p].second));
+}
+
+}  // namespace
+
+TEST_CASE("gpc: binary operations from a template, per pair of grades, against the oracle", "[gpc]") {
+  check_binary("binary", cga(), "", {{1, 1}, {1, 2}, {2, 1}, {2, 2}, {1, 3}, {2, 3}, {1, 4}});
+}
+
+TEST_CASE("gpc: --algebra with a definition file naming its vectors eo and ei, as ga-benchmark's", "[gpc]") {
+  // Conformal 2D over e1 e2 eo ei (the CGA pattern of tests/gen/test_algebras.cpp, other names).
+  const std::string csv = write("conf2d.csv", "1,e1,e2,eo,ei\n"
+                                              "ep=0.5*ei-eo,em=0.5*ei+eo\n"
+                                              "1,e1,e2,ep,em\n"
+                                              "e1=1,e2=1,ep=1,em=-1\n"
+                                              "eo=0.5*em-0.5*ep,ei=em+ep\n");
+  auto alg = og::Algebra::diagonal({1, 1, 1, -1}, {"e1", "e2", "eo", "ei"});
+  alg.null_pair(2, 3, 2, 3);
+  check_binary("conf2d", alg, "--algebra " + csv, {{1, 1}, {1, 2}, {2, 2}, {1, 3}});
 }
 
 TEST_CASE("gpc: unary operations, mv_to_array over every blade and mv_get_bladecoeff, against the oracle", "[gpc]") {
