@@ -63,6 +63,13 @@ std::string emit_statements(const opt::Program& program, const StatementOptions&
              "\n";
     }
   }
+  // The code after a block may read only some outputs (an IK chain's intermediate joints): no
+  // -Wunused-but-set-variable for the others.
+  std::string uses;
+  for (const auto& o : program.outputs)
+    if (!o.slots.empty())
+      uses += (uses.empty() ? "" : " ") + fill_pattern(sx.unused.empty() ? "(void)${name};" : sx.unused, {{"name", o.name}});
+  if (!uses.empty()) out += in + uses + "\n";
   if (scope) out += options.indent + "}\n";
   return out;
 }

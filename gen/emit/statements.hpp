@@ -32,6 +32,7 @@ const std::vector<std::string>& statement_targets();
 //   {                 (only when there are temporaries)
 //     const T <prefix>t0 = ...;
 //     r[0] = ...;  // e1^e2
+//     (void)r;        (every output: the code after the block may leave some unread)
 //   }
 // An output without blades (identically zero) declares nothing. Throws std::invalid_argument for a target
 // that is not in statement_targets().
