@@ -364,6 +364,28 @@ TEST_CASE("gpc: blocks inside #if groups compile and run, and #line maps C error
   CHECK(c.out.find("conditional.hpp:") == std::string::npos);
 }
 
+TEST_CASE("gpc: a C error inside the generated statements is reported in the block's script", "[gpc]") {
+  // The array mv_from_array names does not exist: the compiler's error is at a line of the script section
+  // (lines 6-7 here), in the original file.
+  const std::string source = write("missing_array.hpg", "#include <cmath>\n"
+                                                        "float f() {\n"
+                                                        "#pragma gpc begin\n"
+                                                        "    a = mv_from_array(no_such_array, e1, e2);\n"
+                                                        "#pragma clucalc begin\n"
+                                                        "    n = a . a;\n"
+                                                        "    ?r = n * n;\n"
+                                                        "#pragma clucalc end\n"
+                                                        "#pragma gpc end\n"
+                                                        "    return mv_get_bladecoeff(r, 1);\n"
+                                                        "}\n");
+  gpc(source, work_dir() + "/missing_array.hpp");
+  const Shell c = sh(std::string(CXX_COMPILER) + " -std=c++17 -fsyntax-only -x c++ " + work_dir() + "/missing_array.hpp");
+  INFO(c.out);
+  CHECK(c.code != 0);
+  CHECK((c.out.find("missing_array.hpg:6:") != std::string::npos || c.out.find("missing_array.hpg:7:") != std::string::npos));
+  CHECK(c.out.find("no_such_array") != std::string::npos);
+}
+
 TEST_CASE("gpc: the same source gives the same text on every run", "[gpc]") {
   const std::string a = slurp(gpc(std::string(GPC_DIR) + "/chain.hpg", work_dir() + "/chain_a.hpp", "-O2"));
   const std::string b = slurp(gpc(std::string(GPC_DIR) + "/chain.hpg", work_dir() + "/chain_b.hpp", "-O2"));
