@@ -411,3 +411,28 @@ TEST_CASE("gpc: cgagen_generate() turns a .hpg source into a header, against the
   check_row({got[0], got[1], got[2]}, expected(w).second, "rotate");
   CHECK(std::abs(got[2] - v[2]) < 1e-12);
 }
+
+// tests/gen/CMakeLists.txt filled binary_ops.hpg.in with configure_file() (vectors x bivectors) and ran it
+// through cgagen_generate().
+namespace configured {
+#include "binary_ops_1_2.hpp"
+}
+
+TEST_CASE("gpc: a .hpg.in filled by configure_file() and built by cgagen_generate(), against the oracle", "[gpc]") {
+  const std::vector<std::string> left{"e1", "e2", "e3", "einf", "e0"};
+  const std::vector<std::string> right{"e1^e2", "e1^e3", "e1^einf", "e1^e0", "e2^e3",
+                                       "e2^einf", "e2^e0", "e3^einf", "e3^e0", "einf^e0"};
+  std::mt19937 rng(11);
+  const auto lv = random_values(left.size(), rng), rv = random_values(right.size(), rng);
+  og::MV A, B;
+  for (size_t k = 0; k < left.size(); ++k) A = og::sum(A, og::scaled(og::user_blade(cga(), left[k]), lv[k]));
+  for (size_t k = 0; k < right.size(); ++k) B = og::sum(B, og::scaled(og::user_blade(cga(), right[k]), rv[k]));
+  auto row = [](const auto& a) { return std::vector<double>(a.begin(), a.end()); };
+  check_row(row(configured::gpc_gp(lv.data(), rv.data())),
+            expected(og::product(cga(), A, B, og::Op::Geometric)).second, "a * b");
+  check_row(row(configured::gpc_op(lv.data(), rv.data())), expected(og::product(cga(), A, B, og::Op::Outer)).second,
+            "a ^ b");
+  check_row(row(configured::gpc_ip(lv.data(), rv.data())), expected(og::product(cga(), A, B, og::Op::Inner)).second,
+            "a . b");
+  check_row(row(configured::gpc_sub(lv.data(), rv.data())), expected(og::sum(A, B, -1.0)).second, "a - b");
+}
