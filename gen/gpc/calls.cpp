@@ -57,6 +57,19 @@ bool assignment_target(const std::string& s, size_t region_begin, size_t name, s
   size_t b = eq;
   while (b > region_begin && s[b - 1] != ';' && s[b - 1] != '{' && s[b - 1] != '}') --b;
   while (b < eq && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  // Whole lines before the target that are directives or comments are not part of it.
+  while (true) {
+    const size_t nl = s.find('\n', b);
+    if (nl == std::string::npos || nl >= eq) break;
+    const std::string line = s.substr(b, nl - b);
+    const size_t close = line.find("*/");
+    const bool skip = line[0] == '#' || line.compare(0, 2, "//") == 0 ||
+                      (line.compare(0, 2, "/*") == 0 && close != std::string::npos &&
+                       line.find_first_not_of(" \t\r", close + 2) == std::string::npos);
+    if (!skip) break;
+    b = nl + 1;
+    while (b < eq && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  }
   size_t e = eq;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
   lhs_begin = b;

@@ -142,3 +142,31 @@ TEST_CASE("gpc: a source without blocks is copied unchanged after its #line", "[
   const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(out == "#line 1 \"plain.cpp\"\n" + text);
 }
+
+TEST_CASE("gpc: mv_to_array and mv_get_bladecoeff as written after comments and directives", "[gpc]") {
+  const std::string text = "void f(float* o, const float* x) {\n"
+                           "#pragma gpc begin\n"
+                           "  a = mv_from_array(x, e1, e2);\n"
+                           "#pragma clucalc begin\n"
+                           "  ?r = a*e1;\n"
+                           "#pragma clucalc end\n"
+                           "#pragma gpc end\n"
+                           "#if 1\n"
+                           "  // all blades, then two by name (one the output lacks), then one reversed\n"
+                           "  o = mv_to_array(r);\n"
+                           "  o = mv_to_array(r, e1^e2, e3);\n"
+                           "  o[0] = mv_get_bladecoeff(r, e2 ^ e1) + mv_get_bladecoeff(r, 1.0);\n"
+                           "#endif\n"
+                           "}\n";
+  const Shell r = gpc_run("calls.hpg", text);
+  INFO(r.out);
+  REQUIRE(r.code == 0);
+  std::ifstream in(std::string(CGA_BINARY_DIR) + "/gpc_errors/out.hpp", std::ios::binary);
+  const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  INFO(out);
+  // r = a e1 = x0 + x1 e2 e1: blades 1 and e1^e2, r[1] the coefficient of e1^e2 (= -x[1]).
+  CHECK(out.find("\n  o[0] = r[0]; o[1] = r[1];\n") != std::string::npos);
+  CHECK(out.find("\n  o[0] = r[1]; o[1] = 0.0f;\n") != std::string::npos);
+  CHECK(out.find("\n  o[0] = (-r[1]) + r[0];\n") != std::string::npos);
+  CHECK(out.find("#endif\n#line 14 \"calls.hpg\"\n}\n") != std::string::npos);
+}
