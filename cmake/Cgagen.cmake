@@ -13,6 +13,7 @@
 #                   [NAME name]                 # --name: the kernel's (and the files') name instead of the
 #                                               # script's stem; one script only (e.g. a staged second copy)
 #                   [TEMPLATES <dir>]           # default: the tool's built-in templates/
+#                   [GPC_TYPE float|double]     # GPC sources: --type, the blocks' number type (default float)
 #                   [NO_WERROR])                # warnings stay warnings (default: --Werror, so a misspelt
 #                                               # name that silently became an input fails the build)
 #
@@ -21,7 +22,10 @@
 # as an identifier, `my-kernel.clu` -> my_kernel, `2pga.clu` -> _2pga, also the function's name), plus
 # OUTPUT_DIR/NAME.stats (the --stats text), with dependencies on the script, the templates and the cgagen
 # tool. <target> is an INTERFACE library whose include directory is OUTPUT_DIR; linking it builds the files
-# first. Call it several times with the same <target> to give scripts different options (packing differs
+# first. A GPC source (C/C++/CUDA with `#pragma gpc` blocks, docs/gpc.md) is recognised by its name:
+# NAME.hpg -> OUTPUT_DIR/NAME.hpp, NAME.cpg -> NAME.cpp, NAME.gpc.EXT -> NAME.EXT (NAME.gpc.cu -> NAME.cu);
+# it is rewritten once by `cgagen --gpc` with the first of TARGETS (cpp, cuda or opencl), OPT, ALGEBRA and
+# GPC_TYPE, its `#line` directives naming the source's absolute path. Call it several times with the same <target> to give scripts different options (packing differs
 # per script); the files of every call are listed in the target's CGAGEN_OUTPUTS property.
 # The tool is CGAGEN_EXECUTABLE when set, else the target `cgagen` (this project), else the imported
 # `cgagen::cgagen` of an installed cgagen (find_package(cgagen), which includes this file from
@@ -31,7 +35,8 @@ include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME" "SCRIPTS;TARGETS;PACK;UNIFORM" ${ARGN})
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM"
+                        ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
   endif()
@@ -96,6 +101,38 @@ function(cgagen_generate target)
   set(_outputs)
   foreach(_script ${CG_SCRIPTS})
     get_filename_component(_script ${_script} ABSOLUTE)
+    # A GPC source: one rewritten file, named after the source (see the top of this file).
+    get_filename_component(_file ${_script} NAME)
+    set(_gpc_out)
+    if(_file MATCHES "^(.+)\\.hpg$")
+      set(_gpc_out ${CMAKE_MATCH_1}.hpp)
+    elseif(_file MATCHES "^(.+)\\.cpg$")
+      set(_gpc_out ${CMAKE_MATCH_1}.cpp)
+    elseif(_file MATCHES "^(.+)\\.gpc(\\.[^.]+)$")
+      set(_gpc_out ${CMAKE_MATCH_1}${CMAKE_MATCH_2})
+    endif()
+    if(_gpc_out)
+      list(GET CG_TARGETS 0 _t)
+      if(NOT _t MATCHES "^(cpp|cuda|opencl)$" OR CG_UNIFORM OR CG_NAME OR CG_PACK OR CG_RETURN)
+        message(FATAL_ERROR "cgagen_generate(${target}): the GPC source ${_file} takes TARGETS cpp, cuda or opencl, "
+                            "OPT, ALGEBRA, GPC_TYPE and NO_WERROR only")
+      endif()
+      set(_args --gpc --target ${_t} ${CG_OPT} ${_templates_arg} ${_algebra_args})
+      if(CG_GPC_TYPE)
+        list(APPEND _args --type ${CG_GPC_TYPE})
+      endif()
+      if(NOT CG_NO_WERROR)
+        list(APPEND _args --Werror)
+      endif()
+      add_custom_command(
+        OUTPUT ${CG_OUTPUT_DIR}/${_gpc_out}
+        COMMAND ${_tool} ${_args} -o ${CG_OUTPUT_DIR}/${_gpc_out} ${_script}
+        DEPENDS ${_script} ${_tool_dep} ${_algebra_dep}
+        COMMENT "cgagen --gpc ${_gpc_out}"
+        VERBATIM)
+      list(APPEND _outputs ${CG_OUTPUT_DIR}/${_gpc_out})
+      continue()
+    endif()
     # The function and file name: the stem as cgagen spells it (a byte other than a letter, digit or _
     # becomes _, a leading digit gets a _ in front: my-kernel.clu -> my_kernel.hpp, my_kernel()).
     get_filename_component(_name ${_script} NAME_WE)

@@ -1,5 +1,6 @@
 // cgagen: the command-line tool. CluScript file -> parse -> expand -> optimize -> emit (or --stats, --diff,
-// --eval, --dump-ast). Exit codes: 0 success, 1 error in the script (diagnostic on stderr), 2 bad usage.
+// --eval, --dump-ast; or --gpc: a C/C++/CUDA source with GPC blocks, gen/gpc/). Exit codes: 0 success, 1 error in the script (diagnostic on stderr), 2 bad usage.
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -14,9 +15,11 @@
 #include "algebra/algebra.hpp"
 #include "emit/emit.hpp"
 #include "emit/names.hpp"
+#include "emit/statements.hpp"
 #include "expand/expand.hpp"
 #include "front/diagnostics.hpp"
 #include "front/parser.hpp"
+#include "gpc/gpc.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
 #include "opt/stage.hpp"
@@ -27,9 +30,14 @@ namespace {
 using namespace cgagen;
 
 const char* kUsage = R"(usage: cgagen [options] SCRIPT
+       cgagen --gpc [options] SOURCE
 
 Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code. SCRIPT - reads the script from
 standard input (diagnostics then name <stdin>, the function is named kernel unless --name is given).
+
+With --gpc, SOURCE is a C, C++ or CUDA file whose `#pragma gpc begin` ... `#pragma gpc end` blocks are
+compiled in place (mv_from_array inputs, a `#pragma clucalc` script, to_array / mv_to_array /
+mv_get_bladecoeff of its outputs after it; see docs/gpc.md); the rest of the text is copied unchanged.
 
 options:
   --algebra NAME|FILE     the geometric algebra (default cga): 2d 3d 2dpga 3dpga cra sta cga gac qga
@@ -51,6 +59,10 @@ options:
   --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
                           `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values
                           and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
+  --gpc                   SOURCE is a C/C++/CUDA source with GPC blocks: write it with each block compiled
+                          (with --algebra, -O, -o, --Werror, --target cpp|cuda|opencl, --type)
+  --type T                --gpc: the number type of the blocks' outputs and temporaries (default float;
+                          double or another C type name: literals then have no f suffix)
   --stats                 print op counts instead of code
   --stats-out FILE        write op counts to FILE besides the code
   --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change;
@@ -85,6 +97,9 @@ struct Options {
   bool werror = false;
   std::string algebra = "cga";
   std::vector<std::string> uniforms;  // --uniform
+  bool gpc = false;                   // --gpc
+  std::string type;                   // --type (--gpc)
+  bool target_given = false;
 };
 
 double parse_number(const std::string& text, const std::string& what) {
@@ -141,6 +156,7 @@ Options parse_args(int argc, char** argv) {
           std::exit(0);
         }
         o.emit.target = emit::parse_target(t);
+        o.target_given = true;
       } else if (a == "--target-extension") {  // for build systems: the file extension of a target
         std::cout << emit::syntax(value(i, a)).extension << "\n";
         std::exit(0);
@@ -168,6 +184,16 @@ Options parse_args(int argc, char** argv) {
         std::string item;
         while (std::getline(ss, item, ','))
           if (!item.empty()) o.uniforms.push_back(item);
+      } else if (a == "--gpc") {
+        o.gpc = true;
+      } else if (a == "--type") {
+        o.type = value(i, a);
+        bool ok = !o.type.empty();
+        for (size_t k = 0; k < o.type.size(); ++k) {
+          const char c = o.type[k];
+          ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (c == ':' || c == ' '));
+        }
+        if (!ok) throw UsageError("--type '" + o.type + "' is not a C type name");
       } else if (a == "--stats") {
         o.stats = true;
       } else if (a == "--stats-out") {
@@ -199,6 +225,18 @@ Options parse_args(int argc, char** argv) {
   if (o.script.empty()) throw UsageError("no script given");
   int modes = o.stats + o.diff.has_value() + o.dump_ast + o.eval;
   if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
+  if (o.gpc) {
+    if (modes || !o.uniforms.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
+        !o.emit.return_output.empty())
+      throw UsageError("--gpc takes --algebra, -O, -o, --Werror, --target, --type and --templates only");
+    bool known = !o.target_given;
+    for (const auto& t : emit::statement_targets()) known = known || t == o.emit.target.name;
+    if (!known)
+      throw UsageError(std::string("--gpc prints C, C++, CUDA or OpenCL statements: --target cpp, cuda or opencl, not ") +
+                       o.emit.target.name);
+  } else if (!o.type.empty()) {
+    throw UsageError("--type applies to --gpc");
+  }
   return o;
 }
 
@@ -344,6 +382,26 @@ int run_staged(const Options& o, const Kernel& kernel, const emit::EmitOptions& 
   return 0;
 }
 
+// --gpc: the source with its GPC blocks compiled (gen/gpc/gpc.hpp); warnings and errors located in it.
+int run_gpc(const Options& o, const front::SourceFile& file) {
+  gpc::Options go;
+  go.level = o.level;
+  go.target = o.emit.target;
+  if (!o.type.empty()) go.type = o.type;
+  try {
+    gpc::Result r = gpc::rewrite(file, go);
+    for (const auto& w : r.warnings)
+      std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),
+                                            o.werror ? "error" : "warning");
+    if (o.werror && !r.warnings.empty()) return 1;
+    write_text(o.output, r.text);
+    return 0;
+  } catch (const front::CompileError& e) {
+    std::cerr << front::format_diagnostic(file, e.loc(), e.what());
+    return 1;
+  }
+}
+
 int run(const Options& o) {
   try {
     algebra::use(algebra::load(o.algebra));
@@ -360,6 +418,7 @@ int run(const Options& o) {
     return 1;
   }
   const front::SourceFile& file = *loaded;
+  if (o.gpc) return run_gpc(o, file);
   const bool from_stdin = o.script == "-";
   try {
     symbolic::NodeCacheScope caches;  // shared by the expander and every optimization of this script

@@ -2,6 +2,7 @@
 // and the dot dataflow graph are the only target-specific branches. Expressions are printed by opt/lower.hpp's rules.
 #include "emit/emit.hpp"
 #include "emit/names.hpp"
+#include "emit/printer.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -135,110 +136,6 @@ std::string literal(const numeric& v, Target target, bool single) {
 }
 
 namespace {
-
-// Prints expressions in one target's syntax (one precision).
-class Printer {
- public:
-  Printer(Target target, const Precision& prec, const opt::SymbolNames& code_names, CanonicalKeys& keys)
-      : target_(target), sx_(target.syntax()), prec_(prec), single_(prec.single), code_(code_names), keys_(keys) {}
-
-  // prec: 0 = any context, 1 = operand of * or /, 2 = needs to be an atom
-  std::string print(const ex& e, int prec = 0) {
-    if (is_a<numeric>(e)) {
-      std::string s = literal(ex_to<numeric>(e), target_, single_);
-      return (prec >= 1 && ex_to<numeric>(e).is_negative()) ? "(" + s + ")" : s;
-    }
-    if (is_a<symbol>(e)) {
-      auto it = code_.find(e);
-      if (it == code_.end()) throw std::logic_error("cgagen emitter: unknown symbol " + ex_to<symbol>(e).get_name());
-      return it->second;
-    }
-    if (is_a<constant>(e)) return literal(numeric(ex_to<numeric>(e.evalf()).to_double()), target_, single_);
-    if (is_a<add>(e)) {
-      std::string s;
-      bool first = true;
-      for (const ex& t : opt::sum_terms(e, keys_)) {
-        bool neg = opt::is_negative_term(t, keys_);
-        ex a = neg ? ex(-t) : t;
-        if (first) s += neg ? "-" + print(a, 1) : print(a, 0);
-        else s += (neg ? " - " : " + ") + print(a, 1);
-        first = false;
-      }
-      return prec >= 1 ? "(" + s + ")" : s;
-    }
-    return print_product(e, prec);
-  }
-
- private:
-  std::string print_product(const ex& e, int prec) {
-    opt::ProductParts p = opt::split_product(e, keys_);
-    std::vector<std::string> num;
-    numeric c = abs(p.coeff);
-    if (c != 1 || p.num.empty()) num.push_back(literal(c, target_, single_));
-    for (const auto& f : p.num) {
-      std::string a = atom(f.base);
-      for (int k = 0; k < f.exponent; ++k) num.push_back(a);
-    }
-    std::vector<std::string> den;
-    for (const auto& f : p.den) {
-      std::string a = atom(f.base);
-      for (int k = 0; k < f.exponent; ++k) den.push_back(a);
-    }
-    std::string s;
-    for (size_t i = 0; i < num.size(); ++i) s += (i ? sx_.mul : "") + num[i];
-    if (!den.empty()) {
-      std::string d;
-      for (size_t i = 0; i < den.size(); ++i) d += (i ? sx_.mul : "") + den[i];
-      s += sx_.div + (den.size() > 1 ? "(" + d + ")" : d);
-    }
-    bool compound = num.size() + den.size() > 1;
-    if (p.coeff.is_negative()) {
-      s = "-" + (den.empty() ? s : "(" + s + ")");
-      return prec >= 1 ? "(" + s + ")" : s;
-    }
-    return (compound && prec >= 2) || (!den.empty() && prec >= 1) ? "(" + s + ")" : s;
-  }
-
-  std::string atom(const ex& b) {
-    if (is_a<symbol>(b) || is_a<numeric>(b) || is_a<constant>(b)) return print(b, 2);
-    if (is_a<add>(b) || is_a<mul>(b)) return print(b, 2);
-    if (opt::is_sqrt(b)) return call("sqrt", print(b.op(0)));
-    if (is_a<power>(b)) return call("pow", print(b.op(0)) + ", " + print(b.op(1)));
-    if (cgagen::symbolic::is_select(b)) {
-      const std::string op = cgagen::symbolic::select_operator(b);
-      auto it = sx_.compare_names.find(op);
-      return fill_pattern(sx_.select, {{"a", print(b.op(0), 1)},
-                                       {"b", print(b.op(1), 1)},
-                                       {"op", it == sx_.compare_names.end() ? op : it->second},
-                                       {"x", print(b.op(2))},
-                                       {"y", print(b.op(3))},
-                                       {"T", prec_.type}});
-    }
-    if (is_a<function>(b)) {
-      std::string name = ex_to<function>(b).get_name();
-      std::string s;
-      for (size_t i = 0; i < b.nops(); ++i) s += (i ? ", " : "") + print(b.op(i));
-      return call(name, s);
-    }
-    throw std::logic_error("cgagen emitter: cannot print expression of this kind");
-  }
-
-  // A math call in the target's spelling: prefix + (renamed) name, or a whole pattern from math_names.
-  std::string call(const std::string& name, const std::string& args) const {
-    auto it = sx_.math_names.find(name);
-    std::string fn = it == sx_.math_names.end() ? name : it->second;
-    if (fn.find("${") != std::string::npos) return fill_pattern(fn, {{"args", args}, {"T", prec_.type}});
-    fn = fill_pattern(sx_.math_prefix, {{"T", prec_.type}}) + fn;
-    return fill_pattern(sx_.call, {{"fn", fn}, {"args", args}});
-  }
-
-  Target target_;
-  const Syntax& sx_;
-  const Precision& prec_;
-  bool single_;
-  const opt::SymbolNames& code_;
-  CanonicalKeys& keys_;
-};
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -5,7 +5,8 @@
 // spells literals, math calls, parameters, outputs, temporaries, blade lists and comments, and
 // templates/<name>/ holds its file and function templates. Adding a language is a record, its templates and
 // its tests (tests/targets); the CLI (`--target list`), cgagen_generate() (`--target-extension NAME`) and
-// the docs all read the same table.
+// the docs all read the same table. emit/statements.hpp prints a Program as statements for a C-family
+// function body instead of a file (cgagen --gpc); emit/printer.hpp prints one expression for both.
 #pragma once
 
 #include <map>
