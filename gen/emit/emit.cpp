@@ -49,13 +49,27 @@ std::string fill_pattern(const std::string& p, const std::map<std::string, std::
   return out;
 }
 
+const Packing& packing(Pack p) {
+  static const Packing rows[] = {
+      {Pack::Array, "float", SIZE_MAX, Packing::Param::Array, "", false, false, ""},
+      {Pack::Mat3x4, "mat3x4", 12, Packing::Param::Typed, "${name}[${row}][${col}]", true, false, ""},
+      {Pack::Vec4, "vec4", 4, Packing::Param::Typed, "${name}[${k}]", true, false, ""},
+      {Pack::Vec3, "vec3", 3, Packing::Param::Typed, "${name}[${k}]", true, false, ""},
+      {Pack::Float, "float", 1, Packing::Param::Typed, "${name}", false, false, ""},
+      {Pack::Block, "block", SIZE_MAX, Packing::Param::None, "${store}[${row}][${col}]", false, true,
+       "layout(std140) uniform ${store}_block {\n  vec4 ${store}[${rows}];  // value k at [k / 4][k % 4]\n};\n\n"},
+      {Pack::Buffer, "buffer", SIZE_MAX, Packing::Param::Index, "${store}[prepared_index * ${K} + ${k}]", false, true,
+       "layout(std430) readonly buffer ${store}_buffer {\n  float ${store}[];  // set i: values i * ${K} ... i * ${K} + "
+       "${last}\n};\n\n"},
+  };
+  for (const Packing& row : rows)
+    if (row.kind == p) return row;
+  throw std::logic_error("packing: no row");
+}
+
 Pack parse_pack(const std::string& t) {
-  if (t == "mat3x4") return Pack::Mat3x4;
-  if (t == "vec4") return Pack::Vec4;
-  if (t == "vec3") return Pack::Vec3;
-  if (t == "float") return Pack::Float;
-  if (t == "block") return Pack::Block;
-  if (t == "buffer") return Pack::Buffer;
+  for (Pack p : {Pack::Mat3x4, Pack::Vec4, Pack::Vec3, Pack::Float, Pack::Block, Pack::Buffer})
+    if (t == packing(p).name) return p;
   throw std::invalid_argument("unknown packing '" + t + "' (expected mat3x4, vec4, vec3, float, block or buffer)");
 }
 
@@ -152,41 +166,6 @@ struct Param {
   Pack pack;
 };
 
-const char* pack_type(Pack p) {
-  switch (p) {
-    case Pack::Mat3x4: return "mat3x4";
-    case Pack::Vec4: return "vec4";
-    case Pack::Vec3: return "vec3";
-    case Pack::Float: return "float";
-    case Pack::Block: return "block";
-    case Pack::Buffer: return "buffer";
-    case Pack::Array: return "float";
-  }
-  return "float";
-}
-
-size_t pack_capacity(Pack p) {
-  switch (p) {
-    case Pack::Mat3x4: return 12;
-    case Pack::Vec4: return 4;
-    case Pack::Vec3: return 3;
-    case Pack::Float: return 1;
-    case Pack::Block:
-    case Pack::Buffer:
-    case Pack::Array: return SIZE_MAX;
-  }
-  return 0;
-}
-
-// Element k of a (possibly packed) parameter.
-std::string element(const std::string& name, size_t k, Pack p) {
-  switch (p) {
-    case Pack::Mat3x4: return name + "[" + std::to_string(k / 4) + "][" + std::to_string(k % 4) + "]";
-    case Pack::Float: return name;
-    default: return name + "[" + std::to_string(k) + "]";
-  }
-}
-
 std::string indent(const std::string& body) { return body; }
 
 }  // namespace
@@ -268,16 +247,16 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   auto pack_of = [&](const std::string& name, size_t size, bool output = false) {
     auto it = options.pack.find(name);
     Pack p = it == options.pack.end() ? Pack::Array : it->second;
-    if (p == Pack::Block || p == Pack::Buffer) {
+    const Packing& pk = packing(p);
+    if (pk.prepared_only) {
       if (name != "prepared")
-        throw std::runtime_error("--pack " + name + "=" + pack_type(p) +
+        throw std::runtime_error("--pack " + name + "=" + pk.name +
                                  ": block and buffer apply to a staged kernel's prepared values only (--pack "
-                                 "prepared=" + pack_type(p) + " with --uniform or #pragma uniform)");
+                                 "prepared=" + pk.name + " with --uniform or #pragma uniform)");
       if (output) return Pack::Array;
     }
-    if (p != Pack::Array && size > pack_capacity(p))
-      throw std::runtime_error("cannot pack '" + name + "' (" + std::to_string(size) + " blades) as " +
-                               pack_type(p));
+    if (size > pk.capacity)
+      throw std::runtime_error("cannot pack '" + name + "' (" + std::to_string(size) + " blades) as " + pk.name);
     return p;
   };
   for (const auto& [name, p] : options.pack) {
@@ -331,11 +310,16 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   for (const auto& in : program.inputs)
     if (in.name == "prepared") prepared_k = in.symbols.size();
   // Blade k of a parameter or output, in the target's syntax (GLSL packing included).
+  auto pack_fields = [&](const std::string& name, size_t k) {
+    return std::map<std::string, std::string>{
+        {"name", id(name)},          {"k", std::to_string(k)},
+        {"row", std::to_string(k / 4)}, {"col", std::to_string(k % 4)},
+        {"store", prepared_store},   {"K", std::to_string(prepared_k)},
+        {"rows", std::to_string((prepared_k + 3) / 4)}, {"last", std::to_string(prepared_k ? prepared_k - 1 : 0)}};
+  };
   auto elem = [&](const std::string& name, size_t k, Pack p, bool output = false) {
-    if (p == Pack::Block) return prepared_store + "[" + std::to_string(k / 4) + "][" + std::to_string(k % 4) + "]";
-    if (p == Pack::Buffer)
-      return prepared_store + "[prepared_index * " + std::to_string(prepared_k) + " + " + std::to_string(k) + "]";
-    if (p != Pack::Array) return element(id(name), k, p);
+    const Packing& pk = packing(p);
+    if (*pk.element) return fill_pattern(pk.element, pack_fields(name, k));
     const std::string& pattern = output && !sx.out_element.empty() ? sx.out_element : sx.element;
     return fill_pattern(pattern, {{"name", id(name)}, {"k", std::to_string(k)}});
   };
@@ -367,13 +351,13 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
         add_param(fill_pattern(sx.scalar_param, v));
         continue;
       }
-      Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
-      if (p == Pack::Block) continue;  // read from the uniform block
-      if (p == Pack::Buffer) {
-        add_param("int prepared_index");
-        continue;
+      const Packing& pk = packing(sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array);
+      switch (pk.param) {
+        case Packing::Param::None: break;  // read from the uniform block
+        case Packing::Param::Index: add_param("int prepared_index"); break;
+        case Packing::Param::Array: add_param(fill_pattern(sx.mv_param, v)); break;
+        case Packing::Param::Typed: add_param(std::string("in ") + pk.name + " " + id(in.name)); break;
       }
-      add_param(p == Pack::Array ? fill_pattern(sx.mv_param, v) : std::string("in ") + pack_type(p) + " " + id(in.name));
     }
     std::string return_type = "void";
     std::string body;
@@ -385,19 +369,19 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     std::string items;
     for (const auto& o : program.outputs) {
       const size_t n = o.slots.size();
-      Pack p = sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array;
+      const Packing& pk = packing(sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array);
+      const bool typed = pk.param == Packing::Param::Typed;
       std::map<std::string, std::string> v{{"T", T}, {"name", id(o.name)}, {"n", std::to_string(n)}};
       if (sx.out_param.empty()) {
         body += line(fill_pattern(sx.out_decl, v));
         items += (items.empty() ? "" : ", ") + fill_pattern(sx.return_item, v);
       } else if (sx.glsl_pack && o.name == options.return_output) {
-        std::string decl = p == Pack::Array ? T + " " + id(o.name) + "[" + std::to_string(n) + "]"
-                                            : std::string(pack_type(p)) + " " + id(o.name);
-        return_type = p == Pack::Array ? "float[" + std::to_string(n) + "]" : pack_type(p);
+        std::string decl = typed ? std::string(pk.name) + " " + id(o.name) : T + " " + id(o.name) + "[" + std::to_string(n) + "]";
+        return_type = typed ? std::string(pk.name) : "float[" + std::to_string(n) + "]";
         body += line(decl + ";");
         ret_line = line("return " + id(o.name) + ";");
-      } else if (p != Pack::Array) {
-        add_param(std::string("out ") + pack_type(p) + " " + id(o.name));
+      } else if (typed) {
+        add_param(std::string("out ") + pk.name + " " + id(o.name));
       } else {
         add_param(fill_pattern(sx.out_param, v));
       }
@@ -413,22 +397,15 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
                                               {"value", pr.print(o.slots[k].value)},
                                               {"blade", as_text(sx, label(o.name, k, o.slots[k].blade))},
                                               {"c", sx.comment}}));
-      for (size_t k = n; p != Pack::Array && p != Pack::Float && k < pack_capacity(p); ++k)
-        body += line(element(id(o.name), k, p) + " = 0.0;  // (padding)");
+      for (size_t k = n; packing(p).pads && k < packing(p).capacity; ++k)
+        body += line(elem(o.name, k, p, true) + " = 0.0;  // (padding)");
     }
     body += ret_line;
     if (!body.empty() && body.back() == '\n') body.pop_back();
     // The declaration of the block / buffer the body reads its prepared values from.
     std::string store;
     if (sx.glsl_pack && prepared_k) {
-      const Pack p = pack_of("prepared", prepared_k);
-      if (p == Pack::Block)
-        store = "layout(std140) uniform " + prepared_store + "_block {\n  vec4 " + prepared_store + "[" +
-                std::to_string((prepared_k + 3) / 4) + "];  // value k at [k / 4][k % 4]\n};\n\n";
-      else if (p == Pack::Buffer)
-        store = "layout(std430) readonly buffer " + prepared_store + "_buffer {\n  float " + prepared_store +
-                "[];  // set i: values i * " + std::to_string(prepared_k) + " ... i * " +
-                std::to_string(prepared_k) + " + " + std::to_string(prepared_k - 1) + "\n};\n\n";
+      store = fill_pattern(packing(pack_of("prepared", prepared_k)).declaration, pack_fields("prepared", 0));
     }
     return prec.before + store + fill_template(fn_tmpl,
                                        {{"return_type", return_type},

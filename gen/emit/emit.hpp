@@ -100,6 +100,27 @@ std::string file_extension(Target t);          // ".hpp" | ".glsl" | ".cuh" | ..
 enum class Pack { Array, Mat3x4, Vec4, Vec3, Float, Block, Buffer };
 Pack parse_pack(const std::string& text);  // "mat3x4" | "vec4" | "vec3" | "float" | "block" | "buffer"
 
+// What a packing is, as data: one row per Pack in one table (emit.cpp); the emitter reads the row's fields
+// and never asks which packing it has. Patterns (fill_pattern) take ${name} (the parameter), ${k} (the
+// blade), ${row} = k / 4, ${col} = k % 4, ${store} (the block or buffer of the prepared values), ${K} (their
+// count), ${rows} = (K+3)/4 and ${last} = K - 1.
+struct Packing {
+  Pack kind;
+  const char* name;   // the --pack spelling, and the GLSL type of a Typed parameter
+  size_t capacity;    // the blades it holds (SIZE_MAX: any number)
+  enum class Param {
+    Array,  // the target's own multivector parameter (a float array)
+    Typed,  // `in TYPE NAME` / `out TYPE NAME`
+    None,   // no parameter: the values come from a uniform block
+    Index,  // `int prepared_index`: the values come from a set of a storage buffer
+  } param;
+  const char* element;      // blade k; "" for the target's own element pattern
+  bool pads;                // an output fills the type's unused elements with 0
+  bool prepared_only;       // only for a staged kernel's prepared values
+  const char* declaration;  // what the body's file declares before it ("" for nothing)
+};
+const Packing& packing(Pack p);
+
 struct EmitOptions {
   Target target = Target::Cpp;
   std::string template_dir;      // empty: the built-in CGAGEN_TEMPLATE_DIR
