@@ -16,8 +16,8 @@ struct Result {
   std::string out;  // stdout and stderr together
 };
 
-inline Result run(const std::string& args) {
-  std::string cmd = std::string(CGAGEN_EXE) + " " + args + " 2>&1";
+// A shell command as written (add " 2>&1" for its stderr): its exit status and stdout.
+inline Result shell(const std::string& cmd) {
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) throw std::runtime_error("popen failed");
   std::string out;
@@ -27,6 +27,8 @@ inline Result run(const std::string& args) {
   int status = pclose(p);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
+
+inline Result run(const std::string& args) { return shell(std::string(CGAGEN_EXE) + " " + args + " 2>&1"); }
 
 // Writes `text` to CGA_BINARY_DIR/name and returns the path.
 inline std::string write_temp(const std::string& name, const std::string& text) {

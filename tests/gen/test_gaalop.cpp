@@ -34,16 +34,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
 }
 
 // Runs a program: its exit status and stdout.
-cga_test::Result run_program(const std::string& cmd) {
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) throw std::runtime_error("popen failed");
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+cga_test::Result run_program(const std::string& cmd) { return cga_test::shell(cmd); }
 
 // "--eval" output lines "NAME BLADE VALUE" as NAME/BLADE -> value, in order.
 std::vector<std::pair<std::string, double>> values(const std::string& text) {

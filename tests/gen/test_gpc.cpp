@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "oracle_algebras.hpp"
 
 namespace {
@@ -26,21 +27,9 @@ const og::Algebra& cga() {
   return a;
 }
 
-struct Shell {
-  int code;
-  std::string out;  // stdout and stderr together
-};
+using Shell = cga_test::Result;
 
-Shell sh(const std::string& cmd) {
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) throw std::runtime_error("popen failed");
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Shell sh(const std::string& cmd) { return cga_test::shell(cmd + " 2>&1"); }
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

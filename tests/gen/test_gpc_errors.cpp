@@ -11,12 +11,11 @@
 #include <iterator>
 #include <string>
 
+#include "cli_run.hpp"
+
 namespace {
 
-struct Shell {
-  int code;
-  std::string out;
-};
+using Shell = cga_test::Result;
 
 // cgagen --gpc NAME run in the scratch folder, so that diagnostics name the file as NAME.
 Shell gpc_run(const std::string& name, const std::string& text, const std::string& options = "") {
@@ -24,14 +23,7 @@ Shell gpc_run(const std::string& name, const std::string& text, const std::strin
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/" + name, std::ios::binary) << text;
   const std::string cmd = "cd " + dir + " && " + CGAGEN_EXE + " --gpc " + options + " " + name + " -o out.hpp 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) throw std::runtime_error("popen failed");
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return cga_test::shell(cmd);
 }
 
 const char* kGood = "void f(const float* x, float* y) {\n"
