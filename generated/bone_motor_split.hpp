@@ -14,33 +14,57 @@ inline constexpr std::array<std::string_view, 4> bone_motor_split_H_blades = {"1
 inline constexpr std::array<std::string_view, 4> bone_motor_split_U_blades = {"e1^einf", "e2^einf", "e3^einf", "e1^e2^e3^einf"};
 
 inline void bone_motor_split(const float M[12], float G[4], float H[4], float U[4]) {
-  G[0] = M[7] + M[0];  // 1
-  G[1] = M[1] + M[9];  // e1^e2
-  G[2] = M[2] + M[10];  // e1^e3
-  G[3] = M[4] + M[11];  // e2^e3
-  H[0] = M[0] - M[7];  // 1
-  H[1] = M[1] - M[9];  // e1^e2
-  H[2] = M[2] - M[10];  // e1^e3
-  H[3] = M[4] - M[11];  // e2^e3
-  U[0] = M[3];  // e1^einf
-  U[1] = M[5];  // e2^einf
-  U[2] = M[6];  // e3^einf
-  U[3] = M[8];  // e1^e2^e3^einf
+  const float M_s = M[0];
+  const float M_e12 = M[1];
+  const float M_e13 = M[2];
+  const float M_e1inf = M[3];
+  const float M_e23 = M[4];
+  const float M_e2inf = M[5];
+  const float M_e3inf = M[6];
+  const float M_einf0 = M[7];
+  const float M_e123inf = M[8];
+  const float M_e12inf0 = M[9];
+  const float M_e13inf0 = M[10];
+  const float M_e23inf0 = M[11];
+  G[0] = M_einf0 + M_s;  // 1
+  G[1] = M_e12 + M_e12inf0;  // e1^e2
+  G[2] = M_e13 + M_e13inf0;  // e1^e3
+  G[3] = M_e23 + M_e23inf0;  // e2^e3
+  H[0] = M_s - M_einf0;  // 1
+  H[1] = M_e12 - M_e12inf0;  // e1^e2
+  H[2] = M_e13 - M_e13inf0;  // e1^e3
+  H[3] = M_e23 - M_e23inf0;  // e2^e3
+  U[0] = M_e1inf;  // e1^einf
+  U[1] = M_e2inf;  // e2^einf
+  U[2] = M_e3inf;  // e3^einf
+  U[3] = M_e123inf;  // e1^e2^e3^einf
 }
 
 inline void bone_motor_split(const double M[12], double G[4], double H[4], double U[4]) {
-  G[0] = M[7] + M[0];  // 1
-  G[1] = M[1] + M[9];  // e1^e2
-  G[2] = M[2] + M[10];  // e1^e3
-  G[3] = M[4] + M[11];  // e2^e3
-  H[0] = M[0] - M[7];  // 1
-  H[1] = M[1] - M[9];  // e1^e2
-  H[2] = M[2] - M[10];  // e1^e3
-  H[3] = M[4] - M[11];  // e2^e3
-  U[0] = M[3];  // e1^einf
-  U[1] = M[5];  // e2^einf
-  U[2] = M[6];  // e3^einf
-  U[3] = M[8];  // e1^e2^e3^einf
+  const double M_s = M[0];
+  const double M_e12 = M[1];
+  const double M_e13 = M[2];
+  const double M_e1inf = M[3];
+  const double M_e23 = M[4];
+  const double M_e2inf = M[5];
+  const double M_e3inf = M[6];
+  const double M_einf0 = M[7];
+  const double M_e123inf = M[8];
+  const double M_e12inf0 = M[9];
+  const double M_e13inf0 = M[10];
+  const double M_e23inf0 = M[11];
+  G[0] = M_einf0 + M_s;  // 1
+  G[1] = M_e12 + M_e12inf0;  // e1^e2
+  G[2] = M_e13 + M_e13inf0;  // e1^e3
+  G[3] = M_e23 + M_e23inf0;  // e2^e3
+  H[0] = M_s - M_einf0;  // 1
+  H[1] = M_e12 - M_e12inf0;  // e1^e2
+  H[2] = M_e13 - M_e13inf0;  // e1^e3
+  H[3] = M_e23 - M_e23inf0;  // e2^e3
+  U[0] = M_e1inf;  // e1^einf
+  U[1] = M_e2inf;  // e2^einf
+  U[2] = M_e3inf;  // e3^einf
+  U[3] = M_e123inf;  // e1^e2^e3^einf
 }
 
 }  // namespace cga::kernels

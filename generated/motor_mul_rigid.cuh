@@ -13,25 +13,57 @@ namespace cga::kernels {
 inline constexpr std::array<std::string_view, 8> motor_mul_rigid_C_blades = {"1", "e1^e2", "e1^e3", "e1^einf", "e2^e3", "e2^einf", "e3^einf", "e1^e2^e3^einf"};
 
 __host__ __device__ __forceinline__ void motor_mul_rigid(const float A[8], const float B[8], float C[8]) {
-  C[0] = A[0] * B[0] - A[1] * B[1] - A[2] * B[2] - A[4] * B[4];  // 1
-  C[1] = A[1] * B[0] + A[4] * B[2] + A[0] * B[1] - A[2] * B[4];  // e1^e2
-  C[2] = A[1] * B[4] + A[2] * B[0] + A[0] * B[2] - A[4] * B[1];  // e1^e3
-  C[3] = A[1] * B[5] + A[2] * B[6] + A[3] * B[0] + A[0] * B[3] - A[7] * B[4] - A[4] * B[7] - A[5] * B[1] - A[6] * B[2];  // e1^einf
-  C[4] = A[2] * B[1] + A[4] * B[0] + A[0] * B[4] - A[1] * B[2];  // e2^e3
-  C[5] = A[7] * B[2] + A[2] * B[7] + A[3] * B[1] + A[4] * B[6] + A[5] * B[0] + A[0] * B[5] - A[1] * B[3] - A[6] * B[4];  // e2^einf
-  C[6] = A[3] * B[2] + A[5] * B[4] + A[6] * B[0] + A[0] * B[6] - A[1] * B[7] - A[7] * B[1] - A[2] * B[3] - A[4] * B[5];  // e3^einf
-  C[7] = A[1] * B[6] + A[7] * B[0] + A[3] * B[4] + A[4] * B[3] + A[6] * B[1] + A[0] * B[7] - A[2] * B[5] - A[5] * B[2];  // e1^e2^e3^einf
+  const float A_s = A[0];
+  const float A_e12 = A[1];
+  const float A_e13 = A[2];
+  const float A_e1inf = A[3];
+  const float A_e23 = A[4];
+  const float A_e2inf = A[5];
+  const float A_e3inf = A[6];
+  const float A_e123inf = A[7];
+  const float B_s = B[0];
+  const float B_e12 = B[1];
+  const float B_e13 = B[2];
+  const float B_e1inf = B[3];
+  const float B_e23 = B[4];
+  const float B_e2inf = B[5];
+  const float B_e3inf = B[6];
+  const float B_e123inf = B[7];
+  C[0] = A_s * B_s - A_e12 * B_e12 - A_e13 * B_e13 - A_e23 * B_e23;  // 1
+  C[1] = A_e12 * B_s + A_e23 * B_e13 + A_s * B_e12 - A_e13 * B_e23;  // e1^e2
+  C[2] = A_e12 * B_e23 + A_e13 * B_s + A_s * B_e13 - A_e23 * B_e12;  // e1^e3
+  C[3] = A_e12 * B_e2inf + A_e13 * B_e3inf + A_e1inf * B_s + A_s * B_e1inf - A_e123inf * B_e23 - A_e23 * B_e123inf - A_e2inf * B_e12 - A_e3inf * B_e13;  // e1^einf
+  C[4] = A_e13 * B_e12 + A_e23 * B_s + A_s * B_e23 - A_e12 * B_e13;  // e2^e3
+  C[5] = A_e123inf * B_e13 + A_e13 * B_e123inf + A_e1inf * B_e12 + A_e23 * B_e3inf + A_e2inf * B_s + A_s * B_e2inf - A_e12 * B_e1inf - A_e3inf * B_e23;  // e2^einf
+  C[6] = A_e1inf * B_e13 + A_e2inf * B_e23 + A_e3inf * B_s + A_s * B_e3inf - A_e12 * B_e123inf - A_e123inf * B_e12 - A_e13 * B_e1inf - A_e23 * B_e2inf;  // e3^einf
+  C[7] = A_e12 * B_e3inf + A_e123inf * B_s + A_e1inf * B_e23 + A_e23 * B_e1inf + A_e3inf * B_e12 + A_s * B_e123inf - A_e13 * B_e2inf - A_e2inf * B_e13;  // e1^e2^e3^einf
 }
 
 __host__ __device__ __forceinline__ void motor_mul_rigid(const double A[8], const double B[8], double C[8]) {
-  C[0] = A[0] * B[0] - A[1] * B[1] - A[2] * B[2] - A[4] * B[4];  // 1
-  C[1] = A[1] * B[0] + A[4] * B[2] + A[0] * B[1] - A[2] * B[4];  // e1^e2
-  C[2] = A[1] * B[4] + A[2] * B[0] + A[0] * B[2] - A[4] * B[1];  // e1^e3
-  C[3] = A[1] * B[5] + A[2] * B[6] + A[3] * B[0] + A[0] * B[3] - A[7] * B[4] - A[4] * B[7] - A[5] * B[1] - A[6] * B[2];  // e1^einf
-  C[4] = A[2] * B[1] + A[4] * B[0] + A[0] * B[4] - A[1] * B[2];  // e2^e3
-  C[5] = A[7] * B[2] + A[2] * B[7] + A[3] * B[1] + A[4] * B[6] + A[5] * B[0] + A[0] * B[5] - A[1] * B[3] - A[6] * B[4];  // e2^einf
-  C[6] = A[3] * B[2] + A[5] * B[4] + A[6] * B[0] + A[0] * B[6] - A[1] * B[7] - A[7] * B[1] - A[2] * B[3] - A[4] * B[5];  // e3^einf
-  C[7] = A[1] * B[6] + A[7] * B[0] + A[3] * B[4] + A[4] * B[3] + A[6] * B[1] + A[0] * B[7] - A[2] * B[5] - A[5] * B[2];  // e1^e2^e3^einf
+  const double A_s = A[0];
+  const double A_e12 = A[1];
+  const double A_e13 = A[2];
+  const double A_e1inf = A[3];
+  const double A_e23 = A[4];
+  const double A_e2inf = A[5];
+  const double A_e3inf = A[6];
+  const double A_e123inf = A[7];
+  const double B_s = B[0];
+  const double B_e12 = B[1];
+  const double B_e13 = B[2];
+  const double B_e1inf = B[3];
+  const double B_e23 = B[4];
+  const double B_e2inf = B[5];
+  const double B_e3inf = B[6];
+  const double B_e123inf = B[7];
+  C[0] = A_s * B_s - A_e12 * B_e12 - A_e13 * B_e13 - A_e23 * B_e23;  // 1
+  C[1] = A_e12 * B_s + A_e23 * B_e13 + A_s * B_e12 - A_e13 * B_e23;  // e1^e2
+  C[2] = A_e12 * B_e23 + A_e13 * B_s + A_s * B_e13 - A_e23 * B_e12;  // e1^e3
+  C[3] = A_e12 * B_e2inf + A_e13 * B_e3inf + A_e1inf * B_s + A_s * B_e1inf - A_e123inf * B_e23 - A_e23 * B_e123inf - A_e2inf * B_e12 - A_e3inf * B_e13;  // e1^einf
+  C[4] = A_e13 * B_e12 + A_e23 * B_s + A_s * B_e23 - A_e12 * B_e13;  // e2^e3
+  C[5] = A_e123inf * B_e13 + A_e13 * B_e123inf + A_e1inf * B_e12 + A_e23 * B_e3inf + A_e2inf * B_s + A_s * B_e2inf - A_e12 * B_e1inf - A_e3inf * B_e23;  // e2^einf
+  C[6] = A_e1inf * B_e13 + A_e2inf * B_e23 + A_e3inf * B_s + A_s * B_e3inf - A_e12 * B_e123inf - A_e123inf * B_e12 - A_e13 * B_e1inf - A_e23 * B_e2inf;  // e3^einf
+  C[7] = A_e12 * B_e3inf + A_e123inf * B_s + A_e1inf * B_e23 + A_e23 * B_e1inf + A_e3inf * B_e12 + A_s * B_e123inf - A_e13 * B_e2inf - A_e2inf * B_e13;  // e1^e2^e3^einf
 }
 
 }  // namespace cga::kernels

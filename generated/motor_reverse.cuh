@@ -12,33 +12,57 @@ namespace cga::kernels {
 inline constexpr std::array<std::string_view, 12> motor_reverse_C_blades = {"1", "e1^e2", "e1^e3", "e1^einf", "e2^e3", "e2^einf", "e3^einf", "einf^e0", "e1^e2^e3^einf", "e1^e2^einf^e0", "e1^e3^einf^e0", "e2^e3^einf^e0"};
 
 __host__ __device__ __forceinline__ void motor_reverse(const float A[12], float C[12]) {
-  C[0] = A[0];  // 1
-  C[1] = -A[1];  // e1^e2
-  C[2] = -A[2];  // e1^e3
-  C[3] = -A[3];  // e1^einf
-  C[4] = -A[4];  // e2^e3
-  C[5] = -A[5];  // e2^einf
-  C[6] = -A[6];  // e3^einf
-  C[7] = -A[7];  // einf^e0
-  C[8] = A[8];  // e1^e2^e3^einf
-  C[9] = A[9];  // e1^e2^einf^e0
-  C[10] = A[10];  // e1^e3^einf^e0
-  C[11] = A[11];  // e2^e3^einf^e0
+  const float A_s = A[0];
+  const float A_e12 = A[1];
+  const float A_e13 = A[2];
+  const float A_e1inf = A[3];
+  const float A_e23 = A[4];
+  const float A_e2inf = A[5];
+  const float A_e3inf = A[6];
+  const float A_einf0 = A[7];
+  const float A_e123inf = A[8];
+  const float A_e12inf0 = A[9];
+  const float A_e13inf0 = A[10];
+  const float A_e23inf0 = A[11];
+  C[0] = A_s;  // 1
+  C[1] = -A_e12;  // e1^e2
+  C[2] = -A_e13;  // e1^e3
+  C[3] = -A_e1inf;  // e1^einf
+  C[4] = -A_e23;  // e2^e3
+  C[5] = -A_e2inf;  // e2^einf
+  C[6] = -A_e3inf;  // e3^einf
+  C[7] = -A_einf0;  // einf^e0
+  C[8] = A_e123inf;  // e1^e2^e3^einf
+  C[9] = A_e12inf0;  // e1^e2^einf^e0
+  C[10] = A_e13inf0;  // e1^e3^einf^e0
+  C[11] = A_e23inf0;  // e2^e3^einf^e0
 }
 
 __host__ __device__ __forceinline__ void motor_reverse(const double A[12], double C[12]) {
-  C[0] = A[0];  // 1
-  C[1] = -A[1];  // e1^e2
-  C[2] = -A[2];  // e1^e3
-  C[3] = -A[3];  // e1^einf
-  C[4] = -A[4];  // e2^e3
-  C[5] = -A[5];  // e2^einf
-  C[6] = -A[6];  // e3^einf
-  C[7] = -A[7];  // einf^e0
-  C[8] = A[8];  // e1^e2^e3^einf
-  C[9] = A[9];  // e1^e2^einf^e0
-  C[10] = A[10];  // e1^e3^einf^e0
-  C[11] = A[11];  // e2^e3^einf^e0
+  const double A_s = A[0];
+  const double A_e12 = A[1];
+  const double A_e13 = A[2];
+  const double A_e1inf = A[3];
+  const double A_e23 = A[4];
+  const double A_e2inf = A[5];
+  const double A_e3inf = A[6];
+  const double A_einf0 = A[7];
+  const double A_e123inf = A[8];
+  const double A_e12inf0 = A[9];
+  const double A_e13inf0 = A[10];
+  const double A_e23inf0 = A[11];
+  C[0] = A_s;  // 1
+  C[1] = -A_e12;  // e1^e2
+  C[2] = -A_e13;  // e1^e3
+  C[3] = -A_e1inf;  // e1^einf
+  C[4] = -A_e23;  // e2^e3
+  C[5] = -A_e2inf;  // e2^einf
+  C[6] = -A_e3inf;  // e3^einf
+  C[7] = -A_einf0;  // einf^e0
+  C[8] = A_e123inf;  // e1^e2^e3^einf
+  C[9] = A_e12inf0;  // e1^e2^einf^e0
+  C[10] = A_e13inf0;  // e1^e3^einf^e0
+  C[11] = A_e23inf0;  // e2^e3^einf^e0
 }
 
 }  // namespace cga::kernels

@@ -168,6 +168,27 @@ struct Param {
 
 std::string indent(const std::string& body) { return body; }
 
+// The symbols the program's temporaries and outputs read (each shared node visited once).
+std::set<GiNaC::ex, GiNaC::ex_is_less> read_symbols(const opt::Program& program) {
+  std::set<GiNaC::ex, GiNaC::ex_is_less> out;
+  std::set<const GiNaC::basic*> seen;
+  std::vector<GiNaC::ex> todo;
+  for (const auto& t : program.temps) todo.push_back(t.value);
+  for (const auto& o : program.outputs)
+    for (const auto& slot : o.slots) todo.push_back(slot.value);
+  while (!todo.empty()) {
+    const GiNaC::ex e = todo.back();
+    todo.pop_back();
+    if (!seen.insert(&GiNaC::ex_to<GiNaC::basic>(e)).second) continue;
+    if (GiNaC::is_a<GiNaC::symbol>(e)) out.insert(e);
+    for (size_t i = 0; i < e.nops(); ++i) todo.push_back(e.op(i));
+  }
+  return out;
+}
+
+// The local a loaded input blade lives in (Syntax::load): NAME_<blade ident>, spelt with the file's names.
+std::string load_name(const std::string& input, algebra::BladeIndex b) { return input + "_" + algebra::blade_ident(b); }
+
 }  // namespace
 
 namespace {
@@ -280,7 +301,11 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
   std::set<std::string> raw_names;
   for (const opt::Program* pr : programs) {
     raw_names.insert(pr->name);
-    for (const auto& in : pr->inputs) raw_names.insert(in.name);
+    for (const auto& in : pr->inputs) {
+      raw_names.insert(in.name);
+      if (!sx.load.empty() && in.is_multivector)
+        for (algebra::BladeIndex b : in.blades) raw_names.insert(load_name(in.name, b));
+    }
     for (const auto& o : pr->outputs) raw_names.insert(o.name);
     for (const auto& t : pr->temps) raw_names.insert(t.name);
   }
@@ -332,7 +357,8 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       continue;
     }
     Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
-    for (size_t k = 0; k < in.symbols.size(); ++k) code[in.symbols[k]] = elem(in.name, k, p);
+    for (size_t k = 0; k < in.symbols.size(); ++k)
+      code[in.symbols[k]] = sx.load.empty() ? elem(in.name, k, p) : id(load_name(in.name, in.blades[k]));
   }
   for (const auto& t : program.temps) code[t.sym] = id(t.name);
 
@@ -387,6 +413,14 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       }
     }
     if (!items.empty()) ret_line = line(fill_pattern(sx.return_stmt, {{"items", items}}));
+    const auto read = sx.load.empty() ? std::set<GiNaC::ex, GiNaC::ex_is_less>{} : read_symbols(program);
+    if (!sx.load.empty())
+      for (const auto& in : program.inputs)
+        if (in.is_multivector)
+          for (size_t k = 0; k < in.symbols.size(); ++k)
+            if (read.count(in.symbols[k]))
+              body += line(fill_pattern(sx.load, {{"T", T}, {"name", id(load_name(in.name, in.blades[k]))},
+                                                  {"elem", elem(in.name, k, Pack::Array)}}));
     for (const auto& t : program.temps)
       body += line(fill_pattern(sx.temp, {{"T", T}, {"name", id(t.name)}, {"value", pr.print(t.value)}}));
     for (const auto& o : program.outputs) {

@@ -62,6 +62,11 @@ struct Syntax {
   std::string return_item = "${name}";  // ${name}
   std::string return_stmt;             // ${items}, joined by ", "
   std::string unused;                  // a statement for an input no value reads (${name}); empty: none
+  // A multivector input's blade copied into a local before the body's first statement: ${T} ${name} (the
+  // local) ${elem} (the parameter's element). Empty: the body reads the parameter in place. With pointer
+  // parameters (C++) the copies let the compiler keep inputs in registers across the output stores, which
+  // it must otherwise assume may change them; they also make a call whose output aliases an input correct.
+  std::string load;
   std::string prologue;                // first body line(s); ${splat}: inputs joined by ", " with
   std::string splat_scalar = "${name}", splat_mv = "${name}";  // these forms
   std::string blade_list;              // one line per output: ${fn} ${out} ${n} ${list}

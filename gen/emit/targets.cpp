@@ -57,6 +57,7 @@ std::vector<Syntax> make_targets() {
   cpp.blade_list = "inline constexpr std::array<std::string_view, ${n}> ${fn}_${out}_blades = {${list}};";
   // An input listed by `#pragma in2out` that no value reads (-Wunused-parameter in the includer's build).
   cpp.unused = "(void)${name};";
+  cpp.load = "const ${T} ${name} = ${elem};";
   cpp.blade_quote = "\"";
   t.push_back(cpp);
 
