@@ -82,16 +82,18 @@ function(_gabench_expression model op out_var)
   set(e_InverseGeometricProduct "A * (~B / rnorm_sqr(B))")  # GATL's igp: A times inv(B)
   set(e_LeftContraction "lcont(A, B)")
   set(e_OuterProduct "A ^ B")
-  set(e_RegressiveProduct "rp(A, B)")
+  # GATL's regressive product is the meet (B* ^ A*) I (the duals in the reverse order of cgagen's rp, which
+  # differs by (-1)^((n-a)(n-b)) for grades a, b).
+  set(e_RegressiveProduct "rp(B, A)")
   set(e_RightContraction "rcont(A, B)")
   set(e_ScalarProduct "scp(A, B)")
   set(e_Subtraction "A - B")
   if(model STREQUAL "c3ga")
     # GATL's pseudoscalar is e1^e2^e3^no^ni = -(e1^e2^e3^einf^e0): its dual A I^-1 is cgagen's undual and the
-    # other way round, and its regressive product (the dual's, with both signs flipped) is -rp.
+    # other way round, and its regressive product (three of those, each with the sign flipped) is -rp(B, A).
     set(e_Dualization "undual(A)")
     set(e_Undualization "*A")
-    set(e_RegressiveProduct "-rp(A, B)")
+    set(e_RegressiveProduct "-rp(B, A)")
   endif()
   if(NOT DEFINED e_${op})
     message(FATAL_ERROR "gabench: unknown operation '${op}'")

@@ -29,7 +29,10 @@
 #error "gatl_side.hpp: define GABENCH_GATL_MODEL_c3ga, _e3ga or _h3ga"
 #endif
 
+// Internal linkage: each translation unit's templates are its own model's (the same names in another model's
+// unit are other functions).
 namespace gabench_gatl {
+namespace {
 
 using namespace GABENCH_GATL_NS;
 using gabench::BladeSet;
@@ -118,6 +121,7 @@ bool add_binary(const char* model, const char* name, Op op, std::index_sequence<
   return true;
 }
 
+}  // namespace
 }  // namespace gabench_gatl
 
 // GATL's spelling of each operation.

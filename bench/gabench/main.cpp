@@ -95,15 +95,26 @@ std::string case_name(const Case& c, const std::string& solution) {
   return s + "/LeftGrade:" + std::to_string(c.ga) + "/RightGrade:" + std::to_string(c.gb);
 }
 
-// Collects the mean real time of each benchmark (its "_mean" aggregate) while printing as usual.
-class Collector : public benchmark::ConsoleReporter {
+// Collects the mean real time of each benchmark (its "mean" aggregate, in ns) and prints one short line per
+// case and implementation (the full names and statistics go to --benchmark_out's JSON).
+class Collector : public benchmark::BenchmarkReporter {
  public:
   std::map<std::string, double> mean;
+  std::map<std::string, std::string> label;  // benchmark name -> short label
+  bool ReportContext(const Context&) override { return true; }
   void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs)
-      if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "mean" && !r.error_occurred)
-        mean[r.run_name.str()] = r.GetAdjustedRealTime();
-    ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      const std::string name = r.run_name.function_name;
+      if (r.error_occurred) {
+        std::printf("%-48s ERROR %s\n", label[name].c_str(), r.error_message.c_str());
+        continue;
+      }
+      if (r.run_type != Run::RT_Aggregate || r.aggregate_name != "mean") continue;
+      const double ns = r.GetAdjustedRealTime() * 1e6;  // the unit is ms, ga-benchmark's
+      mean[name] = ns;
+      std::printf("%-48s %9.2f ns\n", label[name].c_str(), ns);
+      std::fflush(stdout);
+    }
   }
 };
 
@@ -147,43 +158,45 @@ int main(int argc, char** argv) try {
     if (c.gb >= 0) in.b = blades(m, "right", c.gb, invertible_b(c.op));
     for (const Entry& e : registry())
       if (e.model == c.model && e.op == c.op && e.ga == c.ga && e.gb == c.gb) c.sides[e.solution] = e.make(in);
+    std::set<std::string> wrong;  // a side is reported once, at its first wrong sample
     for (int i = 0; i < opt.checks && i < static_cast<int>(kSamples); ++i) {
       const og::MV a = oracle_value(m, *in.a, static_cast<std::size_t>(i));
       og::MV b;
       if (in.b) b = oracle_value(m, *in.b, static_cast<std::size_t>(i));
       const Named want = reference(m, c.op, a, in.b ? &b : nullptr);
       for (auto& [solution, side] : c.sides) {
+        if (wrong.count(solution)) continue;
         const Named got = side.eval(static_cast<std::size_t>(i));
         const double d = rel_diff(want, got);
-        if (!(d <= 1e-9)) {
-          if (failed < 20) {
-            std::fprintf(stderr, "cga-gabench: WRONG %s %s %s sample %d: relative difference %g\n  oracle:",
-                         solution.c_str(), key.c_str(), c.gb < 0 ? "(unary)" : "", i, d);
-            for (const auto& [k, v] : want) std::fprintf(stderr, " %s=%.17g", k.c_str(), v);
-            std::fprintf(stderr, "\n  %s:", solution.c_str());
-            for (const auto& [k, v] : got) std::fprintf(stderr, " %s=%.17g", k.c_str(), v);
-            std::fprintf(stderr, "\n");
-          }
-          ++failed;
-          break;
-        }
+        if (d <= 1e-9) continue;
+        wrong.insert(solution);
+        ++failed;
+        std::fprintf(stderr, "cga-gabench: WRONG %s %s sample %d: relative difference %g\n  oracle:", solution.c_str(),
+                     key.c_str(), i, d);
+        for (const auto& [k, v] : want) std::fprintf(stderr, " %s=%.17g", k.c_str(), v);
+        std::fprintf(stderr, "\n  %s:", solution.c_str());
+        for (const auto& [k, v] : got) std::fprintf(stderr, " %s=%.17g", k.c_str(), v);
+        std::fprintf(stderr, "\n");
       }
     }
     checked += static_cast<int>(c.sides.size());
   }
   std::printf("cga-gabench: %zu cases, %d implementations checked against the oracle on %d samples each: %s\n",
               cases.size(), checked, opt.checks, failed ? "FAILED" : "all equal");
+  if (failed) std::printf("cga-gabench: %d implementations WRONG\n", failed);
   if (failed) return 1;
   if (opt.check_only) return 0;
 
   // Time: each case's implementations back to back (the order alternating from case to case), each with
   // ga-benchmark's statistics over repetitions of kSamples calls.
+  Collector collector;
   int n = 0;
   for (auto& [key, c] : cases) {
     std::vector<std::string> order;
     for (auto& [solution, side] : c.sides) order.push_back(solution);
     if (n++ % 2) std::reverse(order.begin(), order.end());
     for (const std::string& solution : order) {
+      collector.label[case_name(c, solution)] = key + " " + solution;
       benchmark::RegisterBenchmark(case_name(c, solution).c_str(), c.sides[solution].run)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(static_cast<benchmark::IterationCount>(kSamples))
@@ -192,7 +205,6 @@ int main(int argc, char** argv) try {
           ->DisplayAggregatesOnly(true);
     }
   }
-  Collector collector;
   benchmark::RunSpecifiedBenchmarks(&collector);
   benchmark::Shutdown();
 

@@ -176,8 +176,10 @@ Named reference(const Model& m, const std::string& op, const og::MV& a, const og
   else if (op == "InverseGeometricProduct") r = og::product(alg, a, inverse(*b), og::Op::Geometric);
   else if (op == "LeftContraction") r = og::graded(alg, a, *b, og::Graded::Left);
   else if (op == "OuterProduct") r = og::product(alg, a, *b, og::Op::Outer);
-  // The regressive product as GATL's dual and undual define it: undual(dual(A) ^ dual(B)).
-  else if (op == "RegressiveProduct") r = undual(og::product(alg, dual(a), dual(*b), og::Op::Outer));
+  // The regressive product: GATL's is metric-free (a pair of blades spanning the space meets in their common
+  // blade, with the sign of reordering the rest), which is the meet (B* ^ A*) I with B* = B I^-1 over GATL's
+  // pseudoscalar I: undual(dual(B) ^ dual(A)), the operands' duals in the reverse order.
+  else if (op == "RegressiveProduct") r = undual(og::product(alg, dual(*b), dual(a), og::Op::Outer));
   else if (op == "RightContraction") r = og::graded(alg, a, *b, og::Graded::Right);
   else if (op == "ScalarProduct") r = og::graded(alg, a, *b, og::Graded::Scalar);
   else throw std::invalid_argument("gabench: unknown binary operation " + op);
