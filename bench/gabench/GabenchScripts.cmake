@@ -143,6 +143,8 @@ function(gabench_kernels out_var)
       string(REPLACE "_" ";" grades "${pair}")
       list(GET grades 0 ga)
       _gabench_blades("${vectors}" ${ga} blades_a)
+      string(REPLACE " " ";" list_a "${blades_a}")
+      list(LENGTH list_a na)
       set(text "// ga-benchmark's ${op} in ${GK_MODEL}, grade ${pair} (written by bench/gabench/GabenchScripts.cmake)\n")
       string(APPEND text "#pragma input A ${blades_a}\n")
       list(LENGTH grades arity)
@@ -150,9 +152,11 @@ function(gabench_kernels out_var)
         list(GET grades 1 gb)
         _gabench_blades("${vectors}" ${gb} blades_b)
         string(APPEND text "#pragma input B ${blades_b}\n")
-        string(APPEND registrations "GABENCH_CG_BINARY(${GK_MODEL}, ${op}, ${ga}, ${gb})\n")
+        string(REPLACE " " ";" list_b "${blades_b}")
+        list(LENGTH list_b nb)
+        string(APPEND registrations "GABENCH_KERNEL_BINARY(${GK_MODEL}, ${op}, ${ga}, ${gb}, ${na}, ${nb})\n")
       else()
-        string(APPEND registrations "GABENCH_CG_UNARY(${GK_MODEL}, ${op}, ${ga})\n")
+        string(APPEND registrations "GABENCH_KERNEL_UNARY(${GK_MODEL}, ${op}, ${ga}, ${na})\n")
       endif()
       string(APPEND text "?R = ${expr};\n")
       file(CONFIGURE OUTPUT ${dir}/${name}.clu CONTENT "${text}" @ONLY)
@@ -170,7 +174,7 @@ function(gabench_kernels out_var)
   set(cpp ${GK_DIR}/gabench_cgagen_${GK_MODEL}.cpp)
   file(CONFIGURE OUTPUT ${cpp} CONTENT
 "// The cgagen kernels of ${GK_MODEL} for gabench, registered with the harness (written by GabenchScripts.cmake).
-#include \"gabench.hpp\"
+#include \"cg_side.hpp\"
 
 ${includes}
 namespace {

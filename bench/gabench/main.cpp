@@ -38,7 +38,7 @@ struct Options {
   std::set<std::string> models, ops;
   bool check_only = false;
   int checks = 32;
-  int repetitions = 10;
+  int repetitions = 30;  // ga-benchmark's
 };
 
 // Our flags out of argv (the rest is Google Benchmark's).
@@ -103,11 +103,13 @@ std::string case_name(const Case& c, const std::string& solution) {
   return s + "/LeftGrade:" + std::to_string(c.ga) + "/RightGrade:" + std::to_string(c.gb);
 }
 
-// Collects the mean real time of each benchmark (its "mean" aggregate, in ns) and prints one short line per
-// case and implementation (the full names and statistics go to --benchmark_out's JSON).
+// Collects the time per call of each benchmark and prints one short line per case and implementation (the full
+// names and ga-benchmark's statistics go to --benchmark_out's JSON). Each repetition's time is the mean real
+// time per call over the batch of kSamples calls; the figure kept is the median over the repetitions (the
+// mean is in the JSON), which a descheduled repetition on a shared machine does not move.
 class Collector : public benchmark::BenchmarkReporter {
  public:
-  std::map<std::string, double> mean;
+  std::map<std::string, double> median;
   std::map<std::string, std::string> label;  // benchmark name -> short label
   bool ReportContext(const Context&) override { return true; }
   void ReportRuns(const std::vector<Run>& runs) override {
@@ -117,9 +119,9 @@ class Collector : public benchmark::BenchmarkReporter {
         std::printf("%-48s ERROR %s\n", label[name].c_str(), r.error_message.c_str());
         continue;
       }
-      if (r.run_type != Run::RT_Aggregate || r.aggregate_name != "mean") continue;
+      if (r.run_type != Run::RT_Aggregate || r.aggregate_name != "median") continue;
       const double ns = r.GetAdjustedRealTime() * 1e6;  // the unit is ms, ga-benchmark's
-      mean[name] = ns;
+      median[name] = ns;
       std::printf("%-48s %9.2f ns\n", label[name].c_str(), ns);
       std::fflush(stdout);
     }
@@ -217,43 +219,44 @@ int main(int argc, char** argv) try {
   benchmark::RunSpecifiedBenchmarks(&collector);
   benchmark::Shutdown();
 
-  // Geomean ratio cgagen/GATL per operation and model (mean time per call, over the grade pairs).
-  std::map<std::string, std::map<std::string, std::pair<double, int>>> table;  // op -> model -> (sum log, n)
-  std::set<std::string> models_seen;
+  // Geomean ratio cgagen/GATL per operation and model (median time per call, over the grade pairs), for each
+  // cgagen row: as called (pointers to the arguments) and on local copies of them ("cgagen-local").
+  std::map<std::string, std::map<std::string, std::pair<double, int>>> table;  // op -> column -> (sum log, n)
+  std::set<std::string> columns;
   for (auto& [key, c] : cases) {
-    if (!c.sides.count("GATL") || !c.sides.count("cgagen")) continue;
-    const auto cg = collector.mean.find(case_name(c, "cgagen"));
-    const auto gl = collector.mean.find(case_name(c, "GATL"));
-    if (cg == collector.mean.end() || gl == collector.mean.end() || gl->second <= 0) continue;
-    auto& cell = table[c.op][c.model];
-    cell.first += std::log(cg->second / gl->second);
-    cell.second += 1;
-    models_seen.insert(c.model);
+    const auto gl = collector.median.find(case_name(c, "GATL"));
+    if (gl == collector.median.end() || gl->second <= 0) continue;
+    for (const char* solution : {"cgagen", "cgagen-local"}) {
+      const auto cg = collector.median.find(case_name(c, solution));
+      if (cg == collector.median.end()) continue;
+      const std::string column = c.model + (std::string(solution) == "cgagen" ? "" : " (local args)");
+      auto& cell = table[c.op][column];
+      cell.first += std::log(cg->second / gl->second);
+      cell.second += 1;
+      auto& all = table["all (every case)"][column];
+      all.first += std::log(cg->second / gl->second);
+      all.second += 1;
+      columns.insert(column);
+    }
   }
   if (table.empty()) return 0;
   std::printf("\nGeomean time ratio cgagen/GATL over the grade pairs (below 1: cgagen faster)\n\n| operation |");
-  for (const auto& mname : models_seen) std::printf(" %s |", mname.c_str());
+  for (const auto& column : columns) std::printf(" %s |", column.c_str());
   std::printf("\n|---|");
-  for (std::size_t i = 0; i < models_seen.size(); ++i) std::printf("---|");
+  for (std::size_t i = 0; i < columns.size(); ++i) std::printf("---:|");
   std::printf("\n");
-  std::map<std::string, std::pair<double, int>> overall;
-  for (const auto& [op, row] : table) {
+  auto row = [&](const std::string& op) {
     std::printf("| %s |", op.c_str());
-    for (const auto& mname : models_seen) {
-      const auto it = row.find(mname);
-      if (it == row.end()) {
-        std::printf(" |");
-        continue;
-      }
-      std::printf(" %.2f |", std::exp(it->second.first / it->second.second));
-      overall[mname].first += it->second.first;
-      overall[mname].second += it->second.second;
+    for (const auto& column : columns) {
+      const auto it = table[op].find(column);
+      if (it == table[op].end()) std::printf(" |");
+      else std::printf(" %.2f |", std::exp(it->second.first / it->second.second));
     }
     std::printf("\n");
-  }
-  std::printf("| all (every case) |");
-  for (const auto& mname : models_seen) std::printf(" %.2f |", std::exp(overall[mname].first / overall[mname].second));
-  std::printf("\n");
+  };
+  for (const auto& [op, cells] : table)
+    if (op != "all (every case)") row(op);
+  row("all (every case)");
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "cga-gabench: %s\n", e.what());
