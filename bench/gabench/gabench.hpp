@@ -71,7 +71,8 @@ inline bool enough(benchmark::State& state) {
 // A GATL result as printed by GATL's operator<< ("c * <e1^no> + ..."), read back by cgagen blade name.
 Named parse_gatl(const std::string& model, const std::string& text);
 
-// ---- the cgagen side: a kernel `void k(const double A[], [const double B[],] double R[])` ----
+// ---- the cgagen side: a kernel `void k(const double A[], [const double B[],] double R[])`, registered by
+// cg_side.hpp's macros ----
 
 template <std::size_t NR>
 inline Named named(const std::array<std::string_view, NR>& blades, const double* r) {
@@ -139,19 +140,3 @@ using BinaryKernel = void (*)(const double*, const double*, double*);
 
 #define GABENCH_CAT_(a, b) a##b
 #define GABENCH_CAT(a, b) GABENCH_CAT_(a, b)
-
-// One generated kernel MODEL_OP_GA[_GB] (cgagen's double overload) registered as the "cgagen" side.
-#define GABENCH_CG_UNARY(MODEL, OP, GA)                                                                       \
-  const bool GABENCH_CAT(reg_, MODEL##_##OP##_##GA) = ::gabench::add(                                       \
-      {#MODEL, #OP, "cgagen", GA, -1, [](const ::gabench::Inputs& in) {                                     \
-         constexpr auto& blades = MODEL##_##OP##_##GA##_R_blades;                                          \
-         return ::gabench::cg_unary<static_cast<::gabench::UnaryKernel>(&MODEL##_##OP##_##GA),             \
-                                    std::tuple_size_v<std::remove_reference_t<decltype(blades)>>>(in, blades); \
-       }});
-#define GABENCH_CG_BINARY(MODEL, OP, GA, GB)                                                                  \
-  const bool GABENCH_CAT(reg_, MODEL##_##OP##_##GA##_##GB) = ::gabench::add(                                \
-      {#MODEL, #OP, "cgagen", GA, GB, [](const ::gabench::Inputs& in) {                                     \
-         constexpr auto& blades = MODEL##_##OP##_##GA##_##GB##_R_blades;                                   \
-         return ::gabench::cg_binary<static_cast<::gabench::BinaryKernel>(&MODEL##_##OP##_##GA##_##GB),    \
-                                     std::tuple_size_v<std::remove_reference_t<decltype(blades)>>>(in, blades); \
-       }});
