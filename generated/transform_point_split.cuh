@@ -125,45 +125,45 @@ __host__ __device__ __forceinline__ void transform_point_split_prepare(const dou
 }
 
 __host__ __device__ __forceinline__ void transform_point_split(const float prepared[12], float x, float y, float z, float nx, float ny, float nz, float p[3], float n[3]) {
-  const float prepared_s = prepared[0];
-  const float prepared_s = prepared[1];
-  const float prepared_s = prepared[2];
-  const float prepared_s = prepared[3];
-  const float prepared_s = prepared[4];
-  const float prepared_s = prepared[5];
-  const float prepared_s = prepared[6];
-  const float prepared_s = prepared[7];
-  const float prepared_s = prepared[8];
-  const float prepared_s = prepared[9];
-  const float prepared_s = prepared[10];
-  const float prepared_s = prepared[11];
-  p[0] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e1
-  p[1] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e2
-  p[2] = prepared_s * y + prepared_s * z + prepared_s * x + prepared_s;  // e3
-  n[0] = nx * prepared_s + ny * prepared_s + nz * prepared_s;  // e1
-  n[1] = nx * prepared_s + ny * prepared_s + nz * prepared_s;  // e2
-  n[2] = nx * prepared_s + ny * prepared_s + nz * prepared_s;  // e3
+  const float prepared_0 = prepared[0];
+  const float prepared_1 = prepared[1];
+  const float prepared_2 = prepared[2];
+  const float prepared_3 = prepared[3];
+  const float prepared_4 = prepared[4];
+  const float prepared_5 = prepared[5];
+  const float prepared_6 = prepared[6];
+  const float prepared_7 = prepared[7];
+  const float prepared_8 = prepared[8];
+  const float prepared_9 = prepared[9];
+  const float prepared_10 = prepared[10];
+  const float prepared_11 = prepared[11];
+  p[0] = prepared_1 * x + prepared_2 * y + prepared_3 * z + prepared_0;  // e1
+  p[1] = prepared_5 * x + prepared_6 * y + prepared_7 * z + prepared_4;  // e2
+  p[2] = prepared_10 * y + prepared_11 * z + prepared_9 * x + prepared_8;  // e3
+  n[0] = nx * prepared_1 + ny * prepared_2 + nz * prepared_3;  // e1
+  n[1] = nx * prepared_5 + ny * prepared_6 + nz * prepared_7;  // e2
+  n[2] = nx * prepared_9 + ny * prepared_10 + nz * prepared_11;  // e3
 }
 
 __host__ __device__ __forceinline__ void transform_point_split(const double prepared[12], double x, double y, double z, double nx, double ny, double nz, double p[3], double n[3]) {
-  const double prepared_s = prepared[0];
-  const double prepared_s = prepared[1];
-  const double prepared_s = prepared[2];
-  const double prepared_s = prepared[3];
-  const double prepared_s = prepared[4];
-  const double prepared_s = prepared[5];
-  const double prepared_s = prepared[6];
-  const double prepared_s = prepared[7];
-  const double prepared_s = prepared[8];
-  const double prepared_s = prepared[9];
-  const double prepared_s = prepared[10];
-  const double prepared_s = prepared[11];
-  p[0] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e1
-  p[1] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e2
-  p[2] = prepared_s * y + prepared_s * z + prepared_s * x + prepared_s;  // e3
-  n[0] = nx * prepared_s + ny * prepared_s + nz * prepared_s;  // e1
-  n[1] = nx * prepared_s + ny * prepared_s + nz * prepared_s;  // e2
-  n[2] = nx * prepared_s + ny * prepared_s + nz * prepared_s;  // e3
+  const double prepared_0 = prepared[0];
+  const double prepared_1 = prepared[1];
+  const double prepared_2 = prepared[2];
+  const double prepared_3 = prepared[3];
+  const double prepared_4 = prepared[4];
+  const double prepared_5 = prepared[5];
+  const double prepared_6 = prepared[6];
+  const double prepared_7 = prepared[7];
+  const double prepared_8 = prepared[8];
+  const double prepared_9 = prepared[9];
+  const double prepared_10 = prepared[10];
+  const double prepared_11 = prepared[11];
+  p[0] = prepared_1 * x + prepared_2 * y + prepared_3 * z + prepared_0;  // e1
+  p[1] = prepared_5 * x + prepared_6 * y + prepared_7 * z + prepared_4;  // e2
+  p[2] = prepared_10 * y + prepared_11 * z + prepared_9 * x + prepared_8;  // e3
+  n[0] = nx * prepared_1 + ny * prepared_2 + nz * prepared_3;  // e1
+  n[1] = nx * prepared_5 + ny * prepared_6 + nz * prepared_7;  // e2
+  n[2] = nx * prepared_9 + ny * prepared_10 + nz * prepared_11;  // e3
 }
 
 }  // namespace cga::kernels

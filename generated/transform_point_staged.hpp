@@ -141,43 +141,43 @@ inline void transform_point_staged_prepare(const double M[12], double prepared[1
 }
 
 inline void transform_point_staged(const float prepared[13], float x, float y, float z, float P[4]) {
-  const float prepared_s = prepared[0];
-  const float prepared_s = prepared[1];
-  const float prepared_s = prepared[2];
-  const float prepared_s = prepared[3];
-  const float prepared_s = prepared[4];
-  const float prepared_s = prepared[5];
-  const float prepared_s = prepared[6];
-  const float prepared_s = prepared[7];
-  const float prepared_s = prepared[8];
-  const float prepared_s = prepared[9];
-  const float prepared_s = prepared[10];
-  const float prepared_s = prepared[11];
-  const float prepared_s = prepared[12];
-  P[0] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e1
-  P[1] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e2
-  P[2] = prepared_s * y + prepared_s * z + prepared_s * x + prepared_s;  // e3
-  P[3] = prepared_s;  // e0
+  const float prepared_0 = prepared[0];
+  const float prepared_1 = prepared[1];
+  const float prepared_2 = prepared[2];
+  const float prepared_3 = prepared[3];
+  const float prepared_4 = prepared[4];
+  const float prepared_5 = prepared[5];
+  const float prepared_6 = prepared[6];
+  const float prepared_7 = prepared[7];
+  const float prepared_8 = prepared[8];
+  const float prepared_9 = prepared[9];
+  const float prepared_10 = prepared[10];
+  const float prepared_11 = prepared[11];
+  const float prepared_12 = prepared[12];
+  P[0] = prepared_1 * x + prepared_2 * y + prepared_3 * z + prepared_0;  // e1
+  P[1] = prepared_5 * x + prepared_6 * y + prepared_7 * z + prepared_4;  // e2
+  P[2] = prepared_10 * y + prepared_11 * z + prepared_9 * x + prepared_8;  // e3
+  P[3] = prepared_12;  // e0
 }
 
 inline void transform_point_staged(const double prepared[13], double x, double y, double z, double P[4]) {
-  const double prepared_s = prepared[0];
-  const double prepared_s = prepared[1];
-  const double prepared_s = prepared[2];
-  const double prepared_s = prepared[3];
-  const double prepared_s = prepared[4];
-  const double prepared_s = prepared[5];
-  const double prepared_s = prepared[6];
-  const double prepared_s = prepared[7];
-  const double prepared_s = prepared[8];
-  const double prepared_s = prepared[9];
-  const double prepared_s = prepared[10];
-  const double prepared_s = prepared[11];
-  const double prepared_s = prepared[12];
-  P[0] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e1
-  P[1] = prepared_s * x + prepared_s * y + prepared_s * z + prepared_s;  // e2
-  P[2] = prepared_s * y + prepared_s * z + prepared_s * x + prepared_s;  // e3
-  P[3] = prepared_s;  // e0
+  const double prepared_0 = prepared[0];
+  const double prepared_1 = prepared[1];
+  const double prepared_2 = prepared[2];
+  const double prepared_3 = prepared[3];
+  const double prepared_4 = prepared[4];
+  const double prepared_5 = prepared[5];
+  const double prepared_6 = prepared[6];
+  const double prepared_7 = prepared[7];
+  const double prepared_8 = prepared[8];
+  const double prepared_9 = prepared[9];
+  const double prepared_10 = prepared[10];
+  const double prepared_11 = prepared[11];
+  const double prepared_12 = prepared[12];
+  P[0] = prepared_1 * x + prepared_2 * y + prepared_3 * z + prepared_0;  // e1
+  P[1] = prepared_5 * x + prepared_6 * y + prepared_7 * z + prepared_4;  // e2
+  P[2] = prepared_10 * y + prepared_11 * z + prepared_9 * x + prepared_8;  // e3
+  P[3] = prepared_12;  // e0
 }
 
 }  // namespace cga::kernels

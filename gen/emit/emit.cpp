@@ -168,11 +168,12 @@ struct Param {
 
 std::string indent(const std::string& body) { return body; }
 
-// The symbols the program's temporaries and outputs read (each shared node visited once).
+// The symbols the program's temporaries and outputs read (each shared node visited once; `kept` holds every
+// visited node alive, since op() of a sum may build a fresh node whose address a freed one had).
 std::set<GiNaC::ex, GiNaC::ex_is_less> read_symbols(const opt::Program& program) {
   std::set<GiNaC::ex, GiNaC::ex_is_less> out;
   std::set<const GiNaC::basic*> seen;
-  std::vector<GiNaC::ex> todo;
+  std::vector<GiNaC::ex> todo, kept;
   for (const auto& t : program.temps) todo.push_back(t.value);
   for (const auto& o : program.outputs)
     for (const auto& slot : o.slots) todo.push_back(slot.value);
@@ -180,14 +181,20 @@ std::set<GiNaC::ex, GiNaC::ex_is_less> read_symbols(const opt::Program& program)
     const GiNaC::ex e = todo.back();
     todo.pop_back();
     if (!seen.insert(&GiNaC::ex_to<GiNaC::basic>(e)).second) continue;
+    kept.push_back(e);
     if (GiNaC::is_a<GiNaC::symbol>(e)) out.insert(e);
     for (size_t i = 0; i < e.nops(); ++i) todo.push_back(e.op(i));
   }
   return out;
 }
 
-// The local a loaded input blade lives in (Syntax::load): NAME_<blade ident>, spelt with the file's names.
-std::string load_name(const std::string& input, algebra::BladeIndex b) { return input + "_" + algebra::blade_ident(b); }
+// The local element k of a loaded input lives in (Syntax::load), before spelling: NAME_<blade ident>, or
+// NAME_<k> where the blades repeat (a staged kernel's prepared values are all labelled as scalars).
+std::string load_name(const KernelInput& in, size_t k) {
+  std::set<algebra::BladeIndex> distinct(in.blades.begin(), in.blades.end());
+  if (distinct.size() == in.blades.size()) return in.name + "_" + algebra::blade_ident(in.blades[k]);
+  return in.name + "_" + std::to_string(k);
+}
 
 }  // namespace
 
@@ -304,7 +311,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     for (const auto& in : pr->inputs) {
       raw_names.insert(in.name);
       if (!sx.load.empty() && in.is_multivector)
-        for (algebra::BladeIndex b : in.blades) raw_names.insert(load_name(in.name, b));
+        for (size_t k = 0; k < in.blades.size(); ++k) raw_names.insert(load_name(in, k));
     }
     for (const auto& o : pr->outputs) raw_names.insert(o.name);
     for (const auto& t : pr->temps) raw_names.insert(t.name);
@@ -358,7 +365,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     }
     Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
     for (size_t k = 0; k < in.symbols.size(); ++k)
-      code[in.symbols[k]] = sx.load.empty() ? elem(in.name, k, p) : id(load_name(in.name, in.blades[k]));
+      code[in.symbols[k]] = sx.load.empty() ? elem(in.name, k, p) : id(load_name(in, k));
   }
   for (const auto& t : program.temps) code[t.sym] = id(t.name);
 
@@ -419,7 +426,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
         if (in.is_multivector)
           for (size_t k = 0; k < in.symbols.size(); ++k)
             if (read.count(in.symbols[k]))
-              body += line(fill_pattern(sx.load, {{"T", T}, {"name", id(load_name(in.name, in.blades[k]))},
+              body += line(fill_pattern(sx.load, {{"T", T}, {"name", id(load_name(in, k))},
                                                   {"elem", elem(in.name, k, Pack::Array)}}));
     for (const auto& t : program.temps)
       body += line(fill_pattern(sx.temp, {{"T", T}, {"name", id(t.name)}, {"value", pr.print(t.value)}}));
