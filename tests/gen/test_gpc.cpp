@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -38,8 +39,9 @@ std::string slurp(const std::string& path) {
   return os.str();
 }
 
+// A folder per process: ctest runs the test cases as parallel processes, which must not share files.
 std::string work_dir() {
-  const std::string d = std::string(CGA_BINARY_DIR) + "/gpc_work";
+  const std::string d = std::string(CGA_BINARY_DIR) + "/gpc_work/" + std::to_string(getpid());
   std::filesystem::create_directories(d);
   return d;
 }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -17,10 +18,17 @@ namespace {
 
 using Shell = cga_test::Result;
 
+// The scratch folder, one per process: ctest runs the test cases as parallel processes, which must not
+// share files.
+std::string scratch() {
+  const std::string dir = std::string(CGA_BINARY_DIR) + "/gpc_errors/" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 // cgagen --gpc NAME run in the scratch folder, so that diagnostics name the file as NAME.
 Shell gpc_run(const std::string& name, const std::string& text, const std::string& options = "") {
-  const std::string dir = std::string(CGA_BINARY_DIR) + "/gpc_errors";
-  std::filesystem::create_directories(dir);
+  const std::string dir = scratch();
   std::ofstream(dir + "/" + name, std::ios::binary) << text;
   const std::string cmd = "cd " + dir + " && " + CGAGEN_EXE + " --gpc " + options + " " + name + " -o out.hpp 2>&1";
   return cga_test::shell(cmd);
@@ -130,7 +138,7 @@ TEST_CASE("gpc: a source without blocks is copied unchanged after its #line", "[
   const Shell r = gpc_run("plain.cpp", text);
   INFO(r.out);
   CHECK(r.code == 0);
-  std::ifstream in(std::string(CGA_BINARY_DIR) + "/gpc_errors/out.hpp", std::ios::binary);
+  std::ifstream in(scratch() + "/out.hpp", std::ios::binary);
   const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(out == "#line 1 \"plain.cpp\"\n" + text);
 }
@@ -153,7 +161,7 @@ TEST_CASE("gpc: mv_to_array and mv_get_bladecoeff as written after comments and 
   const Shell r = gpc_run("calls.hpg", text);
   INFO(r.out);
   REQUIRE(r.code == 0);
-  std::ifstream in(std::string(CGA_BINARY_DIR) + "/gpc_errors/out.hpp", std::ios::binary);
+  std::ifstream in(scratch() + "/out.hpp", std::ios::binary);
   const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   INFO(out);
   // r = a e1 = x0 + x1 e2 e1: blades 1 and e1^e2, r[1] the coefficient of e1^e2 (= -x[1]).
