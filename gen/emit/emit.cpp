@@ -4,6 +4,7 @@
 #include "emit/names.hpp"
 #include "emit/printer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -202,22 +203,6 @@ namespace {
 
 std::string as_text(const Syntax& sx, const std::string& s) { return sx.text ? sx.text(s) : s; }
 
-// Whether any temporary or output of the program reads one of the symbols (an input's blades).
-template <class Symbols>
-bool reads_any(const opt::Program& program, const Symbols& symbols) {
-  auto reads = [&](const GiNaC::ex& value) {
-    for (const auto& sym : symbols)
-      if (value.has(sym)) return true;
-    return false;
-  };
-  for (const auto& t : program.temps)
-    if (reads(t.value)) return true;
-  for (const auto& o : program.outputs)
-    for (const auto& slot : o.slots)
-      if (reads(slot.value)) return true;
-  return false;
-}
-
 // The dot target: the program's dataflow, one node per input blade, temporary and output blade, an edge
 // from every symbol an expression reads.
 template <class Label>
@@ -395,9 +380,13 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     std::string return_type = "void";
     std::string body;
     if (!sx.prologue.empty()) body += line(fill_pattern(sx.prologue, {{"splat", splat}}));
+    // The symbols the body reads, once: for the unused inputs and the loads below.
+    const auto read = sx.unused.empty() && sx.load.empty() ? std::set<GiNaC::ex, GiNaC::ex_is_less>{}
+                                                            : read_symbols(program);
     if (!sx.unused.empty())
       for (const auto& in : program.inputs)
-        if (!reads_any(program, in.symbols)) body += line(fill_pattern(sx.unused, {{"name", id(in.name)}}));
+        if (std::none_of(in.symbols.begin(), in.symbols.end(), [&](const GiNaC::ex& x) { return read.count(x) > 0; }))
+          body += line(fill_pattern(sx.unused, {{"name", id(in.name)}}));
     std::string ret_line;
     std::string items;
     for (const auto& o : program.outputs) {
@@ -420,7 +409,6 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       }
     }
     if (!items.empty()) ret_line = line(fill_pattern(sx.return_stmt, {{"items", items}}));
-    const auto read = sx.load.empty() ? std::set<GiNaC::ex, GiNaC::ex_is_less>{} : read_symbols(program);
     if (!sx.load.empty())
       for (const auto& in : program.inputs)
         if (in.is_multivector)

@@ -1,21 +1,7 @@
 // The expander's cost model (cost.hpp).
 #include "expand/cost.hpp"
 
-#include <vector>
-
 namespace cgagen::expand_cost {
-
-bool longer_than(const GiNaC::ex& c, std::size_t limit) {
-  std::vector<GiNaC::ex> todo{c};
-  std::size_t seen = 0;
-  while (!todo.empty()) {
-    const GiNaC::ex e = todo.back();
-    todo.pop_back();
-    if (++seen > limit) return true;
-    for (std::size_t i = 0; i < e.nops(); ++i) todo.push_back(e.op(i));
-  }
-  return false;
-}
 
 std::size_t coefficient_terms(const GiNaC::ex& c) { return GiNaC::is_a<GiNaC::add>(c) ? c.nops() : 1; }
 

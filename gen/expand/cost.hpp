@@ -30,10 +30,7 @@ constexpr std::size_t kBindProductTerms = 3000;
 // The argument of exp or log is bound when one of its coefficients has more expression nodes than this: their
 // closed forms square and expand the argument's parts and test signs on the expansion, which on a nested
 // call's expressions (log(exp(B)) in one statement) would take minutes; on symbols it takes milliseconds.
-constexpr std::size_t kBindArgumentNodes = 64;
-// Whether c has more than `limit` nodes, counted as a tree (shared subtrees once per use) and stopping at
-// the limit, so the count is bounded however large the DAG.
-bool longer_than(const GiNaC::ex& c, std::size_t limit);
+constexpr std::size_t kBindArgumentNodes = 64;  // (symbolic::tree_larger_than)
 
 // Terms of one coefficient: a sum's operands, else 1.
 std::size_t coefficient_terms(const GiNaC::ex& c);

@@ -399,7 +399,7 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
 
   Multivector bind_if_long(const Multivector& m, SourceLoc loc) override {
     for (const auto& [b, c] : m.terms())
-      if (expand_cost::longer_than(c, expand_cost::kBindArgumentNodes)) return bind_part(m, loc);
+      if (symbolic::tree_larger_than(c, expand_cost::kBindArgumentNodes)) return bind_part(m, loc);
     return m;
   }
 
@@ -536,10 +536,7 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
   // argument, the argument of exp) the blades that must vanish are checked with the values inlined.
   template <class MustVanish>
   Multivector drop_vanishing(const Multivector& m, MustVanish must_vanish) {
-    Multivector r = m;
-    for (const auto& [b, c] : m.terms())
-      if (must_vanish(b) && vanishes(c)) r.set(b, 0);
-    return r;
+    return m.without([&](algebra::BladeIndex b, const ex& c) { return must_vanish(b) && vanishes(c); });
   }
 
   Multivector scalar_part_if_scalar(const Multivector& m) override {

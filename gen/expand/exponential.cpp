@@ -75,10 +75,7 @@ ex root_of_square(const ex& t) {
 
 // m without the terms that vanish once earlier values are inlined.
 Multivector nonvanishing(Context& ctx, const Multivector& m) {
-  Multivector r = m;
-  for (const auto& [b, c] : m.terms())
-    if (ctx.vanishes(c)) r.set(b, 0);
-  return r;
+  return m.without([&](algebra::BladeIndex, const ex& c) { return ctx.vanishes(c); });
 }
 
 // A scalar as the expander's temporary where it is a long expression (Context::bind_if_long): the closed
@@ -86,32 +83,32 @@ Multivector nonvanishing(Context& ctx, const Multivector& m) {
 using Bind = std::function<ex(const ex&)>;
 
 // C(a), S(a) and S'(a) (top of this file). `closed_c` and `closed_s` are C and S in closed form, for a whose
-// square is not small; the Taylor series (to a^4, exact to double precision for |a| < 1/100) below it.
+// square is not small; the Taylor polynomials below it.
 struct Series {
   ex c, s, sp;
 };
 
-Series fold(const ex& a, const ex& closed_c, const ex& closed_s, const Bind& bind) {
-  const ex taylor_c = 1 + a / 2 + GiNaC::pow(a, 2) / 24 + GiNaC::pow(a, 3) / 720 + GiNaC::pow(a, 4) / 40320;
-  const ex taylor_s = 1 + a / 6 + GiNaC::pow(a, 2) / 120 + GiNaC::pow(a, 3) / 5040 + GiNaC::pow(a, 4) / 362880;
-  const ex taylor_sp =
-      numeric(1, 6) + a / 60 + GiNaC::pow(a, 2) / 1680 + GiNaC::pow(a, 3) / 90720 + GiNaC::pow(a, 4) / 7983360;
-  if (a.is_zero()) return {1, 1, numeric(1, 6)};
-  symbolic::Condition small;
-  small.op = symbolic::Condition::Op::Lt;
-  small.a = a * a;
-  small.b = numeric(1, 10000);
-  return {bind(symbolic::make_select(small, taylor_c, closed_c)), bind(symbolic::make_select(small, taylor_s, closed_s)),
-          bind(symbolic::make_select(small, taylor_sp, (closed_c - closed_s) / (2 * a)))};
+// The Taylor polynomials of C, S and S' to a^4: exact to double precision for |a| < 1/100.
+ex taylor_c(const ex& a) { return 1 + a / 2 + GiNaC::pow(a, 2) / 24 + GiNaC::pow(a, 3) / 720 + GiNaC::pow(a, 4) / 40320; }
+ex taylor_s(const ex& a) { return 1 + a / 6 + GiNaC::pow(a, 2) / 120 + GiNaC::pow(a, 3) / 5040 + GiNaC::pow(a, 4) / 362880; }
+ex taylor_sp(const ex& a) {
+  return numeric(1, 6) + a / 60 + GiNaC::pow(a, 2) / 1680 + GiNaC::pow(a, 3) / 90720 + GiNaC::pow(a, 4) / 7983360;
 }
 
-
+// v^2 < 1/10000: where the selects take the Taylor polynomials.
 symbolic::Condition small_square(const ex& v) {
   symbolic::Condition small;
   small.op = symbolic::Condition::Op::Lt;
   small.a = v * v;
   small.b = numeric(1, 10000);
   return small;
+}
+
+Series fold(const ex& a, const ex& closed_c, const ex& closed_s, const Bind& bind) {
+  if (a.is_zero()) return {1, 1, numeric(1, 6)};
+  const symbolic::Condition small = small_square(a);
+  return {bind(symbolic::make_select(small, taylor_c(a), closed_c)), bind(symbolic::make_select(small, taylor_s(a), closed_s)),
+          bind(symbolic::make_select(small, taylor_sp(a), (closed_c - closed_s) / (2 * a)))};
 }
 
 // A0 and A1 of two commuting planes (top of this file). Their numerators are antisymmetric in (l1, l2), so the
@@ -124,9 +121,8 @@ struct Mix {
 Mix mix(const ex& l1, const ex& l2, const Series& f1, const Series& f2, const Bind& bind) {
   static const GiNaC::symbol x("x"), y("y");
   static const std::pair<ex, ex> taylor = [] {
-    auto ct = [](const ex& v) { return 1 + v / 2 + GiNaC::pow(v, 2) / 24 + GiNaC::pow(v, 3) / 720 + GiNaC::pow(v, 4) / 40320; };
-    auto st = [](const ex& v) { return 1 + v / 6 + GiNaC::pow(v, 2) / 120 + GiNaC::pow(v, 3) / 5040 + GiNaC::pow(v, 4) / 362880; };
-    const ex n0 = (y * ct(x) * st(y) - x * st(x) * ct(y)).expand(), n1 = (st(x) * ct(y) - ct(x) * st(y)).expand();
+    const ex n0 = (y * taylor_c(x) * taylor_s(y) - x * taylor_s(x) * taylor_c(y)).expand(),
+             n1 = (taylor_s(x) * taylor_c(y) - taylor_c(x) * taylor_s(y)).expand();
     return std::make_pair(GiNaC::quo(n0, y - x, y), GiNaC::quo(n1, y - x, y) / 2);
   }();
   const GiNaC::lst at{x == l1, y == l2};

@@ -4,16 +4,11 @@
 #include <algorithm>
 
 #include "algebra/algebra.hpp"
+#include "expand/builtins.hpp"
 
 namespace cgagen::expand_inverse {
 
 namespace {
-
-std::string blade_list(const Multivector& m) {
-  std::string s;
-  for (const auto& [b, c] : m.terms()) s += (s.empty() ? "" : ", ") + algebra::blade_name(b);
-  return s;
-}
 
 // The adjugate of x for an algebra of n vectors: with N = 2^ceil(n/2), U_1 = x, C_k = (N/k) <U_k>_0,
 // U_k = x (U_(k-1) - C_(k-1)), and adj(x) = U_(N-1) - C_(N-1) (up to a sign that cancels in adj / (x adj)).
@@ -33,11 +28,8 @@ Multivector adjugate(const Multivector& x, int n) {
 Inverse inverse(const Multivector& x, const std::function<bool(const GiNaC::ex&)>& vanishes) {
   // m's scalar part when every other blade vanishes (then zero when that vanishes too), else m.
   auto scalar_part_if_scalar = [&](const Multivector& m) {
-    Multivector r = m;
-    for (const auto& [b, c] : m.terms())
-      if (b != 0 && vanishes(c)) r.set(b, 0);
-    if (r.is_scalar() && !r.is_zero() && vanishes(r.scalar())) return Multivector();
-    return r;
+    const Multivector r = m.without([&](algebra::BladeIndex b, const GiNaC::ex& c) { return b != 0 && vanishes(c); });
+    return r.is_scalar() && !r.is_zero() && vanishes(r.scalar()) ? Multivector() : r;
   };
   const Multivector rev = x.reverse();
   const Multivector norm = scalar_part_if_scalar(x * rev);
@@ -66,7 +58,7 @@ Inverse inverse(const Multivector& x, const std::function<bool(const GiNaC::ex&)
   }
   if (!det.is_scalar())
     throw NotInvertible{"cannot divide by this multivector: d*adj(d) is not a scalar (it has blades " +
-                        blade_list(det.grade_above(0)) + ")"};
+                        expand_builtins::blade_list(det.grade_above(0)) + ")"};
   if (det.is_zero())
     throw NotInvertible{"cannot divide by this multivector: it has no inverse (its determinant d*adj(d) is 0)"};
   return {adj, det.scalar()};

@@ -72,6 +72,21 @@ inline bool is_symbol_number_or_constant(const GiNaC::ex& e) {
   const Kind k = kind_of(e);
   return k == Kind::Symbol || k == Kind::Numeric || k == Kind::Constant;
 }
+// Whether e has more than `limit` nodes counted as a tree (a shared subtree once per use), stopping at the
+// limit: bounded time however large the DAG. What decides where a tree walk (GiNaC's evalf) is affordable
+// and where a long expression is bound to a temporary.
+inline bool tree_larger_than(const GiNaC::ex& e, std::size_t limit) {
+  std::vector<GiNaC::ex> todo{e};
+  std::size_t seen = 0;
+  while (!todo.empty()) {
+    const GiNaC::ex x = todo.back();
+    todo.pop_back();
+    if (++seen > limit) return true;
+    for (std::size_t i = 0; i < x.nops(); ++i) todo.push_back(x.op(i));
+  }
+  return false;
+}
+
 // is_a<expairseq>: GiNaC's sums and products (pairs_of applies).
 inline bool is_add_or_mul(const GiNaC::ex& e) {
   const Kind k = kind_of(e);

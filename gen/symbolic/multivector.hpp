@@ -85,6 +85,16 @@ class Multivector {
     return r;
   }
 
+  // Without the terms for which drop(blade, coefficient) holds (coefficients untouched, nothing expanded):
+  // the expander's zero tests remove the blades whose coefficients vanish once earlier values are inlined.
+  template <class Drop>
+  Multivector without(Drop&& drop) const {
+    Multivector r = *this;
+    for (const auto& [b, c] : terms_)
+      if (drop(b, c)) r.terms_.erase(b);
+    return r;
+  }
+
   // Stable text: "x*e1 + (1/2*x^2+...)*einf + e0"; "0" when empty. Blades in Gaalop order.
   std::string str() const;
   friend std::ostream& operator<<(std::ostream& os, const Multivector& a) { return os << a.str(); }

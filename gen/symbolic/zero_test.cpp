@@ -2,6 +2,7 @@
 // evaluation, and the exact inlined test as the last resort.
 #include "symbolic/zero_test.hpp"
 
+#include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
 #include <set>
 #include <string>
@@ -139,26 +140,10 @@ bool ZeroTests::analytic(const ex& e) const {
   return !bad;
 }
 
-namespace {
-
 // GiNaC's own evalf walks an expression as a tree, so on a DAG with shared subtrees it can take exponential
 // time. The memoized evalf_at covers every node the expander builds; GiNaC's is the fallback for what it
 // does not, and only where the tree is small: a tree of more than this many nodes counts as not evaluable.
-constexpr size_t kMaxFallbackNodes = 20000;
-
-bool small_tree(const ex& c) {
-  std::vector<ex> todo{c};
-  size_t seen = 0;
-  while (!todo.empty()) {
-    const ex e = todo.back();
-    todo.pop_back();
-    if (++seen > kMaxFallbackNodes) return false;
-    for (size_t i = 0; i < e.nops(); ++i) todo.push_back(e.op(i));
-  }
-  return true;
-}
-
-}  // namespace
+static constexpr size_t kMaxFallbackNodes = 20000;
 
 bool ZeroTests::probably_nonzero(const ex& c) { return probes_.test(c) == ProbePoints::Verdict::Nonzero; }
 
@@ -179,7 +164,7 @@ ex ZeroTests::sample_at_signed_point(const ex& c, size_t k) {
   try {
     // The keys are symbols: no pattern matching, and GiNaC need not scan the map for products at each sum.
     auto fast = evalf_at(c, signed_samples_[k]);  // no expression built
-    if (!fast && !small_tree(c)) return GiNaC::numeric(0);
+    if (!fast && tree_larger_than(c, kMaxFallbackNodes)) return GiNaC::numeric(0);
     ex v = fast ? ex(*fast) : GiNaC::evalf(c.subs(signed_samples_[k], kSymbolSubs));
     if (GiNaC::is_a<GiNaC::numeric>(v)) return v;
   } catch (const std::exception&) {
@@ -207,7 +192,7 @@ std::optional<ex> ZeroTests::sample(const ex& c) {
 std::optional<ex> ZeroTests::evaluate_at_sample(const ex& c) {
   try {
     auto fast = evalf_at(c, samples_, &kept_sample_values_);  // no expression built
-    if (!fast && !small_tree(c)) return std::nullopt;
+    if (!fast && tree_larger_than(c, kMaxFallbackNodes)) return std::nullopt;
     return fast ? ex(*fast) : GiNaC::evalf(c.subs(samples_, kSymbolSubs));
   } catch (const std::exception&) {
     return std::nullopt;
