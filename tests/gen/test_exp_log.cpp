@@ -15,6 +15,7 @@
 #include "front/diagnostics.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
+#include "expand_error.hpp"
 #include "oracle_algebras.hpp"
 
 using namespace cgagen;
@@ -58,16 +59,6 @@ std::map<std::string, Named> run(const opt::Program& p, const std::map<std::stri
   std::map<std::string, Named> out;
   for (const auto& line : opt::evaluate(p, in)) out[line.output][line.blade_name] += line.value;
   return out;
-}
-
-std::string error_of(const std::string& algebra, const std::string& script) {
-  front::SourceFile file("bad.clu", script);
-  try {
-    expand(front::parse(file), "bad", algebra::builtin(algebra));
-  } catch (const front::CompileError& e) {
-    return "bad.clu:" + std::to_string(e.loc().line) + ":" + std::to_string(e.loc().col) + ": error: " + e.what();
-  }
-  return "no error";
 }
 
 }  // namespace
