@@ -23,6 +23,7 @@
 #include "expand/hints.hpp"
 #include "expand/inverse.hpp"
 #include "expand/pragmas.hpp"
+#include "expand/words.hpp"
 #include "front/parser.hpp"
 #include "symbolic/budget.hpp"
 #include "symbolic/node_cache.hpp"
@@ -103,7 +104,9 @@ Multivector basis(const std::string& n) {
   return half_inf + Multivector::e0();  // em
 }
 
-class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Context {
+class Expander : private expand_pragmas::PragmaHost,
+                 private expand_builtins::Context,
+                 private expand_words::Host {
  public:
   explicit Expander(std::string name) { kernel_.name = std::move(name); }
 
@@ -136,6 +139,7 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
     finish_outputs();
     drop_unused_values();
     pragmas_.apply_in2out(kernel_);
+    kernel_.shared_products = words_.report();
     return std::move(kernel_);
   }
 
@@ -167,6 +171,10 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
   expand_pragmas::Pragmas pragmas_;
   std::vector<int> evaluated_values_;   // values of '!x = e;' (kept though no output needs them)
+  expand_words::Products words_;        // the script's products as words (expand/words.hpp)
+  const Expr* statement_value_ = nullptr;  // the right-hand side of the top-level assignment being expanded
+  // Set when that right-hand side is itself a product chain: the word it was evaluated as.
+  std::optional<std::pair<algebra::ProductKind, expand_words::Word>> statement_word_;
 
   // The current algebra's built-in macros (algebra_builtins.cpp; none for CGA), defined before the script
   // so that a script's own definition of the same name replaces them.
@@ -223,8 +231,13 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
       record_value(s, divide(u, magnitude(u), *s.value));
     } else if (s.value) {
       check_assignable(s);
+      statement_value_ = s.value.get();
+      statement_word_.reset();
       Multivector v = eval(*s.value);
+      statement_value_ = nullptr;
       record_value(s, v);
+      // A name bound to a product chain stands for its word: later chains reuse it (expand/words.hpp).
+      if (statement_word_) words_.remember(statement_word_->first, statement_word_->second, globals_.at(s.name), s.name);
     } else if (!globals_.count(s.name) && !last_value_.count(s.name)) {
       throw CompileError(s.loc, "output '" + s.name + "' is never assigned");
     }
@@ -413,6 +426,57 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
       case algebra::ProductKind::Outer: return a ^ b;
       default: return inner(a, b);
     }
+  }
+
+  // ---- the products stage (expand/words.hpp) -------------------------------------------------------
+
+  Multivector multiply(algebra::ProductKind kind, const Multivector& a, const Multivector& b, SourceLoc loc) override {
+    return product(kind, a, b, loc);
+  }
+
+  Multivector bind_word(std::string& name, const Multivector& v, SourceLoc loc) override {
+    if (name.empty()) name = statement_name_ + "_prod" + std::to_string(++parts_[statement_name_ + " prod"]);
+    KernelValue kv = value_of(name, name, loc, v);
+    Multivector ref = reference(kv);
+    kernel_.values.push_back(std::move(kv));
+    return ref;
+  }
+
+  // The product kind of a chain expression: a geometric or outer product, or the reverse of one.
+  static std::optional<algebra::ProductKind> chain_kind(const Expr& e) {
+    if (e.kind == Expr::Kind::Binary && e.binary_op == front::BinaryOp::Geo) return algebra::ProductKind::Geometric;
+    if (e.kind == Expr::Kind::Binary && e.binary_op == front::BinaryOp::Outer) return algebra::ProductKind::Outer;
+    if (e.kind == Expr::Kind::Unary && e.unary_op == front::UnaryOp::Reverse) return chain_kind(*e.args.at(0));
+    return std::nullopt;
+  }
+
+  // The factors of a chain of products of `kind`, in order, each evaluated once, left to right as written.
+  void flatten(const Expr& e, algebra::ProductKind kind, expand_words::Word& out) {
+    const bool outer = kind == algebra::ProductKind::Outer;
+    if (e.kind == Expr::Kind::Binary && e.binary_op == (outer ? front::BinaryOp::Outer : front::BinaryOp::Geo)) {
+      if (auto w = outer ? hints::outer_with_number(e) : std::nullopt) hints::warn_once(kernel_.warnings, e.loc, *w);
+      flatten(*e.args.at(0), kind, out);
+      flatten(*e.args.at(1), kind, out);
+      return;
+    }
+    if (e.kind == Expr::Kind::Unary && e.unary_op == front::UnaryOp::Reverse && chain_kind(*e.args.at(0)) == kind) {
+      expand_words::Word inner;
+      flatten(*e.args.at(0), kind, inner);
+      const expand_words::Word r = expand_words::reversed(inner);
+      out.insert(out.end(), r.begin(), r.end());
+      return;
+    }
+    const Multivector v = eval(e);
+    const expand_words::Word w = words_.expand(words_.atom(v, e.kind == Expr::Kind::Name ? e.text : ""), kind);
+    out.insert(out.end(), w.begin(), w.end());
+  }
+
+  Multivector eval_chain(const Expr& e, algebra::ProductKind kind) {
+    const bool whole_statement = &e == statement_value_;
+    expand_words::Word w;
+    flatten(e, kind, w);
+    if (whole_statement) statement_word_ = {kind, w};
+    return words_.evaluate(kind, w, e.loc, *this);
   }
 
   static Multivector reference(const KernelValue& kv) {
@@ -604,6 +668,8 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
         return f.args[e.index - 1];
       }
       case Expr::Kind::Unary: {
+        if (e.unary_op == front::UnaryOp::Reverse)
+          if (auto kind = chain_kind(*e.args.at(0))) return eval_chain(e, *kind);
         Multivector a = eval(*e.args.at(0));
         switch (e.unary_op) {
           case front::UnaryOp::Negate: return -a;
@@ -613,15 +679,14 @@ class Expander : private expand_pragmas::PragmaHost, private expand_builtins::Co
         break;
       }
       case Expr::Kind::Binary: {
+        if (auto kind = chain_kind(e)) return eval_chain(e, *kind);
         Multivector a = eval(*e.args.at(0));
         Multivector b = eval(*e.args.at(1));
         switch (e.binary_op) {
           case front::BinaryOp::Add: return a + b;
           case front::BinaryOp::Sub: return a - b;
-          case front::BinaryOp::Geo: return product(algebra::ProductKind::Geometric, a, b, e.loc);
-          case front::BinaryOp::Outer:
-            if (auto w = hints::outer_with_number(e)) hints::warn_once(kernel_.warnings, e.loc, *w);
-            return product(algebra::ProductKind::Outer, a, b, e.loc);
+          case front::BinaryOp::Geo:
+          case front::BinaryOp::Outer: break;  // chains (eval_chain)
           case front::BinaryOp::Inner: return product(algebra::ProductKind::Inner, a, b, e.loc);
           case front::BinaryOp::Div: return divide(a, b, *e.args.at(1));
         }

@@ -62,6 +62,14 @@ struct UniformName {  // one name of `#pragma uniform NAME...`, checked by the s
   front::SourceLoc loc;
 };
 
+// A product of the script that the products stage (expand/words.hpp) named once and reused; --stats lists them.
+struct SharedProduct {
+  std::string name;    // the kernel value that holds it (a script name or a bound temporary)
+  std::string word;    // its word, e.g. "R3*T2*R1"
+  int uses = 0;        // how many later words took it instead of computing it again
+  bool bound = false;  // true when the stage bound it (a sandwich's versor), false for a script's own name
+};
+
 struct Kernel {
   std::string name;  // the function name (the script's file stem unless overridden)
   std::shared_ptr<const algebra::Algebra> algebra;  // what the blades and products are in (set by expand())
@@ -74,6 +82,7 @@ struct Kernel {
   // X ~X = 1, which -O2 may use (opt/levels.cpp checks the names).
   std::vector<UniformName> normalized;
   std::vector<front::Warning> warnings;  // in script order
+  std::vector<SharedProduct> shared_products;  // in order of naming
 };
 
 }  // namespace cgagen
