@@ -1,0 +1,31 @@
+// -O0: every value coefficient of the script as a temporary, as written; outputs copy the value symbols.
+#include "opt/levels.hpp"
+
+namespace cgagen::opt::detail {
+
+using namespace GiNaC;
+
+// -O0: every value coefficient as a temporary, as written.
+Program optimize_o0(const Kernel& k) {
+  Program p = skeleton(k, Level::O0);
+  Namer namer(k.inputs);
+  std::map<std::string, int> seen;
+  for (const auto& v : k.values) {
+    int n = ++seen[v.name];
+    std::string prefix = n == 1 ? "v_" : "v" + std::to_string(n) + "_";
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      p.temps.push_back({namer.fresh(prefix + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
+                         v.symbols[i], v.coeffs[i]});
+  }
+  for (const auto& o : k.outputs) {
+    ProgramOutput po{o.name, {}};
+    const auto& v = k.values.at(o.value);
+    for (auto b : o.blades) {
+      int i = blade_pos(v, b);
+      po.slots.push_back({b, i < 0 ? ex(0) : ex(v.symbols[i])});
+    }
+    p.outputs.push_back(std::move(po));
+  }
+  return p;
+}
+}  // namespace cgagen::opt::detail
