@@ -1,5 +1,6 @@
 // cgagen: the command-line tool. CluScript file -> parse -> expand -> optimize -> emit (or --stats, --diff,
 // --eval, --dump-ast; or --gpc: a C/C++/CUDA source with GPC blocks, gen/gpc/). Exit codes: 0 success, 1 error in the script (diagnostic on stderr), 2 bad usage.
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include "front/diagnostics.hpp"
 #include "front/parser.hpp"
 #include "gpc/gpc.hpp"
+#include "opt/passes.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
 #include "opt/stage.hpp"
@@ -71,6 +73,7 @@ options:
   --Werror                treat warnings (a misspelt name that became an input) as errors
   --eval NAME=VALUE ...   evaluate the optimized kernel (values before or after SCRIPT); a multivector input as NAME=v1,v2,...
                           (one value per declared blade); prints OUTPUT BLADE VALUE lines
+  --passes                print the -O2 optimizer's passes in run order (name and description)
   --version               print the version (cgagen X.Y.Z)
   --help                  this text
 
@@ -136,6 +139,12 @@ Options parse_args(int argc, char** argv) {
     try {
       if (a == "--help" || a == "-h") {
         std::cout << kUsage;
+        std::exit(0);
+      } else if (a == "--passes") {  // the pass table (gen/opt/pipeline.cpp), one pass per line
+        size_t width = 0;
+        for (const auto& p : opt::pass_table()) width = std::max(width, p.name.size());
+        for (const auto& p : opt::pass_table())
+          std::cout << p.name << std::string(width + 2 - p.name.size(), ' ') << p.description << "\n";
         std::exit(0);
       } else if (a == "--version") {
         std::cout << "cgagen " << CGAGEN_VERSION << "\n";

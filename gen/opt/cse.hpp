@@ -1,5 +1,6 @@
 // The -O2 common-subexpression passes: the state they share and one entry point per pass. The order they
-// run in is listed once, in pipeline.cpp (run_cse); each pass lives in its own pass_*.cpp.
+// run in is listed once, in pipeline.cpp's pass table (kPasses, which run_cse iterates); each pass lives in
+// its own pass_*.cpp.
 #pragma once
 
 #include <map>
@@ -29,7 +30,16 @@ struct CseState {
   int counter = 0;
 };
 
-// Runs every pass in order; roots are the output slot expressions (in order).
+// One row of the pass table: a pass's name (cgagen --passes), what it does, and its function.
+struct Pass {
+  const char* name;
+  const char* description;
+  void (*run)(CseState& st, std::vector<GiNaC::ex>& roots);
+};
+// The -O2 pipeline, in run order (pipeline.cpp).
+extern const std::vector<Pass> kPasses;
+
+// Runs every pass of kPasses in order; roots are the output slot expressions (in order).
 void run_cse(CseState& st, std::vector<GiNaC::ex>& roots);
 
 // Pipeline steps (pipeline.cpp).

@@ -1,10 +1,12 @@
-// The -O2 pass pipeline: the order in which the common-subexpression passes run (one pass per file,
-// pass_*.cpp), and the bookkeeping they share (CseState, cse.hpp).
+// The -O2 pass pipeline: the pass table (the order in which the common-subexpression passes run, one pass
+// per file, pass_*.cpp, each with its name and description for cgagen --passes), and the bookkeeping they
+// share (CseState, cse.hpp).
 #include <algorithm>
 #include <functional>
 #include <stdexcept>
 
 #include "opt/cse.hpp"
+#include "opt/passes.hpp"
 
 namespace cgagen::opt::detail {
 
@@ -60,21 +62,44 @@ void topo_sort(CseState& st) {
 
 // The pipeline. Sharing passes first (pairs, then whole subtrees), sign clean-up, inlining of what ended up
 // used once, sum factoring (a factored form hides products from the sharing passes), and last the merging of
-// temporaries that came out equal.
+// temporaries that came out equal. Sums are oriented again after each pass that builds new ones.
+const std::vector<Pass> kPasses = {
+    {"orient", "orient every sum by canonical key (first term positive), so equal subexpressions are equal trees",
+     orient_all},
+    {"pair-products", "extract the factor pair shared by most products, repeatedly (squares included)",
+     pair_products},
+    {"sort", "order the temporaries so that each comes after those it uses", [](CseState& st, std::vector<ex>&) {
+       topo_sort(st);
+     }},
+    {"orient", "orient the sums again (the pair products changed them)", orient_all},
+    {"shared-subtrees", "make each subtree used twice or more a temporary (products keyed without their number)",
+     shared_subtrees},
+    {"orient", "orient the sums again (new temporaries)", orient_all},
+    {"fold-negations", "store negated temporaries positive; their users subtract", fold_negations},
+    {"inline-single-use", "put a temporary used once back into its user; drop unused ones", inline_single_use},
+    {"factor-sums", "factor each sum by its most shared symbols, share inner sums, group common numeric factors",
+     factor_all_sums},
+    {"drop-aliases", "replace a temporary that is one symbol or number by its value", drop_aliases},
+    {"orient", "orient the sums again (factored sums)", orient_all},
+    {"fold-negations", "store negated temporaries positive again (after factoring)", fold_negations},
+    {"merge-equal", "merge temporaries equal to an earlier one or to its negation", merge_equal_temps},
+};
+
 void run_cse(CseState& st, std::vector<ex>& roots) {
-  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
-  { PhaseTimer t("  cse pairs"); pair_products(st, roots); }
-  topo_sort(st);
-  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
-  { PhaseTimer t("  cse subtrees"); shared_subtrees(st, roots); }
-  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
-  { PhaseTimer t("  cse negations"); fold_negations(st, roots); }
-  { PhaseTimer t("  cse inline"); inline_single_use(st, roots); }
-  { PhaseTimer t("  cse factors"); factor_all_sums(st, roots); }
-  drop_aliases(st, roots);
-  { PhaseTimer t("  cse orient"); orient_all(st, roots); }
-  { PhaseTimer t("  cse negations"); fold_negations(st, roots); }
-  { PhaseTimer t("  cse merge"); merge_equal_temps(st, roots); }
+  for (const Pass& pass : kPasses) {
+    PhaseTimer t(std::string("  cse ") + pass.name);
+    pass.run(st, roots);
+  }
 }
 
 }  // namespace cgagen::opt::detail
+
+namespace cgagen::opt {
+
+std::vector<PassInfo> pass_table() {
+  std::vector<PassInfo> out;
+  for (const auto& p : detail::kPasses) out.push_back({p.name, p.description});
+  return out;
+}
+
+}  // namespace cgagen::opt

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 
 #include "cli_run.hpp"
+#include "opt/passes.hpp"
 
 using cga_test::run;
 using cga_test::script;
@@ -37,6 +38,24 @@ TEST_CASE("help exits 0 and lists the options", "[cli]") {
   CHECK(r.code == 0);
   for (const char* opt : {"--target", "-O2", "--pack", "--return", "--stats", "--diff", "--eval", "--dump-ast"})
     CHECK(r.out.find(opt) != std::string::npos);
+}
+
+TEST_CASE("the pass table: cgagen --passes lists the -O2 passes in run order and exits 0", "[cli]") {
+  auto r = run("--passes");
+  CHECK(r.code == 0);
+  // Every row of the table, in order, one per line.
+  size_t at = 0;
+  for (const auto& p : cgagen::opt::pass_table()) {
+    const size_t found = r.out.find(p.name, at);
+    INFO(p.name);
+    REQUIRE(found != std::string::npos);
+    CHECK(r.out.find(p.description, found) != std::string::npos);
+    at = found + p.name.size();
+  }
+  for (const char* name : {"pair-products", "shared-subtrees", "fold-negations", "inline-single-use", "factor-sums",
+                           "drop-aliases", "merge-equal"})
+    CHECK(r.out.find(name) != std::string::npos);
+  CHECK(run("--help").out.find("--passes") != std::string::npos);
 }
 
 TEST_CASE("script errors exit 1 with file:line:col and a caret", "[cli]") {
