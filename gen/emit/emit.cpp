@@ -1,5 +1,5 @@
 // The emitter (see emit.hpp): one code path driven by the target's Syntax record (gen/emit/targets.cpp); GLSL packing
-// and the dot dataflow graph are the only target-specific branches. Expressions are printed by opt/lower.hpp's rules.
+// and the dot dataflow graph are the only target-specific branches. Expressions are printed by lower/lower.hpp's rules.
 #include "emit/emit.hpp"
 #include "emit/names.hpp"
 #include "emit/printer.hpp"

@@ -29,7 +29,7 @@ Temp CseState::make_temp(const ex& value) {
   return Temp{name, s, value};
 }
 
-// Every expression with its sums oriented by the keys (lower.hpp), so that equal subexpressions are equal
+// Every expression with its sums oriented by the keys (lower/lower.hpp), so that equal subexpressions are equal
 // trees whatever signs GiNaC's hash-dependent term order gave them.
 void orient_all(CseState& st, std::vector<ex>& roots) {
   for (auto& t : st.temps) t.value = orient_sums(t.value, st.keys);

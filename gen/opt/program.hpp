@@ -2,7 +2,7 @@
 //
 // A Program is a list of temporaries `name = value` (each value over the inputs' symbols and earlier
 // temporaries' symbols) followed by one assignment per output blade. Expressions stay GiNaC expressions;
-// how they become text (and what that text costs) is fixed by opt/lower.hpp, shared by the emitters and the
+// how they become text (and what that text costs) is fixed by lower/lower.hpp, shared by the emitters and the
 // op counter so that --stats always describes the code that is printed.
 #pragma once
 
@@ -58,7 +58,7 @@ Program optimize(const Kernel& kernel, Level level);
 
 }  // namespace cgagen::opt
 
-#include "opt/lower.hpp"
+#include "lower/lower.hpp"
 
 namespace cgagen::opt {
 

@@ -1,5 +1,5 @@
 // Canonical keys, product/sum decomposition and op counting of GiNaC expressions (see lower.hpp).
-#include "opt/lower.hpp"
+#include "lower/lower.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,5 +1,7 @@
 // How a GiNaC expression becomes straight-line code, shared by the emitters (which print it) and the op
-// counter (which costs it), so that --stats always describes exactly the printed code.
+// counter (which costs it), so that --stats always describes exactly the printed code. Its own stage
+// (cgagen_lower, below both opt and emit, on symbolic only); its names stay in cgagen::opt, where the
+// programs they describe live.
 //
 // Rules: a sum of n terms costs n-1 additions (a term with a negative coefficient is printed as a
 // subtraction, and terms are ordered positive-first so a leading negation is rare); a product is
