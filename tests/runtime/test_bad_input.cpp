@@ -312,7 +312,7 @@ TEST_CASE("negative and NaN weights in a file are dropped, the rest renormalized
   check_weights_repaired(ch);
   // Assimp's .X importer already drops weights that are not > 0, so the loader sees only the vertices left
   // with no influence at all, and reports those (formats that pass such weights through are counted by the
-  // loader's own "dropped N negative or not finite bone weights" warning).
+  // loader's own "dropped N negative bone weights" warning, and each non-finite one is named).
   INFO("warnings:\n" << [&] {
     std::string all;
     for (const std::string& w : ch.warnings) all += "  " + w + "\n";

@@ -2,7 +2,10 @@
 #include "cga/io/loader.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -14,6 +17,9 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
+
+#include "character_wire.hpp"
+#include "isolated.hpp"
 
 namespace cga {
 
@@ -88,20 +94,73 @@ Transform decompose(const glm::mat4& m, bool& exact) {
   return x;
 }
 
+// Removes the vertices marked in `drop` from every per-vertex array, and the triangles that use one of them;
+// the other triangles' indices follow their vertices.
+void drop_vertices(SkinnedMesh& mesh, const std::vector<bool>& drop) {
+  const std::size_t nv = mesh.vertex_count();
+  std::vector<std::uint32_t> to(nv);
+  std::size_t kept = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    to[v] = std::uint32_t(kept);
+    if (drop[v]) continue;
+    mesh.px[kept] = mesh.px[v], mesh.py[kept] = mesh.py[v], mesh.pz[kept] = mesh.pz[v];
+    if (mesh.has_normals()) mesh.nx[kept] = mesh.nx[v], mesh.ny[kept] = mesh.ny[v], mesh.nz[kept] = mesh.nz[v];
+    mesh.joints[kept] = mesh.joints[v];
+    mesh.weights[kept] = mesh.weights[v];
+    ++kept;
+  }
+  for (auto* a : {&mesh.px, &mesh.py, &mesh.pz}) a->resize(kept);
+  if (mesh.has_normals())
+    for (auto* a : {&mesh.nx, &mesh.ny, &mesh.nz}) a->resize(kept);
+  mesh.joints.resize(kept);
+  mesh.weights.resize(kept);
+  std::vector<std::uint32_t> indices;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::uint32_t* tri = &mesh.indices[t];
+    if (drop[tri[0]] || drop[tri[1]] || drop[tri[2]]) continue;
+    for (int i = 0; i < 3; ++i) indices.push_back(to[tri[i]]);
+  }
+  mesh.indices = std::move(indices);
+}
+
+// Gives each listed vertex the normalized sum of its triangles' normals (area-weighted: the unnormalized cross
+// products), or +z when no triangle with an area uses it.
+void repair_normals(SkinnedMesh& mesh, const std::vector<unsigned>& vertices) {
+  std::unordered_map<unsigned, glm::vec3> sums;
+  for (unsigned v : vertices) sums[v] = glm::vec3(0.0f);
+  auto pos = [&](std::uint32_t v) { return glm::vec3(mesh.px[v], mesh.py[v], mesh.pz[v]); };
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::uint32_t* tri = &mesh.indices[t];
+    const glm::vec3 n = glm::cross(pos(tri[1]) - pos(tri[0]), pos(tri[2]) - pos(tri[0]));
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) continue;
+    for (int i = 0; i < 3; ++i)
+      if (auto it = sums.find(tri[i]); it != sums.end()) it->second += n;
+  }
+  for (auto& [v, n] : sums) {
+    const float len = glm::length(n);
+    const glm::vec3 unit = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    mesh.nx[v] = unit.x, mesh.ny[v] = unit.y, mesh.nz[v] = unit.z;
+  }
+}
+
+// How long an import may take before its process is stopped: CGA_IMPORT_TIME_LIMIT seconds, else 60.
+std::chrono::milliseconds import_time_limit() {
+  if (const char* env = std::getenv("CGA_IMPORT_TIME_LIMIT")) {
+    char* end = nullptr;
+    const double s = std::strtod(env, &end);
+    if (end != env && s > 0.0 && s < 1e7) return std::chrono::milliseconds(static_cast<long long>(s * 1000.0));
+  }
+  return std::chrono::seconds(60);
+}
+
 std::string ai_error(const Assimp::Importer& importer) {
   const char* e = importer.GetErrorString();
   return e && *e ? e : "no message";
 }
 
-}  // namespace
-
-Character load_character(const std::string& path, const LoadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw LoadError(fmt::format("{}: cannot load character: is a directory", path));
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw LoadError(fmt::format("{}: cannot load character: no such file", path));
-
+// The import proper, run in the importer's child process: Assimp's scene to a Character whose clips have
+// their tracks but not yet their keys (the caller builds those, see character_wire.hpp).
+Character import_character(const std::string& path, const LoadOptions& options) {
   Assimp::Importer importer;
   // (No aiProcess_ValidateDataStructure: it rejects scenes without meshes, i.e. every BVH file.)
   // BVH has no mesh; without this Assimp invents one to draw the bones.
@@ -205,17 +264,48 @@ Character load_character(const std::string& path, const LoadOptions& options) {
       SkinnedMesh mesh;
       mesh.name = am->mName.C_Str();
       const unsigned nv = am->mNumVertices;
+      // A vertex whose position is not finite (a "nan" or an overflowing "1e39" in the file) has no place to
+      // be drawn: it is dropped with its triangles (below), each named in a warning.
+      std::vector<bool> dropped(nv, false);
+      unsigned n_dropped = 0;
+      for (unsigned v = 0; v < nv; ++v) {
+        const aiVector3D& p = am->mVertices[v];
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+        dropped[v] = true;
+        ++n_dropped;
+        warn.add("not finite", fmt::format("mesh '{}', vertex {}: position ({}, {}, {}) is not finite; dropped the "
+                                           "vertex and its triangles", mesh.name, v, p.x, p.y, p.z));
+      }
+      if (n_dropped == nv && nv > 0) {
+        warn.add("not finite", fmt::format("mesh '{}': no vertex has a finite position; not loaded", mesh.name));
+        continue;
+      }
       mesh.px.resize(nv), mesh.py.resize(nv), mesh.pz.resize(nv);
       for (unsigned v = 0; v < nv; ++v)
         mesh.px[v] = am->mVertices[v].x, mesh.py[v] = am->mVertices[v].y, mesh.pz[v] = am->mVertices[v].z;
+      std::vector<unsigned> bad_normals;  // rebuilt from the vertex's triangles once the mesh is complete
       if (am->mNormals) {
         mesh.nx.resize(nv), mesh.ny.resize(nv), mesh.nz.resize(nv);
-        for (unsigned v = 0; v < nv; ++v)
-          mesh.nx[v] = am->mNormals[v].x, mesh.ny[v] = am->mNormals[v].y, mesh.nz[v] = am->mNormals[v].z;
+        for (unsigned v = 0; v < nv; ++v) {
+          const aiVector3D& n = am->mNormals[v];
+          mesh.nx[v] = n.x, mesh.ny[v] = n.y, mesh.nz[v] = n.z;
+          if (dropped[v] || (std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z))) continue;
+          bad_normals.push_back(v);
+          warn.add("not finite", fmt::format("mesh '{}', vertex {}: normal ({}, {}, {}) is not finite; replaced by "
+                                             "the normalized sum of its triangles' normals", mesh.name, v, n.x, n.y, n.z));
+        }
       }
-      for (unsigned f = 0; f < am->mNumFaces; ++f)
-        if (am->mFaces[f].mNumIndices == 3)
-          for (int i = 0; i < 3; ++i) mesh.indices.push_back(am->mFaces[f].mIndices[i]);
+      // Assimp does not check face indices against the vertex count (it runs no validation step, see above).
+      int bad_faces = 0;
+      for (unsigned f = 0; f < am->mNumFaces; ++f) {
+        const aiFace& face = am->mFaces[f];
+        if (face.mNumIndices != 3) continue;
+        if (face.mIndices[0] >= nv || face.mIndices[1] >= nv || face.mIndices[2] >= nv) {
+          ++bad_faces;
+          continue;
+        }
+        for (int i = 0; i < 3; ++i) mesh.indices.push_back(face.mIndices[i]);
+      }
 
       std::vector<std::vector<std::pair<float, std::uint16_t>>> influences(nv);
       int bad_weights = 0, bad_vertex_ids = 0;
@@ -235,8 +325,13 @@ Character load_character(const std::string& path, const LoadOptions& options) {
             ++bad_vertex_ids;
           } else if (vw.mWeight > 0.0f && std::isfinite(vw.mWeight)) {
             influences[vw.mVertexId].push_back({vw.mWeight, std::uint16_t(b)});
+          } else if (!std::isfinite(vw.mWeight)) {
+            if (!dropped[vw.mVertexId])
+              warn.add("not finite", fmt::format("mesh '{}', vertex {}: bone '{}' has weight {}, not finite; "
+                                                 "dropped, the vertex's other weights renormalized",
+                                                 mesh.name, vw.mVertexId, bone->mName.C_Str(), vw.mWeight));
           } else if (vw.mWeight != 0.0f) {
-            ++bad_weights;  // negative, NaN or infinite: dropped, the vertex's other weights renormalized
+            ++bad_weights;  // negative: dropped, the vertex's other weights renormalized
           }
         }
       }
@@ -247,20 +342,36 @@ Character load_character(const std::string& path, const LoadOptions& options) {
         auto& inf = influences[v];
         std::stable_sort(inf.begin(), inf.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
         if (inf.size() > 4) ++over4, inf.resize(4);
-        float sum = 0.0f;
-        for (const auto& p : inf) sum += p.first;
-        if (inf.empty() || !(sum > 0.0f)) {
-          ++unweighted;
+        if (inf.empty()) {
+          if (!dropped[v]) ++unweighted;
           mesh.weights[v] = {1, 0, 0, 0};  // follows palette entry 0 rather than collapsing to the origin
           continue;
+        }
+        float sum = 0.0f;
+        for (const auto& p : inf) sum += p.first;
+        if (!std::isfinite(sum)) {  // finite weights near FLT_MAX: relative to the largest, they sum to <= 4
+          const float largest = inf[0].first;
+          sum = 0.0f;
+          for (auto& p : inf) sum += (p.first /= largest);
         }
         for (std::size_t k = 0; k < inf.size(); ++k) {
           mesh.joints[v][k] = inf[k].second;
           mesh.weights[v][k] = inf[k].first / sum;
         }
       }
+      if (n_dropped) drop_vertices(mesh, dropped);
+      if (!bad_normals.empty()) {
+        // Indices after dropping: the old index minus the dropped vertices before it.
+        std::vector<unsigned> shift(nv + 1, 0);
+        for (unsigned v = 0; v < nv; ++v) shift[v + 1] = shift[v] + (dropped[v] ? 1 : 0);
+        for (unsigned& v : bad_normals) v -= shift[v];
+        repair_normals(mesh, bad_normals);
+      }
+      if (bad_faces)
+        warn.add("faces", fmt::format("mesh '{}': dropped {} triangles whose vertex indices are past its {} vertices",
+                                      mesh.name, bad_faces, nv));
       if (bad_weights)
-        warn.add("influences", fmt::format("mesh '{}': dropped {} negative or not finite bone weights; renormalized "
+        warn.add("influences", fmt::format("mesh '{}': dropped {} negative bone weights; renormalized "
                                            "the vertices' other weights", mesh.name, bad_weights));
       if (bad_vertex_ids)
         warn.add("influences", fmt::format("mesh '{}': dropped {} bone weights of vertices that do not exist",
@@ -330,11 +441,68 @@ Character load_character(const std::string& path, const LoadOptions& options) {
         std::stable_sort(tr.rotations.begin(), tr.rotations.end(), by_time);
         std::stable_sort(tr.scales.begin(), tr.scales.end(), by_time);
       }
-      build_joint_keys(clip);
       ch.clips.push_back(std::move(clip));
     }
   }
   warn.finish();
+  return ch;
+}
+
+}  // namespace
+
+Character load_character(const std::string& path, const LoadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw LoadError(fmt::format("{}: cannot load character: is a directory", path));
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw LoadError(fmt::format("{}: cannot load character: no such file", path));
+
+  // In the child: 'C' and the character, or 'E' and the error message.
+  auto import = [&]() -> std::string {
+    try {
+      return 'C' + io_detail::encode_character(import_character(path, options));
+    } catch (const LoadError& e) {
+      return std::string("E") + e.what();
+    } catch (const std::bad_alloc&) {
+      return fmt::format("E{}: the model importer ran out of memory reading it", path);
+    } catch (const std::exception& e) {
+      return fmt::format("E{}: cannot load character: {}", path, e.what());
+    }
+  };
+  const auto limit = import_time_limit();
+  const io_detail::ChildOutcome out = io_detail::run_in_child(import, limit);
+  using Kind = io_detail::ChildOutcome::Kind;
+  switch (out.kind) {
+    case Kind::finished: break;
+    case Kind::signaled:
+      if (out.code == SIGKILL)
+        throw LoadError(fmt::format("{}: the model importer was killed (SIGKILL) reading it; the system may have "
+                                    "run out of memory", path));
+      throw LoadError(fmt::format("{}: the model importer crashed ({}) reading it; the file is malformed", path,
+                                  io_detail::signal_name(out.code)));
+    case Kind::exited:
+      throw LoadError(fmt::format("{}: the model importer failed (exit status {}) reading it; the file is "
+                                  "malformed", path, out.code));
+    case Kind::timed_out:
+      throw LoadError(fmt::format("{}: the model importer took longer than {} s reading it; stopped it", path,
+                                  std::chrono::duration_cast<std::chrono::seconds>(limit).count()));
+    case Kind::failed:
+      throw LoadError(fmt::format("{}: cannot start the model importer's process ({})", path, out.output));
+  }
+  if (out.output.empty() || out.output[0] != 'C') throw LoadError(out.output.empty() ? path + ": no result" : out.output.substr(1));
+  Character ch;
+  try {
+    ch = io_detail::decode_character(std::string_view(out.output).substr(1));
+  } catch (const std::exception& e) {
+    throw LoadError(fmt::format("{}: the model importer's result is unreadable: {}", path, e.what()));
+  }
+  for (Clip& clip : ch.clips) {
+    try {
+      build_joint_keys(clip);
+    } catch (const std::exception& e) {
+      throw LoadError(fmt::format("{}: clip '{}': {}", path, clip.name, e.what()));
+    }
+  }
   return ch;
 }
 
