@@ -7,7 +7,9 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "cga/io/loader.hpp"
+#include "isolated.hpp"
 
 using namespace cga;
 namespace fs = std::filesystem;
@@ -132,6 +135,37 @@ std::string edit_lines(const std::string& text, const std::vector<LineEdit>& edi
 }
 
 }  // namespace
+
+// ------------------------------------------------------------------------------------ the child process
+
+TEST_CASE("the child-process runner returns the child's bytes, or says how the child ended") {
+  using io_detail::ChildOutcome;
+  using namespace std::chrono_literals;
+  SECTION("a result larger than a pipe's buffer") {
+    const ChildOutcome out = io_detail::run_in_child([] { return std::string(3 << 20, 'y'); }, 30s);
+    CHECK(out.kind == ChildOutcome::Kind::finished);
+    CHECK(out.output == std::string(3 << 20, 'y'));
+  }
+  SECTION("a crash") {
+    const ChildOutcome out = io_detail::run_in_child([] { std::raise(SIGSEGV); return std::string("no"); }, 30s);
+    CHECK(out.kind == ChildOutcome::Kind::signaled);
+    CHECK(io_detail::signal_name(out.code) == "SIGSEGV");
+  }
+  SECTION("a hang is killed at the limit") {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ChildOutcome out = io_detail::run_in_child([] { for (;;) ::pause(); return std::string(); }, 200ms);
+    CHECK(out.kind == ChildOutcome::Kind::timed_out);
+    CHECK(std::chrono::steady_clock::now() - t0 < 10s);
+  }
+  SECTION("an exception or an exit without a result") {
+    CHECK(io_detail::run_in_child([]() -> std::string { throw std::runtime_error("x"); }, 30s).kind ==
+          ChildOutcome::Kind::exited);
+    const ChildOutcome out = io_detail::run_in_child([]() -> std::string { ::_exit(7); }, 30s);
+    CHECK(out.kind == ChildOutcome::Kind::exited);
+    CHECK(out.code == 7);
+  }
+  CHECK(io_detail::signal_name(SIGKILL) == "SIGKILL");
+}
 
 // ------------------------------------------------------------------------------------ importer crashes
 

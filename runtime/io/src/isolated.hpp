@@ -26,7 +26,9 @@ struct ChildOutcome {
 // of the parent's (atexit handlers, static destructors, stdio buffers) runs twice; it restores the default
 // action of the crash signals so that it dies by them (handlers inherited from a test framework or a crash
 // reporter would run on a broken heap), and writes no core file. An exception escaping work() ends the child
-// with status 2. After `limit` the child is killed (SIGKILL).
+// with status 2. After `limit` the child is killed (SIGKILL). From a multithreaded caller the child has only
+// the calling thread: glibc's fork leaves malloc usable, but a lock that another thread held at the fork stays
+// held in the child, which would then wait until the limit.
 ChildOutcome run_in_child(const std::function<std::string()>& work, std::chrono::milliseconds limit);
 
 // "SIGSEGV" for SIGSEGV, "signal 42" for one without a name.
