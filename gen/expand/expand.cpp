@@ -136,6 +136,9 @@ class Expander : private expand_pragmas::PragmaHost,
       }
     }
     if (std::getenv("CGAGEN_TIMING")) std::fprintf(stderr, "cgagen budget: %zu terms\n", spent);
+    for (const auto& v : pragmas_.versors())
+      if (!globals_.count(v.name))
+        throw CompileError(v.loc, "'#pragma versor': '" + v.name + "' is neither an input nor a name the script assigns");
     finish_outputs();
     drop_unused_values();
     pragmas_.apply_in2out(kernel_);
@@ -706,12 +709,26 @@ class Expander : private expand_pragmas::PragmaHost,
     if (b.is_scalar()) return guarded(be.loc, [&] { return a / b.scalar(); });
     return guarded(be.loc, [&] {
       try {
-        const auto inv = expand_inverse::inverse(b, [&](const ex& c) { return vanishes(c); });
+        auto zero = [&](const ex& c) { return vanishes(c); };
+        const auto inv = declared_versor(b) ? expand_inverse::versor_inverse(b, zero) : expand_inverse::inverse(b, zero);
         return (a * inv.numerator) / inv.denominator;
       } catch (const expand_inverse::NotInvertible& e) {
         throw CompileError(be.loc, e.message);
       }
     });
+  }
+
+  // Is b the value of a name the script declares a versor (`#pragma versor`, or a `normalized` input)?
+  bool declared_versor(const Multivector& b) const {
+    auto is_value_of = [&](const std::string& name) {
+      auto it = globals_.find(name);
+      return it != globals_.end() && it->second.terms().size() == b.terms().size() && it->second == b;
+    };
+    for (const auto& n : pragmas_.versors())
+      if (is_value_of(n.name)) return true;
+    for (const auto& n : kernel_.normalized)
+      if (is_value_of(n.name)) return true;
+    return false;
   }
 
   // Runs f, turning GiNaC's arithmetic faults (division by zero, ...) into diagnostics at loc.

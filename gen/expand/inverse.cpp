@@ -5,10 +5,15 @@
 
 #include "algebra/algebra.hpp"
 #include "expand/builtins.hpp"
+#include "expand/cost.hpp"
 
 namespace cgagen::expand_inverse {
 
 namespace {
+
+// The adjugate's size limit, in terms summed over its blades. The inverse of a full 4D multivector (STA) stays
+// below 500, that of a 5D scalar plus four bivectors below 150.
+constexpr std::size_t kMaxAdjugateTerms = 1000;
 
 // The adjugate of x for an algebra of n vectors: with N = 2^ceil(n/2), U_1 = x, C_k = (N/k) <U_k>_0,
 // U_k = x (U_(k-1) - C_(k-1)), and adj(x) = U_(N-1) - C_(N-1) (up to a sign that cancels in adj / (x adj)).
@@ -19,6 +24,14 @@ Multivector adjugate(const Multivector& x, int n) {
   for (int k = 2; k < big_n; ++k) {
     u = x * (u - Multivector(c));
     c = GiNaC::numeric(big_n, k) * u.scalar();
+    // The recursion's terms grow as the k-th power of x's: a general motor with dilation blades (12 blades
+    // in CGA) would take minutes to print and compile. Past the limit the caller is told how to say that x
+    // is a versor, whose inverse is ~x / (x ~x).
+    if (expand_cost::terms(u) > kMaxAdjugateTerms)
+      throw NotInvertible{"the general inverse of this multivector (with blades " + expand_builtins::blade_list(x) +
+                          ") is over cgagen's work budget (its adjugate passes " + std::to_string(kMaxAdjugateTerms) +
+                          " terms); if it is a versor for the inputs passed (d*~d a scalar), name it and say so "
+                          "with '#pragma versor NAME'"};
   }
   return u - Multivector(c);
 }
@@ -62,6 +75,13 @@ Inverse inverse(const Multivector& x, const std::function<bool(const GiNaC::ex&)
   if (det.is_zero())
     throw NotInvertible{"cannot divide by this multivector: it has no inverse (its determinant d*adj(d) is 0)"};
   return {adj, det.scalar()};
+}
+
+Inverse versor_inverse(const Multivector& x, const std::function<bool(const GiNaC::ex&)>& vanishes) {
+  const Multivector rev = x.reverse();
+  const GiNaC::ex norm = graded_product(Multivector::Graded::Scalar, x, rev).scalar();
+  if (norm.is_zero() || vanishes(norm)) throw NotInvertible{"cannot divide by a null multivector (d*~d = 0)"};
+  return {rev, norm};
 }
 
 }  // namespace cgagen::expand_inverse

@@ -5,7 +5,8 @@
 //   3. any X: the adjugate of the characteristic-polynomial recursion (Shirokov, "On computing the
 //      determinant, other characteristic polynomial coefficients, and inverse in Clifford algebras of
 //      arbitrary dimension", 2021), X^-1 = adj(X) / (X adj(X)), where X adj(X) must come out a scalar.
-// A value whose denominator is identically 0 has no inverse (a zero divisor) and is refused.
+// A value whose denominator is identically 0 has no inverse (a zero divisor) and is refused. So is an adjugate
+// past the work budget (a general 5D even multivector): `#pragma versor NAME` then declares the versor form.
 #pragma once
 
 #include <functional>
@@ -32,5 +33,10 @@ struct NotInvertible {
 // earlier values are inlined?), which decides whether a product is a scalar and whether it is 0. Throws
 // NotInvertible.
 Inverse inverse(const Multivector& x, const std::function<bool(const GiNaC::ex&)>& vanishes);
+
+// The versor form ~x / <x ~x>_0, for a value the script declares a versor (`#pragma versor`, `normalized`):
+// x ~x is then a scalar for every input passed, though not symbolically. Throws NotInvertible when <x ~x>_0
+// is identically 0.
+Inverse versor_inverse(const Multivector& x, const std::function<bool(const GiNaC::ex&)>& vanishes);
 
 }  // namespace cgagen::expand_inverse

@@ -154,9 +154,18 @@ void Pragmas::apply(const Stmt& s, Kernel& kernel, PragmaHost& host) {
     // A promise about inputs (X ~X = 1) for -O2 (opt/levels.cpp checks the names once all inputs are known).
     if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma normalized' needs at least one input name");
     for (size_t i = 1; i < s.words.size(); ++i) kernel.normalized.push_back({s.words[i], word_loc(s, i)});
+  } else if (kind == "versor") {
+    // A promise that a name's value is a versor for every input passed: division by it takes ~x / <x ~x>_0.
+    if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma versor' needs at least one name");
+    // (Whether each name gets a value is checked once the script is expanded: the pragma may come first.)
+    for (size_t i = 1; i < s.words.size(); ++i) {
+      if (host.is_basis_name(s.words[i]))
+        throw CompileError(word_loc(s, i), "'#pragma versor': '" + s.words[i] + "' is a basis vector");
+      versors_.push_back({s.words[i], word_loc(s, i)});
+    }
   } else {
     throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
-                                       "normalized, onlyEvaluate, in2out, normalize, segments or triangles)");
+                                       "normalized, versor, onlyEvaluate, in2out, normalize, segments or triangles)");
   }
 }
 

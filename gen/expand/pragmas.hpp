@@ -1,4 +1,4 @@
-// The pragmas of a script (docs/language.md, "Pragmas"): `output`, `input`, `range`, `uniform`, `normalized`,
+// The pragmas of a script (docs/language.md, "Pragmas"): `output`, `input`, `range`, `uniform`, `normalized`, `versor`,
 // `onlyEvaluate`, `in2out`, `normalize`, Gaalop's drawing hints, and clear errors for those cgagen does not
 // support. Each is checked where it stands; what it asks of the kernel is recorded in the Kernel (inputs,
 // ranges, uniforms, normalized names) or here, for the expander to apply (outputs' blades, values kept,
@@ -43,6 +43,8 @@ class Pragmas {
   bool normalize_outputs() const { return normalize_outputs_; }
   // `#pragma onlyEvaluate NAME`: NAME's values stay in the kernel.
   bool only_evaluate(const std::string& name) const;
+  // `#pragma versor NAME...`: the names whose values the script promises are versors (x ~x a scalar).
+  const std::vector<UniformName>& versors() const { return versors_; }
   // The `#pragma output` of an output, or null.
   const OutputPragma* output(const std::string& name) const;
 
@@ -62,6 +64,7 @@ class Pragmas {
   std::set<std::string> only_evaluate_;
   std::optional<In2Out> in2out_;
   bool normalize_outputs_ = false;
+  std::vector<UniformName> versors_;
 };
 
 }  // namespace cgagen::expand_pragmas

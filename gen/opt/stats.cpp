@@ -25,40 +25,43 @@ ProgramStats program_stats(const Program& p) {
   st.temp_count = p.temps.size();
   std::map<ex, size_t, ex_is_less> index;
   std::vector<OpCounts> temp_ops;
-  std::vector<ExSet> deps;  // each temp's transitive temp dependencies
   for (size_t i = 0; i < p.temps.size(); ++i) {
     index[p.temps[i].sym] = i;
     temp_ops.push_back(count_ops(p.temps[i].value, keys));
     st.temps += temp_ops.back();
   }
-  auto temp_deps = [&](const ex& e) {
-    std::set<size_t> out, todo;
+  // The temporaries an expression reads directly; each temporary's once, so that the closure per output
+  // below is a walk over indices (a chain of thousands of temporaries read by as many outputs).
+  auto direct = [&](const ex& e) {
     ExSet syms;
     collect_symbols(e, syms);
+    std::vector<size_t> out;
     for (const auto& s : syms)
-      if (index.count(s)) todo.insert(index[s]);
-    while (!todo.empty()) {
-      size_t i = *todo.begin();
-      todo.erase(todo.begin());
-      if (!out.insert(i).second) continue;
-      ExSet s2;
-      collect_symbols(p.temps[i].value, s2);
-      for (const auto& s : s2)
-        if (index.count(s) && !out.count(index[s])) todo.insert(index[s]);
-    }
+      if (auto it = index.find(s); it != index.end()) out.push_back(it->second);
     return out;
   };
+  std::vector<std::vector<size_t>> reads(p.temps.size());
+  for (size_t i = 0; i < p.temps.size(); ++i) reads[i] = direct(p.temps[i].value);
+  std::vector<size_t> seen(p.temps.size(), 0);  // the output (1-based) that last visited each temporary
   st.total = st.temps;
   for (const auto& o : p.outputs) {
     OpCounts own;
-    std::set<size_t> used;
+    const size_t mark = st.outputs.size() + 1;
+    std::vector<size_t> todo;
     for (const auto& slot : o.slots) {
       own += count_ops(slot.value, keys);
-      auto d = temp_deps(slot.value);
-      used.insert(d.begin(), d.end());
+      for (size_t i : direct(slot.value)) todo.push_back(i);
     }
     st.total += own;
-    for (size_t i : used) own += temp_ops[i];
+    while (!todo.empty()) {
+      const size_t i = todo.back();
+      todo.pop_back();
+      if (seen[i] == mark) continue;
+      seen[i] = mark;
+      own += temp_ops[i];
+      for (size_t j : reads[i])
+        if (seen[j] != mark) todo.push_back(j);
+    }
     st.outputs.push_back({o.name, own});
   }
   return st;

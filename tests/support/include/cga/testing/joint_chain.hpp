@@ -6,6 +6,11 @@
 // through its own point. Its rotor is the 4th-order Taylor series of exp of half its angle times its line;
 // the line is carried along by V(k-1) = R(k-1) ... R1, the product of the joints before it, which each
 // joint's statement extends by one factor. Outputs: every rotor R<k> and the end point E.
+//
+// explicit_chain_script(n) is the same chain as ga-benchmark writes its arm: each joint's carrier is the
+// explicit product of all earlier rotors, C<k> = R<k-1>*...*R2*R1, written out again in every statement
+// (and the end point's sandwich writes it out inline), so nothing is shared unless the generator sees the
+// products (gen/expand/words.hpp). The joints, angles and outputs are those of joint_chain_script(n).
 #pragma once
 
 #include <string>
@@ -33,6 +38,34 @@ inline std::string joint_chain_script(int joints) {
   }
   const std::string V = "V" + num(joints);
   s += "?E = " + V + " * up3(" + num(150 * joints + 100) + ", 0, " + num(200 * joints) + ") * ~" + V + ";\n";
+  return s;
+}
+
+inline std::string explicit_chain_script(int joints) {
+  auto num = [](int v) { return std::to_string(v); };
+  auto carrier = [&](int k) {  // R<k-1>*...*R1
+    std::string c;
+    for (int j = k - 1; j >= 1; --j) c += (j == k - 1 ? "" : "*") + std::string("R") + num(j);
+    return c;
+  };
+  std::string s =
+      "// " + num(joints) + "-joint chain with explicit products (cga/testing/joint_chain.hpp)\n"
+      "expp = {\n  x = _P(1);\n  1 + x + x*x/2 + x*x*x/6 + x*x*x*x/24\n}\n"
+      "up3 = {\n  _P(1)*e1 + _P(2)*e2 + _P(3)*e3 + 0.5*(_P(1)*_P(1) + _P(2)*_P(2) + _P(3)*_P(3))*einf + e0\n}\n";
+  for (int k = 1; k <= joints; ++k) {
+    const std::string K = num(k), x = num(150 * k), z = num(200 * k);
+    const std::string other = k % 2 ? "up3(" + x + ", 0, " + num(200 * k + 1) + ")" : "up3(" + x + ", 1, " + z + ")";
+    s += "L" + K + "init = *(up3(" + x + ", 0, " + z + ") ^ " + other + " ^ einf);\n";
+    if (k == 1) {
+      s += "L1 = L1init;\n";
+    } else {
+      s += "C" + K + " = " + carrier(k) + ";\n";
+      s += "L" + K + " = C" + K + " * L" + K + "init * ~C" + K + ";\n";
+    }
+    s += "?R" + K + " = expp(ang" + K + "*L" + K + "/2);\n";
+  }
+  const std::string all = "(" + carrier(joints + 1) + ")";
+  s += "?E = " + all + " * up3(" + num(150 * joints + 100) + ", 0, " + num(200 * joints) + ") * ~" + all + ";\n";
   return s;
 }
 
