@@ -241,23 +241,26 @@ std::string emit(const opt::Program& program, const EmitOptions& options) {
   return emit(std::vector<const opt::Program*>{&program}, options);
 }
 
-std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options) {
-  algebra::Using in(programs.empty() ? nullptr : programs.front()->algebra);
-  const Target target = options.target;
-  const Syntax& sx = target.syntax();
-  const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +
-                          sx.name;
-  const std::string file_tmpl_path = dir + "/file" + sx.extension + ".in";
-  const std::string fn_tmpl_path = dir + "/function.in";
-  const std::string file_tmpl = read_file(file_tmpl_path);
-  const std::string fn_tmpl = sx.kind == Syntax::Kind::Code ? read_file(fn_tmpl_path) : "";
+namespace {
 
-  if (!sx.glsl_pack && (!options.pack.empty() || !options.return_output.empty()))
-    throw std::runtime_error("--pack and --return apply to the glsl target only");
+// What every program of one file shares: the target's syntax, the options, the templates and the file's
+// spelt names.
+struct FileContext {
+  Target target;
+  const Syntax& sx;
+  const EmitOptions& options;
+  std::string file_tmpl_path, fn_tmpl_path, file_tmpl, fn_tmpl;
+  std::map<std::string, std::string> spelt;
 
+  // A name of the file as spelt for the target (emit/names.hpp).
+  const std::string& id(const std::string& name) const { return spelt.at(name); }
+  // The function's name (with a precision's suffix); LaTeX prints it as text.
+  std::string fn_name(const std::string& name, const std::string& suffix = "") const {
+    return sx.ident ? as_text(sx, name + suffix) : id(name) + suffix;
+  }
   // Packing per parameter. Block and buffer are the body's way of reading a staged kernel's prepared values;
   // the prepare function's output of the same name stays an array (output = true).
-  auto pack_of = [&](const std::string& name, size_t size, bool output = false) {
+  Pack pack_of(const std::string& name, size_t size, bool output = false) const {
     auto it = options.pack.find(name);
     Pack p = it == options.pack.end() ? Pack::Array : it->second;
     const Packing& pk = packing(p);
@@ -271,7 +274,30 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     if (size > pk.capacity)
       throw std::runtime_error("cannot pack '" + name + "' (" + std::to_string(size) + " blades) as " + pk.name);
     return p;
-  };
+  }
+  // The packing of a parameter or output: --pack's for GLSL, arrays elsewhere.
+  Pack param_pack(const std::string& name, size_t size, bool output = false) const {
+    return sx.glsl_pack ? pack_of(name, size, output) : Pack::Array;
+  }
+};
+
+// The templates of the target (the function template only for code targets).
+FileContext load_file_context(const EmitOptions& options) {
+  const Target target = options.target;
+  const Syntax& sx = target.syntax();
+  const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +
+                          sx.name;
+  FileContext f{target, sx, options, dir + "/file" + sx.extension + ".in", dir + "/function.in", "", "", {}};
+  f.file_tmpl = read_file(f.file_tmpl_path);
+  f.fn_tmpl = sx.kind == Syntax::Kind::Code ? read_file(f.fn_tmpl_path) : "";
+  return f;
+}
+
+// --pack and --return must name inputs or outputs of the programs, and apply to GLSL only.
+void check_pack_and_return(const FileContext& f, const std::vector<const opt::Program*>& programs) {
+  const EmitOptions& options = f.options;
+  if (!f.sx.glsl_pack && (!options.pack.empty() || !options.return_output.empty()))
+    throw std::runtime_error("--pack and --return apply to the glsl target only");
   for (const auto& [name, p] : options.pack) {
     bool found = false;
     for (const opt::Program* pr : programs) {
@@ -279,7 +305,7 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       for (const auto& o : pr->outputs) found |= o.name == name;
     }
     if (!found) throw std::runtime_error("--pack names '" + name + "', which is neither an input nor an output");
-    pack_of(name, 0);  // block / buffer on anything but the prepared values is an error
+    f.pack_of(name, 0);  // block / buffer on anything but the prepared values is an error
   }
   if (!options.return_output.empty()) {
     bool found = false;
@@ -287,9 +313,11 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
       for (const auto& o : pr->outputs) found |= o.name == options.return_output;
     if (!found) throw std::runtime_error("--return names '" + options.return_output + "', which is not an output");
   }
+}
 
-  // Every name of the file spelt once (emit/names.hpp), so that a prepare function and its body agree and a
-  // changed name cannot meet another.
+// Every name of the file spelt once (emit/names.hpp), so that a prepare function and its body agree and a
+// changed name cannot meet another.
+std::map<std::string, std::string> spell_file_names(const Syntax& sx, const std::vector<const opt::Program*>& programs) {
   std::set<std::string> raw_names;
   for (const opt::Program* pr : programs) {
     raw_names.insert(pr->name);
@@ -301,204 +329,276 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
     for (const auto& o : pr->outputs) raw_names.insert(o.name);
     for (const auto& t : pr->temps) raw_names.insert(t.name);
   }
-  const std::map<std::string, std::string> spelt = spellings(sx, raw_names);
-  auto id = [&](const std::string& name) { return spelt.at(name); };
-  // The function's name (with a precision's suffix); LaTeX prints it as text.
-  auto fn_name = [&](const std::string& name, const std::string& suffix = "") {
-    return sx.ident ? as_text(sx, name + suffix) : id(name) + suffix;
-  };
+  return spellings(sx, raw_names);
+}
 
-  // One program's functions (one per precision), blade lists and input comments.
-  struct Piece {
-    std::string functions, blade_lists, inputs_doc;
-  };
-  auto piece = [&](const opt::Program& program) {
+// One program within its file: labels, the code names of its symbols and how its elements are addressed.
+class ProgramEmitter {
+ public:
+  ProgramEmitter(const FileContext& f, const opt::Program& program)
+      : f_(f), sx_(f.sx), program_(program), canon_(opt::symbol_names(program)), keys_(canon_),
+        prepared_store_(spell(sx_, f.id(program.name) + "_prepared")) {
+    for (const auto& in : program.inputs)
+      if (in.name == "prepared") prepared_k_ = in.symbols.size();
+    name_symbols();
+  }
+  ProgramEmitter(const ProgramEmitter&) = delete;  // keys_ refers to canon_
+  ProgramEmitter& operator=(const ProgramEmitter&) = delete;
+
+  // The program's functions (one per precision, or the dataflow graph), blade lists and input comments.
+  std::string functions() const {
+    if (sx_.kind == Syntax::Kind::Dataflow)
+      return dataflow(program_, code_, [this](const std::string& n, size_t k, algebra::BladeIndex b) {
+        return label(n, k, b);
+      });
+    std::string out;
+    for (size_t i = 0; i < sx_.precisions.size(); ++i) out += (i ? "\n" : "") + function_text(sx_.precisions[i]);
+    return out;
+  }
+  std::string blade_lists() const;
+  std::string inputs_doc() const;
+
+ private:
   // The label of element k of input or output NAME: its blade, or the program's label for it (staging).
-  auto label = [&](const std::string& name, size_t k, algebra::BladeIndex blade) {
-    auto it = program.labels.find(name);
-    return it != program.labels.end() && k < it->second.size() ? it->second[k] : algebra::blade_name(blade);
-  };
-  opt::SymbolNames canon = opt::symbol_names(program);
-  CanonicalKeys keys(canon);
-
-  // The block / buffer that holds the prepared values (Pack::Block, Pack::Buffer), named after the body.
-  const std::string prepared_store = spell(sx, id(program.name) + "_prepared");
-  size_t prepared_k = 0;
-  for (const auto& in : program.inputs)
-    if (in.name == "prepared") prepared_k = in.symbols.size();
+  std::string label(const std::string& name, size_t k, algebra::BladeIndex blade) const {
+    auto it = program_.labels.find(name);
+    return it != program_.labels.end() && k < it->second.size() ? it->second[k] : algebra::blade_name(blade);
+  }
   // Blade k of a parameter or output, in the target's syntax (GLSL packing included).
-  auto pack_fields = [&](const std::string& name, size_t k) {
+  std::map<std::string, std::string> pack_fields(const std::string& name, size_t k) const {
     return std::map<std::string, std::string>{
-        {"name", id(name)},          {"k", std::to_string(k)},
+        {"name", f_.id(name)},          {"k", std::to_string(k)},
         {"row", std::to_string(k / 4)}, {"col", std::to_string(k % 4)},
-        {"store", prepared_store},   {"K", std::to_string(prepared_k)},
-        {"rows", std::to_string((prepared_k + 3) / 4)}, {"last", std::to_string(prepared_k ? prepared_k - 1 : 0)}};
-  };
-  auto elem = [&](const std::string& name, size_t k, Pack p, bool output = false) {
+        {"store", prepared_store_},     {"K", std::to_string(prepared_k_)},
+        {"rows", std::to_string((prepared_k_ + 3) / 4)}, {"last", std::to_string(prepared_k_ ? prepared_k_ - 1 : 0)}};
+  }
+  std::string elem(const std::string& name, size_t k, Pack p, bool output = false) const {
     const Packing& pk = packing(p);
     if (*pk.element) return fill_pattern(pk.element, pack_fields(name, k));
-    const std::string& pattern = output && !sx.out_element.empty() ? sx.out_element : sx.element;
-    return fill_pattern(pattern, {{"name", id(name)}, {"k", std::to_string(k)}});
-  };
-
-  // Code names of the symbols.
-  opt::SymbolNames code;
-  for (const auto& in : program.inputs) {
-    if (!in.is_multivector) {
-      code[in.symbols.at(0)] = id(in.name);
-      continue;
-    }
-    Pack p = sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array;
-    for (size_t k = 0; k < in.symbols.size(); ++k)
-      code[in.symbols[k]] = sx.load.empty() ? elem(in.name, k, p) : id(load_name(in, k));
+    const std::string& pattern = output && !sx_.out_element.empty() ? sx_.out_element : sx_.element;
+    return fill_pattern(pattern, {{"name", f_.id(name)}, {"k", std::to_string(k)}});
   }
-  for (const auto& t : program.temps) code[t.sym] = id(t.name);
-
-  auto function_text = [&](const Precision& prec) {
-    const std::string& T = prec.type;
-    Printer pr(target, prec, code, keys);
-    std::string params;
-    auto add_param = [&](const std::string& s) { params += (params.empty() ? "" : ", ") + s; };
-    auto line = [&](const std::string& s) { return sx.indent + s + "\n"; };
-    std::string splat;
-    for (const auto& in : program.inputs) {
-      std::map<std::string, std::string> v{
-          {"T", T}, {"name", id(in.name)}, {"n", std::to_string(in.symbols.size())}};
-      splat += (splat.empty() ? "" : ", ") + fill_pattern(in.is_multivector ? sx.splat_mv : sx.splat_scalar, v);
+  // Code names of the symbols: inputs as parameters, elements or loaded locals; temporaries by their names.
+  void name_symbols() {
+    for (const auto& in : program_.inputs) {
       if (!in.is_multivector) {
-        add_param(fill_pattern(sx.scalar_param, v));
+        code_[in.symbols.at(0)] = f_.id(in.name);
         continue;
       }
-      const Packing& pk = packing(sx.glsl_pack ? pack_of(in.name, in.symbols.size()) : Pack::Array);
-      switch (pk.param) {
-        case Packing::Param::None: break;  // read from the uniform block
-        case Packing::Param::Index: add_param("int prepared_index"); break;
-        case Packing::Param::Array: add_param(fill_pattern(sx.mv_param, v)); break;
-        case Packing::Param::Typed: add_param(std::string("in ") + pk.name + " " + id(in.name)); break;
-      }
+      Pack p = f_.param_pack(in.name, in.symbols.size());
+      for (size_t k = 0; k < in.symbols.size(); ++k)
+        code_[in.symbols[k]] = sx_.load.empty() ? elem(in.name, k, p) : f_.id(load_name(in, k));
     }
-    std::string return_type = "void";
-    std::string body;
-    if (!sx.prologue.empty()) body += line(fill_pattern(sx.prologue, {{"splat", splat}}));
-    // The symbols the body reads, once: for the unused inputs and the loads below.
-    const auto read = sx.unused.empty() && sx.load.empty() ? std::set<GiNaC::ex, GiNaC::ex_is_less>{}
-                                                            : read_symbols(program);
-    if (!sx.unused.empty())
-      for (const auto& in : program.inputs)
-        if (std::none_of(in.symbols.begin(), in.symbols.end(), [&](const GiNaC::ex& x) { return read.count(x) > 0; }))
-          body += line(fill_pattern(sx.unused, {{"name", id(in.name)}}));
-    std::string ret_line;
-    std::string items;
-    for (const auto& o : program.outputs) {
-      const size_t n = o.slots.size();
-      const Packing& pk = packing(sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array);
-      const bool typed = pk.param == Packing::Param::Typed;
-      std::map<std::string, std::string> v{{"T", T}, {"name", id(o.name)}, {"n", std::to_string(n)}};
-      if (sx.out_param.empty()) {
-        body += line(fill_pattern(sx.out_decl, v));
-        items += (items.empty() ? "" : ", ") + fill_pattern(sx.return_item, v);
-      } else if (sx.glsl_pack && o.name == options.return_output) {
-        std::string decl = typed ? std::string(pk.name) + " " + id(o.name) : T + " " + id(o.name) + "[" + std::to_string(n) + "]";
-        return_type = typed ? std::string(pk.name) : "float[" + std::to_string(n) + "]";
-        body += line(decl + ";");
-        ret_line = line("return " + id(o.name) + ";");
-      } else if (typed) {
-        add_param(std::string("out ") + pk.name + " " + id(o.name));
-      } else {
-        add_param(fill_pattern(sx.out_param, v));
-      }
-    }
-    if (!items.empty()) ret_line = line(fill_pattern(sx.return_stmt, {{"items", items}}));
-    if (!sx.load.empty())
-      for (const auto& in : program.inputs)
-        if (in.is_multivector)
-          for (size_t k = 0; k < in.symbols.size(); ++k)
-            if (read.count(in.symbols[k]))
-              body += line(fill_pattern(sx.load, {{"T", T}, {"name", id(load_name(in, k))},
-                                                  {"elem", elem(in.name, k, Pack::Array)}}));
-    for (const auto& t : program.temps)
-      body += line(fill_pattern(sx.temp, {{"T", T}, {"name", id(t.name)}, {"value", pr.print(t.value)}}));
-    for (const auto& o : program.outputs) {
-      const size_t n = o.slots.size();
-      Pack p = sx.glsl_pack ? pack_of(o.name, n, true) : Pack::Array;
-      for (size_t k = 0; k < n; ++k)
-        body += line(fill_pattern(sx.assign, {{"elem", elem(o.name, k, p, true)},
-                                              {"value", pr.print(o.slots[k].value)},
-                                              {"blade", as_text(sx, label(o.name, k, o.slots[k].blade))},
-                                              {"c", sx.comment}}));
-      for (size_t k = n; packing(p).pads && k < packing(p).capacity; ++k)
-        body += line(elem(o.name, k, p, true) + " = 0.0;  // (padding)");
-    }
-    body += ret_line;
-    if (!body.empty() && body.back() == '\n') body.pop_back();
-    // The declaration of the block / buffer the body reads its prepared values from.
-    std::string store;
-    if (sx.glsl_pack && prepared_k) {
-      store = fill_pattern(packing(pack_of("prepared", prepared_k)).declaration, pack_fields("prepared", 0));
-    }
-    return prec.before + store + fill_template(fn_tmpl,
-                                       {{"return_type", return_type},
-                                        {"name", fn_name(program.name, prec.fn_suffix)},
-                                        {"params", params},
-                                        {"body", indent(body)},
-                                        {"type", T},
-                                        {"qualifiers", sx.qualifiers}},
-                                       fn_tmpl_path) +
-           prec.after;
-  };
-
-  std::string functions;
-  if (sx.kind == Syntax::Kind::Dataflow) {
-    functions = dataflow(program, code, label);
-  } else {
-    for (size_t i = 0; i < sx.precisions.size(); ++i)
-      functions += (i ? "\n" : "") + function_text(sx.precisions[i]);
+    for (const auto& t : program_.temps) code_[t.sym] = f_.id(t.name);
   }
 
-  std::string blade_lists;
-  for (const auto& o : program.outputs) {
+  // One function's text at one precision, and the parts it is made of.
+  struct Signature {
+    std::string params, return_type = "void", declarations, ret_line;
+  };
+  std::string line(const std::string& s) const { return sx_.indent + s + "\n"; }
+  std::string input_params(const std::string& T, std::string& splat) const;
+  Signature outputs_signature(const std::string& T, std::string params) const;
+  std::string unused_inputs(const std::set<GiNaC::ex, GiNaC::ex_is_less>& read) const;
+  std::string loads(const std::string& T, const std::set<GiNaC::ex, GiNaC::ex_is_less>& read) const;
+  std::string assignments(Printer& pr, const std::string& T) const;
+  std::string function_text(const Precision& prec) const;
+
+  const FileContext& f_;
+  const Syntax& sx_;
+  const opt::Program& program_;
+  opt::SymbolNames canon_;
+  mutable CanonicalKeys keys_;  // its memo fills as the functions are printed
+  // The block / buffer that holds the prepared values (Pack::Block, Pack::Buffer), named after the body.
+  std::string prepared_store_;
+  size_t prepared_k_ = 0;
+  opt::SymbolNames code_;
+};
+
+void add_to_list(std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; }
+
+// The input parameters (comma-separated) and, in `splat`, the inputs as a prologue spells them.
+std::string ProgramEmitter::input_params(const std::string& T, std::string& splat) const {
+  std::string params;
+  for (const auto& in : program_.inputs) {
+    std::map<std::string, std::string> v{{"T", T}, {"name", f_.id(in.name)}, {"n", std::to_string(in.symbols.size())}};
+    add_to_list(splat, fill_pattern(in.is_multivector ? sx_.splat_mv : sx_.splat_scalar, v));
+    if (!in.is_multivector) {
+      add_to_list(params, fill_pattern(sx_.scalar_param, v));
+      continue;
+    }
+    const Packing& pk = packing(f_.param_pack(in.name, in.symbols.size()));
+    switch (pk.param) {
+      case Packing::Param::None: break;  // read from the uniform block
+      case Packing::Param::Index: add_to_list(params, "int prepared_index"); break;
+      case Packing::Param::Array: add_to_list(params, fill_pattern(sx_.mv_param, v)); break;
+      case Packing::Param::Typed: add_to_list(params, std::string("in ") + pk.name + " " + f_.id(in.name)); break;
+    }
+  }
+  return params;
+}
+
+// How the outputs leave the function: out parameters (appended to params), locals returned as a tuple, or
+// GLSL's --return output as the return value.
+ProgramEmitter::Signature ProgramEmitter::outputs_signature(const std::string& T, std::string params) const {
+  Signature sig;
+  std::string items;
+  for (const auto& o : program_.outputs) {
+    const size_t n = o.slots.size();
+    const Packing& pk = packing(f_.param_pack(o.name, n, true));
+    const bool typed = pk.param == Packing::Param::Typed;
+    std::map<std::string, std::string> v{{"T", T}, {"name", f_.id(o.name)}, {"n", std::to_string(n)}};
+    if (sx_.out_param.empty()) {
+      sig.declarations += line(fill_pattern(sx_.out_decl, v));
+      add_to_list(items, fill_pattern(sx_.return_item, v));
+    } else if (sx_.glsl_pack && o.name == f_.options.return_output) {
+      std::string decl = typed ? std::string(pk.name) + " " + f_.id(o.name) : T + " " + f_.id(o.name) + "[" + std::to_string(n) + "]";
+      sig.return_type = typed ? std::string(pk.name) : "float[" + std::to_string(n) + "]";
+      sig.declarations += line(decl + ";");
+      sig.ret_line = line("return " + f_.id(o.name) + ";");
+    } else if (typed) {
+      add_to_list(params, std::string("out ") + pk.name + " " + f_.id(o.name));
+    } else {
+      add_to_list(params, fill_pattern(sx_.out_param, v));
+    }
+  }
+  if (!items.empty()) sig.ret_line = line(fill_pattern(sx_.return_stmt, {{"items", items}}));
+  sig.params = std::move(params);
+  return sig;
+}
+
+// The target's mark for each input the body never reads (Syntax::unused).
+std::string ProgramEmitter::unused_inputs(const std::set<GiNaC::ex, GiNaC::ex_is_less>& read) const {
+  std::string out;
+  if (!sx_.unused.empty())
+    for (const auto& in : program_.inputs)
+      if (std::none_of(in.symbols.begin(), in.symbols.end(), [&](const GiNaC::ex& x) { return read.count(x) > 0; }))
+        out += line(fill_pattern(sx_.unused, {{"name", f_.id(in.name)}}));
+  return out;
+}
+
+// The multivector input elements the body reads, loaded into locals (Syntax::load).
+std::string ProgramEmitter::loads(const std::string& T, const std::set<GiNaC::ex, GiNaC::ex_is_less>& read) const {
+  std::string out;
+  if (!sx_.load.empty())
+    for (const auto& in : program_.inputs)
+      if (in.is_multivector)
+        for (size_t k = 0; k < in.symbols.size(); ++k)
+          if (read.count(in.symbols[k]))
+            out += line(fill_pattern(sx_.load, {{"T", T}, {"name", f_.id(load_name(in, k))},
+                                                {"elem", elem(in.name, k, Pack::Array)}}));
+  return out;
+}
+
+// The temporaries, then every output element (with GLSL's padding of packed outputs).
+std::string ProgramEmitter::assignments(Printer& pr, const std::string& T) const {
+  std::string out;
+  for (const auto& t : program_.temps)
+    out += line(fill_pattern(sx_.temp, {{"T", T}, {"name", f_.id(t.name)}, {"value", pr.print(t.value)}}));
+  for (const auto& o : program_.outputs) {
+    const size_t n = o.slots.size();
+    Pack p = f_.param_pack(o.name, n, true);
+    for (size_t k = 0; k < n; ++k)
+      out += line(fill_pattern(sx_.assign, {{"elem", elem(o.name, k, p, true)},
+                                            {"value", pr.print(o.slots[k].value)},
+                                            {"blade", as_text(sx_, label(o.name, k, o.slots[k].blade))},
+                                            {"c", sx_.comment}}));
+    for (size_t k = n; packing(p).pads && k < packing(p).capacity; ++k)
+      out += line(elem(o.name, k, p, true) + " = 0.0;  // (padding)");
+  }
+  return out;
+}
+
+std::string ProgramEmitter::function_text(const Precision& prec) const {
+  const std::string& T = prec.type;
+  Printer pr(f_.target, prec, code_, keys_);
+  std::string splat;
+  const Signature sig = outputs_signature(T, input_params(T, splat));
+  std::string body;
+  if (!sx_.prologue.empty()) body += line(fill_pattern(sx_.prologue, {{"splat", splat}}));
+  // The symbols the body reads, once: for the unused inputs and the loads.
+  const auto read = sx_.unused.empty() && sx_.load.empty() ? std::set<GiNaC::ex, GiNaC::ex_is_less>{}
+                                                            : read_symbols(program_);
+  body += unused_inputs(read);
+  body += sig.declarations;
+  body += loads(T, read);
+  body += assignments(pr, T);
+  body += sig.ret_line;
+  if (!body.empty() && body.back() == '\n') body.pop_back();
+  // The declaration of the block / buffer the body reads its prepared values from.
+  std::string store;
+  if (sx_.glsl_pack && prepared_k_)
+    store = fill_pattern(packing(f_.pack_of("prepared", prepared_k_)).declaration, pack_fields("prepared", 0));
+  return prec.before + store + fill_template(f_.fn_tmpl,
+                                             {{"return_type", sig.return_type},
+                                              {"name", f_.fn_name(program_.name, prec.fn_suffix)},
+                                              {"params", sig.params},
+                                              {"body", indent(body)},
+                                              {"type", T},
+                                              {"qualifiers", sx_.qualifiers}},
+                                             f_.fn_tmpl_path) +
+         prec.after;
+}
+
+// One NAME_OUT_blades list per output, from the spelt names: distinct outputs give distinct lists.
+std::string ProgramEmitter::blade_lists() const {
+  std::string out;
+  for (const auto& o : program_.outputs) {
     std::string list;
     for (size_t k = 0; k < o.slots.size(); ++k)
-      list += std::string(k ? ", " : "") + sx.blade_quote + as_text(sx, label(o.name, k, o.slots[k].blade)) +
-              sx.blade_quote;
-    // NAME_OUT_blades from the spelt names: distinct outputs give distinct lists.
-    blade_lists += fill_pattern(sx.blade_list, {{"fn", fn_name(program.name)},
-                                                {"out", id(o.name)},
-                                                {"n", std::to_string(o.slots.size())},
-                                                {"list", list},
-                                                {"c", sx.comment}}) +
-                   "\n";
+      list += std::string(k ? ", " : "") + sx_.blade_quote + as_text(sx_, label(o.name, k, o.slots[k].blade)) +
+              sx_.blade_quote;
+    out += fill_pattern(sx_.blade_list, {{"fn", f_.fn_name(program_.name)},
+                                         {"out", f_.id(o.name)},
+                                         {"n", std::to_string(o.slots.size())},
+                                         {"list", list},
+                                         {"c", sx_.comment}}) +
+           "\n";
   }
-  std::string inputs_doc;
-  for (const auto& in : program.inputs) {
-    inputs_doc += sx.comment + " input " + in.name;
+  return out;
+}
+
+// One comment line per input, with a multivector's blades.
+std::string ProgramEmitter::inputs_doc() const {
+  std::string out;
+  for (const auto& in : program_.inputs) {
+    out += sx_.comment + " input " + in.name;
     if (in.is_multivector) {
-      inputs_doc += ":";
-      for (size_t k = 0; k < in.blades.size(); ++k) inputs_doc += " " + label(in.name, k, in.blades[k]);
+      out += ":";
+      for (size_t k = 0; k < in.blades.size(); ++k) out += " " + label(in.name, k, in.blades[k]);
     }
-    inputs_doc += "\n";
+    out += "\n";
   }
-  return Piece{functions, blade_lists, inputs_doc};
-  };
+  return out;
+}
+
+}  // namespace
+
+std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options) {
+  algebra::Using in(programs.empty() ? nullptr : programs.front()->algebra);
+  FileContext f = load_file_context(options);
+  check_pack_and_return(f, programs);
+  f.spelt = spell_file_names(f.sx, programs);
+
   std::string functions, blade_lists, inputs_doc;
   for (size_t i = 0; i < programs.size(); ++i) {
-    Piece pc = piece(*programs[i]);
-    functions += (i ? "\n" : "") + pc.functions;
-    blade_lists += pc.blade_lists;
-    inputs_doc += pc.inputs_doc;
+    const ProgramEmitter pe(f, *programs[i]);
+    functions += (i ? "\n" : "") + pe.functions();
+    blade_lists += pe.blade_lists();
+    inputs_doc += pe.inputs_doc();
   }
   // The file is named after the last program (a staged kernel's body: the function a user calls per element).
   const opt::Program& program = *programs.back();
   if (!blade_lists.empty() && blade_lists.back() == '\n') blade_lists.pop_back();
   if (!inputs_doc.empty() && inputs_doc.back() == '\n') inputs_doc.pop_back();
-  return fill_template(file_tmpl,
-                       {{"script", as_text(sx, options.script_name)},
+  return fill_template(f.file_tmpl,
+                       {{"script", as_text(f.sx, options.script_name)},
                         {"level", std::to_string(static_cast<int>(program.level))},
-                        {"name", fn_name(program.name)},
+                        {"name", f.fn_name(program.name)},
                         {"inputs", inputs_doc},
                         {"blade_lists", blade_lists},
                         {"functions", functions}},
-                       file_tmpl_path);
+                       f.file_tmpl_path);
 }
 
 }  // namespace cgagen::emit
