@@ -57,12 +57,20 @@ std::string temp_file(const std::string& name, const std::string& bytes) {
 }
 
 bool finite(float x) { return std::isfinite(x); }
+bool finite_transform(const Transform& x) {
+  return finite(x.translation.x) && finite(x.translation.y) && finite(x.translation.z) && finite(x.rotation.w) &&
+         finite(x.rotation.x) && finite(x.rotation.y) && finite(x.rotation.z) && finite(x.scale);
+}
 
 // What a loaded character must be safe for: indices inside their arrays, every number finite, weights summing
 // to 1.
 void check_usable(const Character& ch) {
   REQUIRE(ch.skeleton.joint_count() > 0);
-  for (int j = 0; j < ch.skeleton.joint_count(); ++j) REQUIRE(ch.skeleton.parents[j] < j);
+  for (int j = 0; j < ch.skeleton.joint_count(); ++j) {
+    INFO("joint " << j);
+    REQUIRE(ch.skeleton.parents[j] < j);
+    REQUIRE(finite_transform(ch.skeleton.rest_local[j]));
+  }
   for (const SkinnedMesh& m : ch.meshes) {
     INFO("mesh " << m.name);
     const std::size_t nv = m.vertex_count();
@@ -74,6 +82,12 @@ void check_usable(const Character& ch) {
     REQUIRE(m.indices.size() % 3 == 0);
     for (std::uint32_t i : m.indices) REQUIRE(i < nv);
     for (int j : m.joint_remap) REQUIRE((j >= 0 && j < ch.skeleton.joint_count()));
+    for (std::size_t b = 0; b < m.inverse_bind.size(); ++b) {
+      INFO("bone " << b);
+      REQUIRE(finite_transform(m.inverse_bind[b]));
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) REQUIRE(finite(m.inverse_bind_matrix[b][c][r]));
+    }
     for (std::size_t v = 0; v < nv; ++v) {
       INFO("vertex " << v);
       REQUIRE((finite(m.px[v]) && finite(m.py[v]) && finite(m.pz[v])));
@@ -90,7 +104,14 @@ void check_usable(const Character& ch) {
   }
   for (const Clip& c : ch.clips) {
     REQUIRE(c.keys.size() == std::size_t(ch.skeleton.joint_count()));
-    for (const JointKeys& k : c.keys) REQUIRE(k.size() >= 1);
+    for (const JointKeys& k : c.keys) {
+      REQUIRE(k.size() >= 1);
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        INFO("clip " << c.name << " key " << i);
+        REQUIRE(finite(k.times[i]));
+        REQUIRE(finite_transform(k.transforms[i]));
+      }
+    }
   }
 }
 
@@ -281,18 +302,20 @@ TEST_CASE("seeded mutants of each format give a usable character or a LoadError,
 }
 
 // ----------------------------------------------------------------------------- non-finite numbers
-// A two-joint .X character: six vertices, four triangles, normals, weights. `position` is vertex 5's y,
-// `normal` vertex 1's x, `weight` the "bottom" bone's weight of vertex 2 (the file's numbering; Assimp's may
-// differ, the warnings use Assimp's).
+// A two-joint .X character: six vertices, four triangles, normals, weights, a clip moving the top joint.
+// `position` is vertex 5's y, `normal` vertex 1's x, `weight` the "bottom" bone's weight of vertex 2 (the
+// file's numbering; Assimp's may differ, the warnings use Assimp's), `rest_y` the y translation of the bottom
+// joint's rest transform, `key_x` the x of the top joint's second translation key (of three).
 
 namespace {
 
-std::string small_x(const char* position, const char* normal, const char* weight) {
+std::string small_x(const char* position, const char* normal, const char* weight, const char* rest_y = "0.0",
+                    const char* key_x = "0.0") {
   return std::string(R"(xof 0303txt 0032
 Frame Root {
   FrameTransformMatrix { 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0;; }
   Frame bottom {
-    FrameTransformMatrix { 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0;; }
+    FrameTransformMatrix { 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, )") + rest_y + R"(, 0.0, 1.0;; }
     Frame top {
       FrameTransformMatrix { 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 1.0;; }
     }
@@ -305,7 +328,7 @@ Frame Root {
       1.0; 1.0; 0.0;,
       0.0; 1.0; 0.0;,
       0.0; 2.0; 0.0;,
-      1.0; )") + position + R"(; 0.0;;
+      1.0; )" + position + R"(; 0.0;;
       4;
       3; 0, 1, 2;,
       3; 0, 2, 3;,
@@ -340,6 +363,18 @@ Frame Root {
         0.5, 0.5, 1.0, 1.0;
         1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, -1.0, 0.0, 1.0;;
       }
+    }
+  }
+}
+AnimationSet walk {
+  Animation {
+    {top}
+    AnimationKey {
+      2;
+      3;
+      0;3;0.0,1.0,0.0;;,
+      10;3;)" + key_x + R"(,1.0,0.0;;,
+      20;3;0.0,1.0,0.0;;;
     }
   }
 }
@@ -423,4 +458,23 @@ TEST_CASE("an infinite bone weight is named with mesh, vertex and bone, and drop
   CHECK(warnings_with(ch, {"mesh '" + m.name + "', vertex ", "bone 'bottom'", "not finite", "dropped"}).size() == 1);
   CHECK(m.vertex_count() == 6);
   check_usable(ch);
+}
+
+TEST_CASE("a nan rest transform or animation key is named with joint (and clip and key) and replaced or dropped") {
+  SECTION("rest transform") {
+    const Character ch = load_character(temp_file("rest_nan.x", small_x("2.0", "0.0", "0.5", "nan")));
+    INFO(all_warnings(ch));
+    CHECK(warnings_with(ch, {"joint 'bottom': rest transform", "not finite", "identity"}).size() == 1);
+    check_usable(ch);
+  }
+  SECTION("translation key") {
+    const Character ch = load_character(temp_file("key_nan.x", small_x("2.0", "0.0", "0.5", "0.0", "nan")));
+    INFO(all_warnings(ch));
+    CHECK(warnings_with(ch, {"clip 'walk', bone 'top', translation key 1", "not finite", "dropped"}).size() == 1);
+    check_usable(ch);
+    REQUIRE(ch.clips.size() == 1);
+    const int top = ch.skeleton.find("top");
+    REQUIRE(top >= 0);
+    CHECK(ch.clips[0].tracks[top].translations.size() == 2);  // the keys before and after it
+  }
 }

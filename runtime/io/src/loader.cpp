@@ -59,6 +59,16 @@ class Warnings {
   std::map<std::string, int> counts_;
 };
 
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::quat& q) { return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); }
+bool finite(const Transform& x) { return finite(x.translation) && finite(x.rotation) && std::isfinite(x.scale); }
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
 // Nearest uniform scale of a 3D scale: the geometric mean of the absolute values.
 float uniform_scale(const glm::vec3& s) { return std::cbrt(std::abs(s.x * s.y * s.z)); }
 bool is_uniform(const glm::vec3& s) {
@@ -224,7 +234,16 @@ Character import_character(const std::string& path, const LoadOptions& options) 
       ch.skeleton.names.push_back(n->mName.C_Str());
       ch.skeleton.parents.push_back(parent);
       bool exact = true;
-      ch.skeleton.rest_local.push_back(decompose(to_glm(n->mTransformation), exact));
+      const glm::mat4 local = to_glm(n->mTransformation);
+      Transform rest;
+      if (finite(local)) rest = decompose(local, exact);
+      if (!finite(local) || !finite(rest)) {
+        rest = Transform{};
+        exact = true;
+        warn.add("not finite", fmt::format("joint '{}': rest transform has numbers that are not finite; using the "
+                                           "identity", n->mName.C_Str()));
+      }
+      ch.skeleton.rest_local.push_back(rest);
       if (!exact)
         warn.add("rest transform", fmt::format("joint '{}': rest transform is not a similarity (non-uniform "
                                                "scale, shear or mirror); using the nearest uniform scale",
@@ -246,7 +265,15 @@ Character import_character(const std::string& path, const LoadOptions& options) 
     ch.skeleton.names.push_back(name);
     ch.skeleton.parents.push_back(-1);
     bool exact = true;
-    ch.skeleton.rest_local.push_back(decompose(glm::inverse(to_glm(bone->mOffsetMatrix)), exact));
+    const glm::mat4 bind = glm::inverse(to_glm(bone->mOffsetMatrix));
+    Transform rest;
+    if (finite(bind)) rest = decompose(bind, exact);
+    if (!finite(bind) || !finite(rest)) {
+      rest = Transform{};
+      warn.add("not finite", fmt::format("bone '{}': offset matrix is not finite or not invertible; its static "
+                                         "joint is at the origin", name));
+    }
+    ch.skeleton.rest_local.push_back(rest);
     static_joint.push_back(true);
     warn.add("bone without node", fmt::format("bone '{}' has no node in the scene; its vertices stay at their "
                                               "bind pose (a static joint)", name));
@@ -255,6 +282,8 @@ Character import_character(const std::string& path, const LoadOptions& options) 
   if (ch.skeleton.joint_count() > 65535) throw LoadError(fmt::format("{}: too many joints", path));
 
   if (options.meshes) {
+    // The bind pose an offset matrix with non-finite numbers is replaced by: the bone's rest pose.
+    const std::vector<glm::mat4> rest_model = rest_model_matrices(ch.skeleton);
     for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
       const aiMesh* am = scene->mMeshes[mi];
       if (am->mNumBones == 0) {
@@ -312,9 +341,22 @@ Character import_character(const std::string& path, const LoadOptions& options) 
       for (unsigned b = 0; b < am->mNumBones; ++b) {
         const aiBone* bone = am->mBones[b];
         mesh.joint_remap.push_back(ch.skeleton.find(bone->mName.C_Str()));
-        mesh.inverse_bind_matrix.push_back(to_glm(bone->mOffsetMatrix));
+        glm::mat4 offset = to_glm(bone->mOffsetMatrix);
         bool exact = true;
-        mesh.inverse_bind.push_back(decompose(mesh.inverse_bind_matrix.back(), exact));
+        Transform inverse_bind;
+        if (finite(offset)) inverse_bind = decompose(offset, exact);
+        if (!finite(offset) || !finite(inverse_bind)) {
+          const int j = mesh.joint_remap.back();
+          offset = j >= 0 ? glm::inverse(rest_model[j]) : glm::mat4(1.0f);
+          if (!finite(offset)) offset = glm::mat4(1.0f);
+          exact = true;
+          inverse_bind = decompose(offset, exact);
+          warn.add("not finite", fmt::format("mesh '{}', bone '{}': offset matrix has numbers that are not finite; "
+                                             "using the inverse of the bone's rest pose", mesh.name,
+                                             bone->mName.C_Str()));
+        }
+        mesh.inverse_bind_matrix.push_back(offset);
+        mesh.inverse_bind.push_back(inverse_bind);
         if (!exact)
           warn.add("bind matrix", fmt::format("mesh '{}', bone '{}': offset matrix is not a similarity; "
                                               "motors and dual quaternions use the nearest uniform scale",
@@ -404,21 +446,45 @@ Character import_character(const std::string& path, const LoadOptions& options) 
         if (static_joint[j]) continue;  // a bone without node: kept at its bind pose
         animated[j] = true;
         JointTrack& tr = clip.tracks[j];
+        // A key with a time or value that is not finite (or a rotation of length 0) is dropped: the track
+        // interpolates across it, or holds the rest value when no key is left.
+        auto dropped_key = [&](const char* what, unsigned k, const std::string& value, float time) {
+          warn.add("not finite", fmt::format("clip '{}', bone '{}', {} key {}: {} at time {} is not finite; dropped",
+                                             clip.name, na->mNodeName.C_Str(), what, k, value, time));
+        };
         for (unsigned k = 0; k < na->mNumPositionKeys; ++k) {
           const aiVectorKey& key = na->mPositionKeys[k];
-          tr.translations.push_back({float(key.mTime / tps), glm::vec3(key.mValue.x, key.mValue.y, key.mValue.z)});
+          const float t = float(key.mTime / tps);
+          const glm::vec3 v(key.mValue.x, key.mValue.y, key.mValue.z);
+          if (!std::isfinite(t) || !finite(v)) {
+            dropped_key("translation", k, fmt::format("({}, {}, {})", v.x, v.y, v.z), t);
+            continue;
+          }
+          tr.translations.push_back({t, v});
         }
         for (unsigned k = 0; k < na->mNumRotationKeys; ++k) {
           const aiQuatKey& key = na->mRotationKeys[k];
-          glm::quat q = glm::normalize(to_glm(key.mValue));
+          const float t = float(key.mTime / tps);
+          const glm::quat raw = to_glm(key.mValue);
+          const float length = glm::length(raw);
+          glm::quat q = glm::normalize(raw);
+          if (!std::isfinite(t) || !(length > 0.0f) || !std::isfinite(length) || !finite(q)) {
+            dropped_key("rotation", k, fmt::format("({}, {}, {}, {}) (length {})", raw.w, raw.x, raw.y, raw.z, length), t);
+            continue;
+          }
           // q and -q are one rotation; keep neighbours on the same side so lerps take the short way.
           if (!tr.rotations.empty() && glm::dot(tr.rotations.back().value, q) < 0.0f) q = -q;
-          tr.rotations.push_back({float(key.mTime / tps), q, rotor_from_quat(q)});
+          tr.rotations.push_back({t, q, rotor_from_quat(q)});
         }
         for (unsigned k = 0; k < na->mNumScalingKeys; ++k) {
           const aiVectorKey& key = na->mScalingKeys[k];
+          const float t = float(key.mTime / tps);
           const glm::vec3 s(key.mValue.x, key.mValue.y, key.mValue.z);
           float u = uniform_scale(s);
+          if (!std::isfinite(t) || !finite(s) || !std::isfinite(u)) {
+            dropped_key("scale", k, fmt::format("({}, {}, {})", s.x, s.y, s.z), t);
+            continue;
+          }
           if (!is_uniform(s)) {
             warn.add("scale key " + clip.name,
                      fmt::format("clip '{}', bone '{}', scale key {}: non-uniform scale ({}, {}, {}) cannot be a "
@@ -426,7 +492,7 @@ Character import_character(const std::string& path, const LoadOptions& options) 
                                  clip.name, na->mNodeName.C_Str(), k, s.x, s.y, s.z, u));
           }
           if (!(u > 0.0f)) u = 1.0f;
-          tr.scales.push_back({float(key.mTime / tps), u});
+          tr.scales.push_back({t, u});
         }
       }
       // Tracks the file leaves empty hold the rest value.
@@ -440,6 +506,17 @@ Character import_character(const std::string& path, const LoadOptions& options) 
         std::stable_sort(tr.translations.begin(), tr.translations.end(), by_time);
         std::stable_sort(tr.rotations.begin(), tr.rotations.end(), by_time);
         std::stable_sort(tr.scales.begin(), tr.scales.end(), by_time);
+      }
+      if (!std::isfinite(clip.duration)) {
+        float last = 0.0f;
+        for (const JointTrack& tr : clip.tracks) {
+          for (const auto& key : tr.translations) last = std::max(last, key.time);
+          for (const auto& key : tr.rotations) last = std::max(last, key.time);
+          for (const auto& key : tr.scales) last = std::max(last, key.time);
+        }
+        warn.add("not finite", fmt::format("clip '{}': duration {} s is not finite; using its last key time, {} s",
+                                           clip.name, clip.duration, last));
+        clip.duration = last;
       }
       ch.clips.push_back(std::move(clip));
     }

@@ -16,7 +16,10 @@
 // a vertex whose position is nan or infinite is dropped with its triangles (the other vertices keep their
 // order); a nan or infinite normal becomes the normalized sum of its triangles' normals (+z without any);
 // an infinite bone weight is dropped and the vertex's other weights renormalized (like negative ones).
-// Triangles whose indices are past the mesh's vertices are dropped (counted in a warning).
+// Triangles whose indices are past the mesh's vertices are dropped (counted in a warning). Elsewhere, each
+// named in a warning: a rest transform with a non-finite number becomes the identity, such an offset matrix
+// the inverse of the bone's rest pose, an animation key (or its time) the track drops, and a non-finite clip
+// duration becomes the clip's last key time.
 #pragma once
 
 #include <stdexcept>
