@@ -460,7 +460,8 @@ int run(const Options& o) {
       std::string la = "-O" + std::to_string(static_cast<int>(a.level));
       std::string lb = "-O" + std::to_string(static_cast<int>(b.level));
       std::string d = opt::unified_diff(emit::emit(a, eo), emit::emit(b, eo), name + " " + la, name + " " + lb);
-      write_text(o.output, (d.empty() ? "(no difference in the code)\n" : d) + opt::stats_delta(a, b));
+      write_text(o.output,
+                 (d.empty() ? "(no difference in the code)\n" : d) + opt::stats_delta(a, b) + opt::format_products(kernel));
       return 0;
     }
     opt::Program program = opt::optimize(kernel, o.level);
@@ -473,7 +474,7 @@ int run(const Options& o) {
       return 0;
     }
     if (o.stats) {
-      write_text(o.output, opt::format_stats(program) + opt::format_inputs(program));
+      write_text(o.output, opt::format_stats(program) + opt::format_products(kernel) + opt::format_inputs(program));
       return 0;
     }
     std::string code = emit::emit(program, eo);

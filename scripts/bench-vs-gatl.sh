@@ -5,6 +5,9 @@
 # enters this repository or its build.
 #   GATL_DIR=/path/to/gatl bash scripts/bench-vs-gatl.sh     (or: scripts/bench-vs-gatl.sh /path/to/gatl)
 # GATL_DIR may be a checkout (with cpp/include/gatl) or a bare/mirror git directory of it.
+# With GABENCH_DIR (a checkout or bare mirror of ga-developers/ga-benchmark), ga-benchmark's own script of the
+# algorithm is timed too, as its source publishes it: the CluCalc block of
+# source/Gaalop/SpecializedAlgorithmInverseKinematics.hpg, with only its basis names eo/ei spelt e0/einf.
 # Both sides are compiled by the same compiler with the same flags: g++ -O3 -march=native (CXXFLAGS overrides).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,8 +27,21 @@ fi
 cmake --preset default >/dev/null
 cmake --build "$BUILD_DIR" --target cgagen -j "${JOBS:-2}" >&2
 "$BUILD_DIR/gen/cgagen" -O2 --target cpp -o "$work/arm5.hpp" bench/ik_arm/arm5.clu
+defs="-DCGA_WITH_GATL"
+gabench=${GABENCH_DIR:-}
+if [ -n "$gabench" ]; then
+  hpg=source/Gaalop/SpecializedAlgorithmInverseKinematics.hpg
+  if [ -f "$gabench/$hpg" ]; then text=$(cat "$gabench/$hpg"); else text=$(git --git-dir="$gabench" show "HEAD:$hpg"); fi \
+    || { echo "bench-vs-gatl: no $hpg in '$gabench'" >&2; exit 1; }
+  printf '%s\n' "$text" | sed -n '/#pragma clucalc begin/,/#pragma clucalc end/p' | sed '1d;$d' \
+    | sed -E 's/\beo\b/e0/g; s/\bei\b/einf/g' > "$work/gabench_ik.clu"
+  "$BUILD_DIR/gen/cgagen" -O2 --stats "$work/gabench_ik.clu" | grep -E '^(total|product)' | sed 's/^/gabench_ik.clu -O2 /'
+  "$BUILD_DIR/gen/cgagen" -O2 --stats bench/ik_arm/arm5.clu | grep '^total' | sed 's/^/arm5.clu -O2 /'
+  "$BUILD_DIR/gen/cgagen" -O2 --target cpp -o "$work/gabench_ik.hpp" "$work/gabench_ik.clu"
+  defs="$defs -DCGA_WITH_GABENCH_IK"
+fi
 flags=${CXXFLAGS:-"-O3 -march=native"}
-g++ -std=c++17 $flags -DCGA_WITH_GATL -I"$work" -Ibench/ik_arm -c bench/ik_arm/ik_bench.cpp -o "$work/ik_bench.o"
+g++ -std=c++17 $flags $defs -I"$work" -Ibench/ik_arm -c bench/ik_arm/ik_bench.cpp -o "$work/ik_bench.o"
 g++ -std=c++17 $flags -I"$include" -Ibench/ik_arm -c bench/ik_arm/ik_gatl.cpp -o "$work/ik_gatl.o"
 g++ "$work/ik_bench.o" "$work/ik_gatl.o" -o "$work/ik_vs_gatl"
 echo "compiler: $(g++ --version | head -1); flags: $flags; CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"

@@ -20,6 +20,9 @@
 
 #include "arm5.hpp"
 #include "arm_api.hpp"
+#ifdef CGA_WITH_GABENCH_IK
+#include "gabench_ik.hpp"  // ga-benchmark's own block, compiled by scripts/bench-vs-gatl.sh
+#endif
 
 namespace cga::bench_arm {
 #ifdef CGA_WITH_GATL
@@ -40,6 +43,22 @@ __attribute__((noinline)) void arm_cgagen(const double angles[5], ArmResult& out
   for (int i = 0; i < 5; ++i) out.rotor_scalars[i] = rotors[i][0];
   asm volatile("" : : "r"(R1), "r"(R2), "r"(R3), "r"(T2), "r"(R4), "r"(Rg), "r"(Jg_f) : "memory");
 }
+
+#ifdef CGA_WITH_GABENCH_IK
+// The same chain from ga-benchmark's script as written: its outputs in order of marking (R1 R2 L3 R3 T2 L4init
+// L4 R4 Lginit Lg Rg Jg_f).
+template <typename Real>
+__attribute__((noinline)) void arm_gabench(const double angles[5], ArmResult& out) {
+  Real R1[16], R2[16], L3[32], R3[16], T2[16], L4init[32], L4[32], R4[16], Lginit[32], Lg[32], Rg[16], Jg_f[32];
+  cga::kernels::gabench_ik(Real(angles[0]), Real(angles[1]), Real(angles[2]), Real(angles[3]), Real(angles[4]), R1,
+                           R2, L3, R3, T2, L4init, L4, R4, Lginit, Lg, Rg, Jg_f);
+  for (int i = 0; i < 3; ++i) out.gripper[i] = Jg_f[i];
+  const Real* rotors[5] = {R1, R2, R3, R4, Rg};
+  for (int i = 0; i < 5; ++i) out.rotor_scalars[i] = rotors[i][0];
+  asm volatile("" : : "r"(R1), "r"(R2), "r"(L3), "r"(R3), "r"(T2), "r"(L4init), "r"(L4), "r"(R4), "r"(Lginit),
+               "r"(Lg), "r"(Rg), "r"(Jg_f) : "memory");
+}
+#endif
 
 struct Candidate {
   std::string name;
@@ -84,6 +103,9 @@ int main(int argc, char** argv) {
 
   std::vector<Candidate> all = {{"cgagen -O2, double", arm_cgagen<double>, 1e-12, {}},
                                 {"cgagen -O2, float", arm_cgagen<float>, 2e-3, {}}};
+#ifdef CGA_WITH_GABENCH_IK
+  all.push_back({"cgagen -O2, ga-benchmark's script, double", arm_gabench<double>, 1e-12, {}});
+#endif
 #ifdef CGA_WITH_GATL
   // GATL at -a computes cgagen's chain at a (its dual has the other sign; arm_gatl negates the angles).
   all.push_back({"GATL, double", arm_gatl, 1e-4, {}});
@@ -120,14 +142,17 @@ int main(int argc, char** argv) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
   }();
-  double gatl = 0;
+  double gatl = 0, gabench = 0;
   for (auto& c : all) {
     std::sort(c.rounds_ns.begin(), c.rounds_ns.end());
     const double median = c.rounds_ns[c.rounds_ns.size() / 2];
     if (c.name.rfind("GATL", 0) == 0) gatl = median;
-    std::printf("  %-20s %8.1f ns  (rounds %.1f .. %.1f)\n", c.name.c_str(), median, c.rounds_ns.front(),
+    if (c.name.find("ga-benchmark") != std::string::npos) gabench = median;
+    std::printf("  %-42s %8.1f ns  (rounds %.1f .. %.1f)\n", c.name.c_str(), median, c.rounds_ns.front(),
                 c.rounds_ns.back());
   }
-  if (gatl > 0) std::printf("cgagen double / GATL double: %.2fx the time\n", base / gatl);
+  if (gatl > 0) std::printf("cgagen double (arm5.clu) / GATL double: %.2fx the time\n", base / gatl);
+  if (gatl > 0 && gabench > 0)
+    std::printf("cgagen double (ga-benchmark's script) / GATL double: %.2fx the time\n", gabench / gatl);
   return 0;
 }

@@ -27,6 +27,14 @@ std::string format_stats(const Program& p) {
   return s;
 }
 
+std::string format_products(const Kernel& k) {
+  std::string s;
+  for (const auto& sp : k.shared_products)
+    s += "product " + sp.name + " = " + sp.word + ": " + (sp.bound ? "bound once" : "the script's value") + ", " +
+         std::to_string(sp.uses) + (sp.uses == 1 ? " reuse" : " reuses") + "\n";
+  return s;
+}
+
 std::string format_inputs(const Program& p) {
   algebra::Using in(p.algebra);
   std::string s = "inputs:";
