@@ -11,6 +11,9 @@ namespace {
 // is quadratic in the word's length, and a chain `M = M*R` repeated thousands of times would otherwise carry
 // its whole history in every statement. (The value is the same; only reuse past this length is not seen.)
 constexpr size_t kMaxWord = 48;
+// From this length on, a word with no part to reuse is evaluated by halves (evaluate()); shorter ones left to
+// right, as written, which every bundled script's products are.
+constexpr size_t kHalvedWord = 5;
 
 size_t hash_of(const Multivector& v) {
   size_t h = v.terms().size();
@@ -125,6 +128,15 @@ Multivector Products::left_to_right(algebra::ProductKind kind, const Word& w, fr
   return acc;
 }
 
+Multivector Products::bound(algebra::ProductKind kind, const Word& w, front::SourceLoc loc, Host& host) {
+  if (w.size() == 1) return value(w.front());
+  if (auto c = lookup(kind, w)) return *c;
+  std::string name = temp_name(w);
+  const Multivector v = host.bind_word(name, evaluate(kind, w, loc, host), loc);
+  cache(kind, w, v, name, true);
+  return v;
+}
+
 Multivector Products::evaluate(algebra::ProductKind kind, const Word& w, front::SourceLoc loc, Host& host) {
   const size_t n = w.size();
   if (n == 1) return value(w.front());
@@ -137,15 +149,7 @@ Multivector Products::evaluate(algebra::ProductKind kind, const Word& w, front::
     if (k >= 1) {
       const Word p(w.begin(), w.begin() + static_cast<long>(k));
       Multivector pv;
-      if (k == 1) {
-        pv = value(p.front());
-      } else if (auto c = lookup(kind, p)) {
-        pv = *c;
-      } else {
-        std::string name = temp_name(p);
-        pv = host.bind_word(name, evaluate(kind, p, loc, host), loc);
-        cache(kind, p, pv, name, true);
-      }
+      pv = bound(kind, p, loc, host);
       const Word middle(w.begin() + static_cast<long>(k), w.end() - static_cast<long>(k));
       const Multivector m = evaluate(kind, middle, loc, host);
       return host.multiply(kind, host.multiply(kind, pv, m, loc), pv.reverse(), loc);
@@ -161,7 +165,15 @@ Multivector Products::evaluate(algebra::ProductKind kind, const Word& w, front::
         best_at = i;
         break;
       }
-  if (best_len == 0) return left_to_right(kind, w, loc, host);
+  if (best_len == 0) {
+    // A long word with nothing to reuse (a power R*R*...*R, a product of many distinct factors) goes by halves,
+    // each half bound and remembered: equal halves are computed once, and no coefficient grows into a
+    // polynomial of the word's length in its factors' coefficients.
+    if (n < kHalvedWord) return left_to_right(kind, w, loc, host);
+    const auto mid = w.begin() + static_cast<long>(n / 2);
+    return host.multiply(kind, bound(kind, Word(w.begin(), mid), loc, host), bound(kind, Word(mid, w.end()), loc, host),
+                         loc);
+  }
   const auto at = w.begin() + static_cast<long>(best_at);
   Multivector r = *lookup(kind, Word(at, at + static_cast<long>(best_len)));
   if (best_at > 0) r = host.multiply(kind, evaluate(kind, Word(w.begin(), at), loc, host), r, loc);

@@ -95,6 +95,8 @@ class Products {
   std::optional<Multivector> lookup(algebra::ProductKind kind, const Word& w);
   void cache(algebra::ProductKind kind, const Word& w, const Multivector& reference, const std::string& name,
              bool bound);
+  // w's value bound to a value of the kernel and remembered (a single factor as it is).
+  Multivector bound(algebra::ProductKind kind, const Word& w, front::SourceLoc loc, Host& host);
   Multivector left_to_right(algebra::ProductKind kind, const Word& w, front::SourceLoc loc, Host& host);
 
   std::vector<Known> known_;

@@ -108,3 +108,62 @@ TEST_CASE("the 5-joint arm: exact blade support, and few ops at -O2", "[chains]"
   CHECK(o2 < 900);  // 798 when written (330 add, 468 mul); Gaalop-style full expansion does not finish
   CHECK(o2 * 2 < o0);
 }
+
+TEST_CASE("a chain written with explicit products costs what the carried chain costs, linear in n", "[chains][words]") {
+  // ga-benchmark's shape: every joint's carrier R(k-1)*...*R1 written out again (expand/words.hpp finds the
+  // part an earlier statement computed), and the end point's sandwich inline.
+  for (Level level : {Level::O0, Level::O1, Level::O2}) {
+    std::map<int, long> counts;
+    for (int n : {5, 10, 20, 40}) counts[n] = ops(kernel_of(cga::testing::explicit_chain_script(n), "chain"), level);
+    INFO("level " << static_cast<int>(level) << ": ops " << counts[5] << ", " << counts[10] << ", " << counts[20]
+                  << ", " << counts[40]);
+    for (int n : {5, 10, 20}) {
+      const double ratio = static_cast<double>(counts[2 * n]) / static_cast<double>(counts[n]);
+      CHECK(ratio > 1.6);
+      CHECK(ratio < 2.3);
+    }
+  }
+  for (int n : {5, 10, 20}) {
+    const long explicit_ops = ops(kernel_of(cga::testing::explicit_chain_script(n), "chain"), Level::O2);
+    const long carried_ops = ops(kernel_of(cga::testing::joint_chain_script(n), "chain"), Level::O2);
+    INFO("n = " << n << ": explicit products " << explicit_ops << " ops, carried " << carried_ops);
+    CHECK(static_cast<double>(explicit_ops) <= 1.05 * static_cast<double>(carried_ops));
+  }
+}
+
+TEST_CASE("the products stage names repeated products once and reports them", "[words]") {
+  const std::string script =
+      "R1 = cos(a) + sin(a)*e1^e2;\n"
+      "R2 = cos(b) + sin(b)*e2^e3 + c*e1^einf;\n"
+      "X = d*e1 + 0.5*d*d*einf + e0;\n"
+      "?P = (R2*R1) * X * ~(R2*R1);\n"     // a sandwich: R2*R1 bound once, ~(R2*R1) its reverse
+      "?Q = ~(R1*R2) * e3 * (R1*R2);\n"    // the reverse of the same word: reused
+      "?S = (R2*R1) * e1 * ~(R2*R1);\n";   // the same word again
+  const Kernel k = kernel_of(script, "words");
+  REQUIRE(k.shared_products.size() == 1);
+  CHECK(k.shared_products[0].word == "R2*R1");
+  CHECK(k.shared_products[0].bound);
+  CHECK(k.shared_products[0].uses == 2);
+  // A script's own name for a word is reused where the word appears again.
+  const Kernel named = kernel_of("R1 = cos(a) + sin(a)*e1^e2;\nR2 = cos(b) + sin(b)*e2^e3;\nV = R2*R1;\n"
+                                 "?P = (R2*R1) * e1 * ~(R2*R1);\n", "named");
+  REQUIRE(named.shared_products.size() == 1);
+  CHECK(named.shared_products[0].name == "V");
+  CHECK_FALSE(named.shared_products[0].bound);
+  CHECK(named.shared_products[0].uses == 1);
+}
+
+TEST_CASE("a power written as one product is computed by halves", "[words]") {
+  // 64 equal rotors in one statement: as a left-to-right expansion each coefficient becomes a polynomial of
+  // degree 64 in the rotor's (thousands of multiplications); by halves, six bound squarings.
+  std::string text = "R = cos(a) - sin(a)*e1^e2 + t*e1^einf;\n?M = R";
+  for (int i = 1; i < 64; ++i) text += "*R";
+  text += ";\n";
+  const Kernel k = kernel_of(text, "power");
+  const opt::Program p = opt::optimize(k, Level::O2);
+  CHECK(opt::program_stats(p).total.total() < 300);
+  // cos(64 a) - sin(64 a) e1^e2 + ... : the scalar part of the power of a rotor with a translation part.
+  const auto got = values(p, {{"a", {0.01}}, {"t", {0.5}}});
+  CHECK(got.at("M 1") == Approx(std::cos(0.64)).epsilon(1e-12));
+  CHECK(got.at("M e1^e2") == Approx(-std::sin(0.64)).epsilon(1e-12));
+}
