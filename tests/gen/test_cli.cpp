@@ -156,7 +156,7 @@ TEST_CASE("work budget: an over-budget statement fails fast with a located error
     auto r = run(std::string(level) + " " + bad);
     INFO(r.out);
     CHECK(r.code == 1);
-    CHECK(r.out.rfind(bad + ":8:2: error: statement 'v' is over cgagen's work budget: the statement's products "
+    CHECK(r.out.rfind(bad + ":10:2: error: statement 'v' is over cgagen's work budget: the statement's products "
                             "expand to more than 100000 terms in all; split it into smaller statements or give fewer "
                             "blades\n",
                       0) == 0);
