@@ -154,3 +154,11 @@ TEST_CASE("10 MB scripts finish with a result or a diagnostic") {
     CHECK(o.diagnostic.rfind("comment.clu:2:1: error: ", 0) == 0);
   }
 }
+
+TEST_CASE("the inverse of a general 5D even multivector is over the budget, and the error names the way out") {
+  require_diagnostic("inverse_over_budget.clu", "M;", 1,
+                     "the general inverse of this multivector (with blades 1, e1^e2, e1^e3, e1^einf, e2^e3, e2^einf, "
+                     "e3^einf, einf^e0, e1^e2^e3^einf, e1^e2^einf^e0, e1^e3^einf^e0, e2^e3^einf^e0) is over "
+                     "cgagen's work budget (its adjugate passes 1000 terms); if it is a versor for the inputs passed "
+                     "(d*~d a scalar), name it and say so with '#pragma versor NAME'");
+}
