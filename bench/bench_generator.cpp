@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "bench_common.hpp"
+#include "cga/testing/joint_chain.hpp"
 #include "summary.hpp"
 
 extern char** environ;
@@ -156,6 +157,24 @@ void register_generator_benchmarks() {
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->Iterations(5);
+    add_figure({name, section, script.filename().string(), Metric::ms_per_iter, "", "", std::nullopt,
+                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
+  }
+  // Chains written as ga-benchmark writes its arm: every carrier an explicit product of all earlier rotors
+  // (cga/testing/joint_chain.hpp). The products stage keeps time and ops about linear in n
+  // (docs/generator.md, "Products").
+  for (int n : {5, 10, 20, 40, 80}) {
+    const fs::path script = scratch_dir() / fmt::format("explicit_chain_{}.clu", n);
+    if (FILE* f = std::fopen(script.c_str(), "w")) {
+      const std::string text = cga::testing::explicit_chain_script(n);
+      std::fwrite(text.data(), 1, text.size(), f);
+      std::fclose(f);
+    }
+    const std::string name = fmt::format("generator/explicit_chain n={}", n);
+    benchmark::RegisterBenchmark(name.c_str(), bm_generate, script, std::string("cga"))
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(3);
     add_figure({name, section, script.filename().string(), Metric::ms_per_iter, "", "", std::nullopt,
                 {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
   }
