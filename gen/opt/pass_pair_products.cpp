@@ -87,10 +87,24 @@ class PairProducts {
         for (size_t j = i + 1; j < v.size(); ++j) here.insert(make_pair_of(v[i], v[j]));
       return here;
     };
+    // The pairs ordered best first (most cores, then first in key order), kept in step with `count`, so that
+    // each greedy step takes the best pair at once: scanning every pair per step was quadratic in the
+    // program's size (an 80-joint chain has thousands of pairs and as many steps).
+    struct Better {
+      const std::vector<std::string>* keys;
+      bool operator()(const std::pair<int, Pair>& x, const std::pair<int, Pair>& y) const {
+        if (x.first != y.first) return x.first > y.first;
+        return std::tie((*keys)[x.second.first], (*keys)[x.second.second]) <
+               std::tie((*keys)[y.second.first], (*keys)[y.second.second]);
+      }
+    };
+    std::set<std::pair<int, Pair>, Better> ranked(Better{&atom_key});
     auto tally = [&](size_t c, int delta) {
       for (const Pair& pk : pairs_of(ids[c])) {
         int& n = count[pk];
+        if (n >= 2) ranked.erase({n, pk});
         n += delta;
+        if (n >= 2) ranked.insert({n, pk});
         if (n == 0) count.erase(pk);
       }
     };
@@ -102,16 +116,9 @@ class PairProducts {
     std::vector<Temp> pair_temps;
     std::vector<std::pair<ex, ex>> pair_atoms;
     for (int iter = 0; iter < 100000; ++iter) {
-      const Pair* best = nullptr;
-      int best_count = 1;
-      for (const auto& [pk, n] : count) {
-        if (n < 2 || n < best_count) continue;
-        if (!best || n > best_count ||
-            std::tie(atom_key[pk.first], atom_key[pk.second]) < std::tie(atom_key[best->first], atom_key[best->second]))
-          best_count = n, best = &pk;
-      }
-      if (!best) break;
-      const auto ia = best->first, ib = best->second;  // not a structured binding: clang 14 cannot capture one
+      if (ranked.empty()) break;
+      const Pair best = ranked.begin()->second;
+      const auto ia = best.first, ib = best.second;  // not a structured binding: clang 14 cannot capture one
       const ex a = atom_ex[ia], b = atom_ex[ib];
       Temp t = st.make_temp(a * b);
       pair_temps.push_back(t);
