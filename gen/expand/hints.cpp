@@ -56,9 +56,37 @@ std::optional<std::string> closest(const std::string& name, const std::vector<st
   return best;
 }
 
+namespace {
+// A name's stem and number (a10: a, 10), or none when it does not end in digits after a non-digit.
+std::optional<std::pair<std::string, std::string>> numbered(const std::string& name) {
+  size_t i = name.size();
+  while (i > 0 && std::isdigit(static_cast<unsigned char>(name[i - 1]))) --i;
+  if (i == 0 || i == name.size()) return std::nullopt;
+  return std::pair{name.substr(0, i), name.substr(i)};
+}
+
+// Is `name` a member of a numbered family: a one-letter stem, or another name of its stem among `names`?
+bool in_family(const std::string& name, const std::string& stem, const std::vector<std::string>& names) {
+  if (stem.size() == 1) return true;
+  for (const std::string& n : names)
+    if (n != name)
+      if (auto s = numbered(n); s && s->first == stem) return true;
+  return false;
+}
+}  // namespace
+
 std::optional<std::string> for_read(const std::string& name, const std::vector<std::string>& variables,
-                                    const std::vector<std::string>& functions) {
-  if (auto v = closest(name, variables, true)) return v;
+                                    const std::vector<std::string>& functions,
+                                    const std::vector<std::string>& inputs) {
+  std::vector<std::string> candidates = variables;
+  if (auto own = numbered(name); own && (in_family(name, own->first, variables) || in_family(name, own->first, inputs))) {
+    // A chain's joint angles a1 ... a10 next to its products C2 ... C10: a10 is no misspelt C10.
+    std::erase_if(candidates, [&](const std::string& k) {
+      auto other = numbered(k);
+      return other && other->first != own->first;
+    });
+  }
+  if (auto v = closest(name, candidates, true)) return v;
   return closest(name, functions);
 }
 

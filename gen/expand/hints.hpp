@@ -26,9 +26,14 @@ std::optional<std::string> closest(const std::string& name, const std::vector<st
                                    bool short_ok = false);
 
 // A name read before it is assigned: the variable it most likely misspells (short names too), else the
-// function (a function's name read without a call), else none.
+// function (a function's name read without a call), else none. `inputs` are the free names read so far.
+// A numbered name (a10) is one of a family when its stem has another numbered name (a9) among `variables`
+// or `inputs`, or when its stem is one letter (an indexed symbol, like x1 and e1); then another stem's
+// numbered name (C10) is a different family's member, no typo. The same stem's other numbers stay
+// candidates (translationCGA4 for translationCGA2).
 std::optional<std::string> for_read(const std::string& name, const std::vector<std::string>& variables,
-                                    const std::vector<std::string>& functions);
+                                    const std::vector<std::string>& functions,
+                                    const std::vector<std::string>& inputs = {});
 
 // An unknown function: "; did you mean 'X'?" for a misspelt function, or what cgagen writes for another
 // library's name ("; cgagen writes the reverse as ~X"), or "" when nothing fits.

@@ -4,9 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cli_run.hpp"
+#include "expand/hints.hpp"
 
 using cga_test::run;
 using cga_test::write_temp;
@@ -71,6 +74,32 @@ TEST_CASE("typo hints reach short names and pick variables for reads, functions 
   r = run(write_temp("messages/snn.clu", "?q = snn(x);\n"));
   CHECK(r.code == 1);
   CHECK(r.out.find("snn.clu:1:6: error: unknown function 'snn'; did you mean 'sin'?\n") != std::string::npos);
+}
+
+// An n-joint chain reads its joint angles a1 ... a12 as inputs and assigns its products C2 ... C12: a10 is
+// the next angle, not a misspelt C10, and --Werror (cgagen_generate's default) must pass.
+TEST_CASE("a numbered family of inputs is not hinted toward another stem's numbered names", "[messages]") {
+  std::string text = "C1 = 1;\n";
+  for (int i = 2; i <= 12; ++i)
+    text += "C" + std::to_string(i) + " = C" + std::to_string(i - 1) + " * (cos(a" + std::to_string(i) +
+            ") + sin(a" + std::to_string(i) + ")*e1^e2);\n";
+  text += "?R = C12 * a1;\n";
+  auto r = run("--Werror -o /dev/null " + write_temp("messages/chain12.clu", text));
+  CHECK(r.code == 0);
+  CHECK(r.out.empty());
+  // Real typos next to numbered names still warn: a stem's other number, a misspelt stem of its own.
+  r = run("-o /dev/null " + write_temp("messages/family_typos.clu",
+                                       "motor1 = 1 + e1^e2;\nmotor2 = motor1*motor1;\n?q = motr2 + Tt;\nT = 2;\n"));
+  CHECK(r.out.find("'motr2' is used before it is assigned and becomes an input; did you mean 'motor2'?") !=
+        std::string::npos);
+  CHECK(r.out.find("'Tt' is used before it is assigned and becomes an input; did you mean 'T'?") != std::string::npos);
+  CHECK(run("--Werror -o /dev/null " + kBad + "short_typo.clu").code == 1);
+  // Free names read so far count as the family too (theta1 ... theta9 before theta10).
+  const std::vector<std::string> assigned = {"Theta10", "Theta9"};
+  CHECK(cgagen::hints::for_read("theta10", assigned, {}) == std::optional<std::string>("Theta10"));
+  CHECK(!cgagen::hints::for_read("theta10", assigned, {}, {"theta9"}));
+  CHECK(cgagen::hints::for_read("Theta11", assigned, {}, {"theta9"}) == std::optional<std::string>("Theta10"));
+  CHECK(cgagen::hints::for_read("eiof", {"einf"}, {}, {"eio1"}) == std::optional<std::string>("einf"));
 }
 
 TEST_CASE("other libraries' names point at cgagen's spelling or say it does not exist", "[messages]") {
