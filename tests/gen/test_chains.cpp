@@ -35,6 +35,13 @@ std::map<std::string, double> values(const opt::Program& p, const opt::InputValu
   return m;
 }
 
+// The -O`level` op counts of a chain script for n = 5, 10, 20, 40 joints.
+std::map<int, long> chain_ops(std::string (*script)(int), Level level) {
+  std::map<int, long> counts;
+  for (int n : {5, 10, 20, 40}) counts[n] = ops(kernel_of(script(n), "chain"), level);
+  return counts;
+}
+
 std::string read(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
@@ -46,8 +53,7 @@ std::string read(const std::string& path) {
 
 TEST_CASE("an n-joint chain costs ops linear in n at every level", "[chains]") {
   for (Level level : {Level::O0, Level::O1, Level::O2}) {
-    std::map<int, long> counts;
-    for (int n : {5, 10, 20, 40}) counts[n] = ops(kernel_of(cga::testing::joint_chain_script(n), "chain"), level);
+    std::map<int, long> counts = chain_ops(cga::testing::joint_chain_script, level);
     INFO("level " << static_cast<int>(level) << ": ops " << counts[5] << ", " << counts[10] << ", " << counts[20]
                   << ", " << counts[40]);
     // Doubling the joints about doubles the code (each joint adds one statement of bounded size); the first
@@ -114,8 +120,7 @@ TEST_CASE("a chain written with explicit products costs what the carried chain c
   // ga-benchmark's shape: every joint's carrier R(k-1)*...*R1 written out again (expand/words.hpp finds the
   // part an earlier statement computed), and the end point's sandwich inline.
   for (Level level : {Level::O0, Level::O1, Level::O2}) {
-    std::map<int, long> counts;
-    for (int n : {5, 10, 20, 40}) counts[n] = ops(kernel_of(cga::testing::explicit_chain_script(n), "chain"), level);
+    std::map<int, long> counts = chain_ops(cga::testing::explicit_chain_script, level);
     INFO("level " << static_cast<int>(level) << ": ops " << counts[5] << ", " << counts[10] << ", " << counts[20]
                   << ", " << counts[40]);
     // From n = 10 on, each doubling at most 2.3 times the code; the first (5 to 10) a little more, as in the
