@@ -41,20 +41,39 @@ std::string emit_statements(const opt::Program& program, const StatementOptions&
   Printer pr(options.target, prec, code, keys);
   const std::string& T = options.type;
   std::string out;
-  for (const auto& o : program.outputs) {
+  int counted = 0;  // the number the compiler gives the next line after a `#line` (0: none written yet)
+  auto line = [&](const std::vector<int>& lines, size_t i) {
+    const int n = i < lines.size() ? lines[i] : 0;
+    if (!options.line_file.empty() && n > 0 && n != counted) {
+      out += "#line " + std::to_string(n) + " " + options.line_file + "\n";
+      counted = n;
+    }
+    if (counted > 0) ++counted;  // the statement's own line
+  };
+  for (size_t i = 0; i < program.outputs.size(); ++i) {
+    const auto& o = program.outputs[i];
     const size_t n = o.slots.size();
+    if (n > 0) line(options.output_lines, i);
     if (n == 1) out += options.indent + T + " " + o.name + ";\n";
     else if (n > 1) out += options.indent + T + " " + o.name + "[" + std::to_string(n) + "];\n";
   }
   const bool scope = !program.temps.empty();
   const std::string in = options.indent + (scope ? sx.indent : "");
-  if (scope) out += options.indent + "{\n";
-  for (const auto& t : program.temps)
+  if (scope) {
+    out += options.indent + "{\n";
+    if (counted > 0) ++counted;
+  }
+  for (size_t i = 0; i < program.temps.size(); ++i) {
+    const auto& t = program.temps[i];
+    line(options.temp_lines, i);
     out += in + fill_pattern(sx.temp, {{"T", T}, {"name", options.temp_prefix + t.name}, {"value", pr.print(t.value)}}) +
            "\n";
-  for (const auto& o : program.outputs) {
+  }
+  for (size_t i = 0; i < program.outputs.size(); ++i) {
+    const auto& o = program.outputs[i];
     const size_t n = o.slots.size();
     for (size_t k = 0; k < n; ++k) {
+      line(i < options.slot_lines.size() ? options.slot_lines[i] : std::vector<int>{}, k);
       const std::string elem = n == 1 ? o.name : fill_pattern(sx.element, {{"name", o.name}, {"k", std::to_string(k)}});
       out += in + fill_pattern(sx.assign, {{"elem", elem},
                                            {"value", pr.print(o.slots[k].value)},

@@ -21,6 +21,14 @@ struct StatementOptions {
   // How blade k of a multivector input reads: elements[input][k], a C expression. A multivector input
   // without an entry reads NAME[k]; a scalar input reads the C variable of its name.
   std::map<std::string, std::vector<std::string>> elements;
+  // `#line` directives, so that a compiler's message about a statement names the source line it comes from
+  // (cgagen --gpc): when line_file (quoted as the directive wants it) is not empty, a `#line N line_file`
+  // goes before a statement whenever the compiler would not count its line as N. N is temp_lines[i] for
+  // temporary i, output_lines[o] for output o's declaration, slot_lines[o][k] for its blade k; 0 or a
+  // missing entry writes none.
+  std::string line_file;
+  std::vector<int> temp_lines, output_lines;
+  std::vector<std::vector<int>> slot_lines;
 };
 
 // The targets statements can be printed in.

@@ -2,6 +2,8 @@
 // (front -> expand -> opt -> emit/statements), and the source stitched back with `#line` directives.
 #include "gpc/gpc.hpp"
 
+#include <algorithm>
+#include <map>
 #include <memory>
 #include <set>
 
@@ -105,6 +107,66 @@ std::string quoted(const std::string& path) {
   return q + "\"";
 }
 
+// The line of each name's first use: where it is read (a Name) or declared by `#pragma input`.
+void first_uses(const front::Expr& e, std::map<std::string, int>& lines) {
+  if (e.kind == front::Expr::Kind::Name) {
+    auto [it, added] = lines.emplace(e.text, e.loc.line);
+    if (!added) it->second = std::min(it->second, e.loc.line);
+  }
+  for (const auto& a : e.args)
+    if (a) first_uses(*a, lines);
+}
+void first_uses(const std::vector<front::StmtPtr>& statements, std::map<std::string, int>& lines) {
+  for (const auto& s : statements) {
+    if (s->kind == front::Stmt::Kind::Pragma && s->words.size() > 1 && s->words[0] == "input") {
+      auto [it, added] = lines.emplace(s->words[1], s->loc.line);
+      if (!added) it->second = std::min(it->second, s->loc.line);
+    }
+    if (s->value) first_uses(*s->value, lines);
+    if (s->result) first_uses(*s->result, lines);
+    first_uses(s->body, lines);
+    first_uses(s->else_body, lines);
+  }
+}
+
+// The source line of each statement, for the `#line` before it (emit/statements.hpp). A compiler error in
+// a statement is about a name the user wrote: a misspelt scalar input, an undeclared array of mv_from_array.
+// So a statement gets the line where the inputs it reads are first used (the latest of them, when it reads
+// several); temporaries are cgagen's own names and count only for a statement that reads no input (the
+// latest line of those it reads). An output's declaration, and a statement that reads neither, get the line
+// that assigns the output.
+void statement_lines(const front::Script& script, const Kernel& kernel, const opt::Program& program, int fallback,
+                     emit::StatementOptions& so) {
+  std::map<std::string, int> uses;
+  first_uses(script.statements, uses);
+  std::map<GiNaC::ex, int, GiNaC::ex_is_less> input_line, temp_line;
+  for (const auto& in : program.inputs) {
+    auto it = uses.find(in.name);
+    for (const auto& sym : in.symbols) input_line[sym] = it != uses.end() ? it->second : fallback;
+  }
+  auto line = [&](const GiNaC::ex& value, int otherwise) {
+    int inputs = 0, temps = 0;
+    for (auto it = value.preorder_begin(); it != value.preorder_end(); ++it)
+      if (GiNaC::is_a<GiNaC::symbol>(*it)) {
+        if (auto l = input_line.find(*it); l != input_line.end()) inputs = std::max(inputs, l->second);
+        if (auto l = temp_line.find(*it); l != temp_line.end()) temps = std::max(temps, l->second);
+      }
+    return inputs > 0 ? inputs : temps > 0 ? temps : otherwise;
+  };
+  for (const auto& t : program.temps) {
+    so.temp_lines.push_back(line(t.value, fallback));
+    temp_line[t.sym] = so.temp_lines.back();
+  }
+  for (const auto& o : program.outputs) {
+    int own = fallback;
+    for (const auto& ko : kernel.outputs)
+      if (ko.name == o.name) own = ko.value >= 0 ? kernel.values.at(static_cast<size_t>(ko.value)).loc.line : ko.loc.line;
+    so.output_lines.push_back(own);
+    so.slot_lines.emplace_back();
+    for (const auto& slot : o.slots) so.slot_lines.back().push_back(line(slot.value, own));
+  }
+}
+
 // A block compiled: the statements for its script section and its outputs.
 struct Compiled {
   std::string statements;
@@ -112,8 +174,8 @@ struct Compiled {
   std::vector<std::string> input_names;
 };
 
-Compiled compile_block(const front::SourceFile& file, const Text& t, const Block& b,
-                       const std::vector<InputDecl>& inputs, const Options& o, std::vector<front::Warning>& warnings) {
+Compiled compile_block(const front::SourceFile& file, const Text& t, const Block& b, const std::vector<InputDecl>& inputs,
+                       const Options& o, const std::string& path, std::vector<front::Warning>& warnings) {
   const front::SourceFile script_file(file.path(), script_text(t, b));
   front::Script script = front::parse(script_file);
   // Each mv_from_array is the script's `#pragma input NAME BLADE...`, located where the user wrote it.
@@ -172,6 +234,8 @@ Compiled compile_block(const front::SourceFile& file, const Text& t, const Block
       e.push_back(d.signs[k] < 0 ? "(-" + x + ")" : x);
     }
   }
+  so.line_file = path;
+  statement_lines(script, kernel, program, b.clu_begin.line + 1, so);
   Compiled c;
   c.statements = emit::emit_statements(program, so);
   for (const auto& out : program.outputs) {
@@ -247,7 +311,7 @@ Result rewrite(const front::SourceFile& file, const Options& o) {
     rewrite_calls(t, pos, begin_at, compiled, o.type, nullptr, edits);
     std::vector<InputDecl> inputs;
     rewrite_calls(t, pre_at, clu_at, compiled, o.type, &inputs, edits);
-    const Compiled c = compile_block(file, t, b, inputs, o, result.warnings);
+    const Compiled c = compile_block(file, t, b, inputs, o, path, result.warnings);
     const size_t post_at = t.line_start(b.clu_end.line + 1), end_at = t.line_start(b.end.line);
     compiled.push_back({b.index, post_at, c.outputs});
     rewrite_calls(t, post_at, end_at, compiled, o.type, nullptr, edits);

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_run.hpp"
 
@@ -129,6 +131,62 @@ TEST_CASE("gpc: --Werror makes a script warning an error, and the options --gpc 
   CHECK(r.out.find("--gpc prints C, C++, CUDA or OpenCL statements") != std::string::npos);
   r = gpc_run("good.hpg", kGood, "--stats");
   CHECK(r.code == 2);
+}
+
+namespace {
+// The lines of the compiler's errors about NAME in FILE ("FILE:LINE:COL: error: ... 'NAME' ..."), in order.
+std::vector<int> error_lines(const std::string& out, const std::string& file, const std::string& name) {
+  std::vector<int> lines;
+  size_t at = 0;
+  while ((at = out.find(file + ":", at)) != std::string::npos) {
+    const size_t end = out.find('\n', at);
+    const std::string line = out.substr(at, end - at);
+    at = end;
+    if (line.find(": error: ") != std::string::npos && line.find("'" + name + "'") != std::string::npos)
+      lines.push_back(std::stoi(line.substr(file.size() + 1)));
+  }
+  return lines;
+}
+}  // namespace
+
+// The statements of a block take more lines than its script: each carries a #line of the script line it
+// comes from, so that the compiler's errors about a name the user wrote land on the line that wrote it.
+TEST_CASE("gpc: C errors in the generated statements and the calls after them are at their own lines", "[gpc]") {
+  const std::string text = "#include <array>\n"                                     // 1
+                           "#include <cmath>\n"                                     // 2
+                           "float f(const float* x, float angle, float* y) {\n"     // 3
+                           "#pragma gpc begin\n"                                    // 4
+                           "    a = mv_from_array(x, e1, e2);\n"                    // 5
+                           "    v = mv_from_array(vv, e1, e3);\n"                   // 6: vv is undeclared
+                           "#pragma clucalc begin\n"                                // 7
+                           "    R = cos(angel / 2) + sin(angle / 2) * e1^e2;\n"     // 8: angel for angle
+                           "    s = scale * a;\n"                                   // 9: scale is undeclared
+                           "    ?r = R * s * ~R + v;\n"                             // 10
+                           "#pragma clucalc end\n"                                  // 11
+                           "#pragma gpc end\n"                                      // 12
+                           "    y[0] = mv_get_bladecoeff(r, e1);\n"                 // 13
+                           "    yy[1] = mv_get_bladecoeff(r, e2);\n"                // 14: yy is undeclared
+                           "    auto z = to_array(r);\n"                            // 15
+                           "    zz = to_array(r);\n"                                // 16: zz is undeclared
+                           "    return y[0] + z[0];\n"                              // 17
+                           "}\n"                                                    // 18
+                           "float g() { return undeclared_after; }\n";              // 19
+  for (const char* level : {"-O0", "-O2"}) {
+    const Shell r = gpc_run("lines.hpg", text, level);
+    INFO(level << "\n" << r.out);
+    REQUIRE(r.code == 0);
+    const Shell c = cga_test::shell("cd " + scratch() + " && LC_ALL=C " + CXX_COMPILER + " -std=c++17 -fsyntax-only -x c++ out.hpp 2>&1");
+    INFO(c.out);
+    CHECK(c.code != 0);
+    for (const auto& [name, line] : std::vector<std::pair<std::string, int>>{
+             {"vv", 6}, {"angel", 8}, {"scale", 9}, {"yy", 14}, {"zz", 16}, {"undeclared_after", 19}}) {
+      INFO(name);
+      const std::vector<int> lines = error_lines(c.out, "lines.hpg", name);
+      REQUIRE(!lines.empty());
+      CHECK(lines.front() == line);
+    }
+    CHECK(c.out.find("out.hpp:") == std::string::npos);
+  }
 }
 
 TEST_CASE("gpc: a source without blocks is copied unchanged after its #line", "[gpc]") {
