@@ -220,9 +220,17 @@ Multivector exponential(const Call& c) {
     const ex t = root_of_square(a);
     f = fold(a, GiNaC::cosh(t), GiNaC::sinh(t) / t, bind);
   } else {
-    // (The square is not printed: GiNaC's term order differs between processes, and messages must not.)
-    throw CompileError(at, "'exp': cannot tell the sign of the square of its bivector argument B: <B*B>_0 must be "
-                           "visibly <= 0 (a rotation) or >= 0 (a boost)");
+    // The sign of a is not visible (a = (x y + z)^2 expanded): the kernel chooses at run time, branch-free,
+    // between the rotation (a < 0) and the boost (a > 0) forms; near a = 0 (the null, translation-like case)
+    // the Taylor select of fold() takes over, whose series serve both signs. t = sqrt(|a|) keeps the branch not
+    // taken finite.
+    const ex t = bind(GiNaC::sqrt(GiNaC::abs(a)));
+    symbolic::Condition rotation;
+    rotation.op = symbolic::Condition::Op::Lt;
+    rotation.a = a;
+    rotation.b = 0;
+    f = fold(a, bind(symbolic::make_select(rotation, GiNaC::cos(t), GiNaC::cosh(t))),
+             bind(symbolic::make_select(rotation, GiNaC::sin(t) / t, GiNaC::sinh(t) / t)), bind);
   }
   return Multivector(f.c) + (f.s / 2) * four + b * (f.s * Multivector(ex(1)) + f.sp * four);
 }

@@ -124,3 +124,27 @@ TEST_CASE("exp and log refuse what they have no closed form for, at their argume
   CHECK(error_of("cga", "?x = log(a + b*(e1^e2) + c*(einf^e0) + b*c*(e1^e2^einf^e0));\n") == "no error");
   CHECK(error_of("cga", "?x = log(a + b*(e1^e2) + c*(e3^einf));\n") == "no error");
 }
+
+TEST_CASE("exp of a bivector whose square has no visible sign chooses rotation, boost or null at run time") {
+  // B = x e1^e2 + y e1^em: e1^e2 and e1^em anticommute, so B*B = y^2 - x^2, a rotation for |x| > |y|, a boost
+  // for |y| > |x|, null for |x| = |y| (then exp(B) = 1 + B). And (a*b + c) e1^em: a boost whose square,
+  // (ab + c)^2 expanded, is not visibly >= 0.
+  const opt::Program p = compile("cga", "?v = exp(x*(e1^e2) + y*(e1^em));\n?w = exp((a*b + c)*(e1^em));\n");
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0.9, 0.4}, {0.3, 1.2}, {0.7, 0.7}, {0.7, -0.7}, {0, 0}}) {
+    INFO("x = " << x << ", y = " << y);
+    const auto got = run(p, {{"x", x}, {"y", y}, {"a", 1}, {"b", 0}, {"c", 0}});
+    const double sq = y * y - x * x, t = std::sqrt(std::abs(sq));
+    const double c = sq < 0 ? std::cos(t) : sq > 0 ? std::cosh(t) : 1.0;
+    const double s = sq < 0 ? std::sin(t) / t : sq > 0 ? std::sinh(t) / t : 1.0;
+    const Named v = got.count("v") ? got.at("v") : Named{};
+    auto at = [&](const std::string& blade) { return v.count(blade) ? v.at(blade) : 0.0; };
+    CHECK(at("1") == Approx(c).margin(1e-12));
+    CHECK(at("e1^e2") == Approx(s * x).margin(1e-12));
+    // e1^em = e1^e0 + e1^einf / 2 (em = e0 + einf/2).
+    CHECK(at("e1^e0") == Approx(s * y).margin(1e-12));
+    CHECK(at("e1^einf") == Approx(s * y / 2).margin(1e-12));
+  }
+  const auto got = run(p, {{"x", 0}, {"y", 0}, {"a", 1}, {"b", 0.5}, {"c", 0.2}});
+  CHECK(got.at("w").at("1") == Approx(std::cosh(0.7)).epsilon(1e-12));
+  CHECK(got.at("w").at("e1^e0") == Approx(std::sinh(0.7)).epsilon(1e-12));
+}

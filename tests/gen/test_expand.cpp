@@ -418,10 +418,8 @@ TEST_CASE("expander diagnostics") {
         "t.clu:1:24: error: 'exp' of a bivector B of two commuting planes is supported where one is a rotation and "
         "the other a boost (<B*B>_4 squared visibly <= 0, as a rotation with a dilation); write the product of the "
         "exps of its commuting parts\n?x = exp(e1^e2 + e3^e0 - 0.5*(e3^einf));\n                       ^\n");
-  // The square is not printed (GiNaC's term order differs between processes; messages must not).
-  CHECK(diagnostic("?x = exp(a*(e1^e2) + b*(e1^em));\n") ==
-        "t.clu:1:20: error: 'exp': cannot tell the sign of the square of its bivector argument B: <B*B>_0 must be "
-        "visibly <= 0 (a rotation) or >= 0 (a boost)\n?x = exp(a*(e1^e2) + b*(e1^em));\n                   ^\n");
+  // A square of no visible sign: rotation or boost is chosen at run time (test_exp_log).
+  CHECK(diagnostic("?x = exp(a*(e1^e2) + b*(e1^em));\n").empty());
   CHECK(diagnostic("?x = e1/(1 + e1);\n") ==
         "t.clu:1:12: error: cannot divide by this multivector: it has no inverse (d*conjugate(d) = 0)\n"
         "?x = e1/(1 + e1);\n           ^\n");
