@@ -129,7 +129,9 @@ void Expander::warn_if_typo(const std::string& n, SourceLoc loc) {
   std::vector<std::string> known = {"e1", "e2", "e3", "einf", "e0", "ep", "em"};
   known.insert(known.end(), script_names_.begin(), script_names_.end());
   const std::vector<std::string> functions = expand_builtins::names();
-  if (auto k = hints::for_read(n, known, functions))
+  std::vector<std::string> inputs;  // a family of inputs (theta1 ... theta10) is no typo of another name
+  for (const auto& in : kernel_.inputs) inputs.push_back(in.name);
+  if (auto k = hints::for_read(n, known, functions, inputs))
     kernel_.warnings.push_back({loc, "'" + n + "' is used before it is assigned and becomes an input; did you mean '" +
                                          *k + "'?"});
 }
