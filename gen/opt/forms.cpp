@@ -20,6 +20,34 @@ using namespace GiNaC;
 // every process.
 size_t tree_size(const ex& e) { return symbolic::tree_symbol_count(e); }
 
+size_t printed_size(const ex& e) {
+  std::unordered_map<const basic*, size_t> memo;  // nodes of e, alive while e is
+  auto power_of = [](const numeric& k, size_t base) {
+    // x^k is printed as |k| factors (a negative k under a division); other exponents are one call of x.
+    if (!k.is_integer()) return base;
+    const long n = std::labs(k.to_long());
+    return base * static_cast<size_t>(std::max(1L, n));
+  };
+  auto count = [&](auto&& self, const ex& x) -> size_t {
+    if (symbolic::is_symbol(x)) return 1;
+    if (x.nops() == 0) return 0;
+    if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;
+    size_t n = 0;
+    if (symbolic::is_mul(x)) {
+      for (const auto& pair : symbolic::pairs_of(x)) n += power_of(ex_to<numeric>(pair.coeff), self(self, pair.rest));
+    } else if (symbolic::is_add(x)) {
+      for (const auto& pair : symbolic::pairs_of(x)) n += self(self, pair.rest);
+    } else if (symbolic::is_power(x) && symbolic::is_numeric(x.op(1))) {
+      n = power_of(ex_to<numeric>(x.op(1)), self(self, x.op(0)));
+    } else {
+      for (size_t i = 0; i < x.nops(); ++i) n += self(self, x.op(i));
+    }
+    memo.emplace(symbolic::node_of(x), n);
+    return n;
+  };
+  return count(count, e);
+}
+
 bool is_atomic(const ex& e) { return symbolic::is_symbol_number_or_constant(e); }
 
 bool has_denominator(const ex& e) { return symbolic::has_negative_power(e); }

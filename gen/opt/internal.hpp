@@ -46,6 +46,9 @@ class PhaseTimer {
 // GiNaC's process-dependent choices ((a-b)*x or -(b-a)*x), so budget decisions and notes are the same in
 // every process.
 size_t tree_size(const GiNaC::ex& e);
+// The size of e as printed (lower.hpp's rules): its symbol occurrences with an integer power x^k counted |k|
+// times (x*x*...*x), so that a short sum of high powers is as large as the code it becomes.
+size_t printed_size(const GiNaC::ex& e);
 bool is_atomic(const GiNaC::ex& e);
 bool has_denominator(const GiNaC::ex& e);
 void collect_symbols(const GiNaC::ex& e, ExSet& out);

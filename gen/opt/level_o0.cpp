@@ -8,14 +8,10 @@ using namespace GiNaC;
 // -O0: every value coefficient as a temporary, as written.
 Program optimize_o0(const Kernel& k) {
   Program p = skeleton(k, Level::O0);
-  Namer namer(k.inputs);
-  std::map<std::string, int> seen;
-  for (const auto& v : k.values) {
-    int n = ++seen[v.name];
-    std::string prefix = n == 1 ? "v_" : "v" + std::to_string(n) + "_";
-    for (size_t i = 0; i < v.blades.size(); ++i)
-      p.temps.push_back({namer.fresh(prefix + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
-                         v.symbols[i], v.coeffs[i]});
+  const ValueNames names(k);
+  for (size_t vi = 0; vi < k.values.size(); ++vi) {
+    const auto& v = k.values[vi];
+    for (size_t i = 0; i < v.blades.size(); ++i) p.temps.push_back({names.of(vi, i), v.symbols[i], v.coeffs[i]});
   }
   for (const auto& o : k.outputs) {
     ProgramOutput po{o.name, {}};

@@ -9,17 +9,18 @@ using namespace GiNaC;
 StatementForm statement_form(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans) {
   StatementForm f;
   exmap atomic;
-  Namer namer(k.inputs);
-  for (const auto& v : k.values)
+  const ValueNames names(k);
+  for (size_t vi = 0; vi < k.values.size(); ++vi) {
+    const auto& v = k.values[vi];
     for (size_t i = 0; i < v.blades.size(); ++i)
       if (s.needed.count(v.symbols[i])) {
         ex c = canonical(atomic.empty() ? v.coeffs[i] : v.coeffs[i].subs(atomic, kSymbolSubs)).value();
         if (is_atomic(c))
           atomic[v.symbols[i]] = c;
         else
-          f.temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])),
-                             v.symbols[i], c});
+          f.temps.push_back({names.of(vi, i), v.symbols[i], c});
       }
+  }
   for (const auto& slots : plans)
     for (const auto& sp : slots) {
       auto it = atomic.find(sp.value_sym);
@@ -28,12 +29,12 @@ StatementForm statement_form(const Kernel& k, const Substituted& s, const std::v
   return f;
 }
 
-// The size (tree_size) of the expanded (-O1) form: what the CSE passes and the printer would work through.
+// The size (printed_size) of the expanded (-O1) form: what the CSE passes and the printer would work through.
 size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vector<SlotPlan>>& plans) {
   size_t n = 0;
   for (const auto& slots : plans)
-    for (const auto& sp : slots) n += tree_size(sp.value.num) + tree_size(sp.value.den);
-  for (const auto& t : kept) n += tree_size(t.value);
+    for (const auto& sp : slots) n += printed_size(sp.value.num) + printed_size(sp.value.den);
+  for (const auto& t : kept) n += printed_size(t.value);
   return n;
 }
 

@@ -5,6 +5,7 @@
 // normalized.cpp (`#pragma normalized` rewriting). Helpers they share are here.
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <stdexcept>
 
 #include "opt/levels.hpp"
@@ -28,6 +29,18 @@ std::string sanitize(const std::string& s) {
   std::string r;
   for (char c : s) r += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
   return r;
+}
+
+ValueNames::ValueNames(const Kernel& k) {
+  Namer namer(k.inputs);
+  std::map<std::string, int> seen;
+  for (const auto& v : k.values) {
+    const int n = ++seen[v.name];
+    const std::string prefix = n == 1 ? "v_" : "v" + std::to_string(n) + "_";
+    auto& names = names_.emplace_back();
+    for (size_t i = 0; i < v.blades.size(); ++i)
+      names.push_back(namer.fresh(prefix + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])));
+  }
 }
 
 int blade_pos(const KernelValue& v, algebra::BladeIndex b) {

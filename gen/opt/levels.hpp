@@ -11,7 +11,8 @@
 
 namespace cgagen::opt::detail {
 
-// Above this size (tree_size) of the -O1 form, -O1 emits and -O2 optimizes only the script's statement form.
+// Above this size (printed_size: symbol occurrences as printed) of the -O1 form, -O1 emits and -O2 optimizes
+// only the script's statement form.
 // The bundled runtime kernels stay below 1300; paper A.1 has 8807 and circle3 208494.
 constexpr size_t kMaxExpandedNodes = 4000;
 // Past this size of the -O1 form (counted while substituting, over the output coefficients that
@@ -23,6 +24,17 @@ constexpr size_t kMaxCountedNodes = kMaxExpandedNodes;
 
 // A script value's name as part of an identifier.
 std::string sanitize(const std::string& s);
+// The names of the temporaries of the kernel's values in order: v_NAME_BLADE for a name's first assignment,
+// vN_NAME_BLADE for its N-th (as -O0 prints them). Numbered rather than told apart by appended '_' (which
+// Namer would do): 800 assignments to one name would make names, and the canonical keys built from them,
+// as long as the script.
+class ValueNames {
+ public:
+  explicit ValueNames(const Kernel& k);
+  const std::string& of(size_t value, size_t blade) const { return names_.at(value).at(blade); }
+ private:
+  std::vector<std::vector<std::string>> names_;
+};
 // The position of blade b among v's blades, or -1.
 int blade_pos(const KernelValue& v, algebra::BladeIndex b);
 // An empty program for the kernel at the level (name, algebra, inputs).
@@ -67,7 +79,7 @@ struct StatementForm {
 
 StatementForm statement_form(const Kernel& k, const Substituted& s, const std::vector<std::vector<SlotPlan>>& plans);
 
-// The size (tree_size) of the expanded (-O1) form: what the CSE passes and the printer would work through.
+// The size (printed_size) of the expanded (-O1) form: what the CSE passes and the printer would work through.
 size_t expanded_size(const std::vector<Temp>& kept, const std::vector<std::vector<SlotPlan>>& plans);
 
 // The note a level leaves when it kept the statement form.

@@ -1,4 +1,5 @@
 // -O2 pass "single-use inlining": a temporary used once goes back into its user; an unused one is dropped.
+#include <algorithm>
 #include <map>
 
 #include "opt/cse.hpp"
@@ -6,6 +7,13 @@
 namespace cgagen::opt::detail {
 
 using namespace GiNaC;
+
+// A temporary is not inlined where its user would pass this many symbol occurrences or this depth (the
+// bundled and test scripts stay below 350 and 9). A chain of single-use temporaries (M = M*R: one blade's
+// coefficient feeds only the next one's) would otherwise become one expression as deep as the script, and
+// each inlining walks its user and keys its new nodes: time and memory quadratic in the script.
+constexpr size_t kMaxInlinedSymbols = 1000;
+constexpr size_t kMaxInlinedDepth = 32;
 
 // Temporaries used once are put back into their user; unused ones are dropped.
 void inline_single_use(CseState& st, std::vector<ex>& roots) {
@@ -15,11 +23,23 @@ void inline_single_use(CseState& st, std::vector<ex>& roots) {
   symbolic::ExHashMap<size_t> temp_index;
   for (size_t i = 0; i < nt; ++i) temp_index[st.temps[i].sym] = i;
   std::vector<std::map<size_t, int>> occ(nt);  // temp -> node -> occurrences
+  // Each expression's symbol occurrences and depth (as a tree; a symbol or number has depth 0).
+  std::vector<size_t> size(nt + roots.size(), 0), depth(nt + roots.size(), 0);
   auto account = [&](const ex& e, size_t node, int delta) {
-    for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
-      if (is_a<symbol>(*it))
-        if (auto ti = temp_index.find(*it); ti != temp_index.end())
+    size_t n = 0;
+    auto walk = [&](auto&& self, const ex& x) -> size_t {
+      if (is_a<symbol>(x)) {
+        ++n;
+        if (auto ti = temp_index.find(x); ti != temp_index.end())
           if ((occ[ti->second][node] += delta) == 0) occ[ti->second].erase(node);
+        return 0;
+      }
+      size_t d = 0;
+      for (size_t k = 0; k < x.nops(); ++k) d = std::max(d, self(self, x.op(k)) + 1);
+      return d;
+    };
+    const size_t d = walk(walk, e);
+    if (delta > 0) size[node] = n, depth[node] = d;
   };
   auto value_of = [&](size_t node) -> ex& { return node < nt ? st.temps[node].value : roots[node - nt]; };
   for (size_t i = 0; i < nt; ++i) account(st.temps[i].value, i, +1);
@@ -32,6 +52,7 @@ void inline_single_use(CseState& st, std::vector<ex>& roots) {
     if (uses >= 2) continue;
     if (uses == 1) {
       const size_t user = occ[i].begin()->first;
+      if (size[user] + size[i] > kMaxInlinedSymbols || depth[user] + depth[i] > kMaxInlinedDepth) continue;
       ex& target = value_of(user);
       ex v = target.subs(exmap{{t.sym, t.value}}, kSymbolSubs);
       // GiNaC may re-simplify on substitution; keep the temporary when that would cost more.

@@ -19,6 +19,13 @@ constexpr double kMaxInlineTerms = 4000;
 // and divisors, and the zero test's normal() on such a form does not finish (Gaalop's GPS trilateration,
 // whose distance checks reach 15 million). The bundled scripts stay below 11000, GPS's spheres at 92000.
 constexpr size_t kMaxInlineTreeSize = 100000;
+// Above this size (printed_size) of one needed value with its earlier values substituted and expanded, the
+// -O1 form is taken as over its budget (kMaxExpandedNodes) and substitution stops: the value becomes part of
+// an output or a temporary, unless later values cancel it, and substituting it further costs time
+// quadratic in the script (a chain M = M*R: each M is one term longer than the one before, of one degree
+// more; 800 steps took 15 s). Twice the budget leaves room for such cancellation; the bundled scripts'
+// values that -O1 keeps expanded stay far below.
+constexpr size_t kMaxValueNodes = 2 * kMaxExpandedNodes;
 
 // e.subs(at, kSymbolSubs) for a map from symbols to values, computing each shared node once across all
 // calls (the outputs of a normalized value share one root of a large sum), and the result with each power
@@ -120,7 +127,7 @@ Substituted substitute(const Kernel& k) {
             sizes.erase(u);
             shared.clear();
             // A materialized value is a temporary of the -O1 form: its size counts towards that form's.
-            counted += tree_size(s.full.at(u).value());
+            counted += printed_size(s.full.at(u).value());
           }
         if (counted > kMaxCountedNodes) {
           s.over_count = true;
@@ -128,12 +135,16 @@ Substituted substitute(const Kernel& k) {
         }
         r = canonical(shared.roots_expanded(shared.subs(v.coeffs[i])));
       }
+      if (printed_size(r.num) > kMaxValueNodes) {
+        s.over_count = true;
+        return s;
+      }
       subst[sym] = r.value();
       sizes[sym] = is_a<add>(r.num) ? static_cast<double>(r.num.nops()) : 1.0;
       s.full[sym] = r;
       // An output coefficient that combine_fractions keeps is the -O1 slot as it stands.
       if (auto u = slot_uses.find(sym); u != slot_uses.end() && combine_keeps(r)) {
-        counted += u->second * tree_size(r.num);
+        counted += u->second * printed_size(r.num);
         if (counted > kMaxCountedNodes) {
           s.over_count = true;
           return s;
@@ -149,13 +160,14 @@ Substituted substitute(const Kernel& k) {
 // The materialized values as temporaries (named after the script's values).
 std::vector<Temp> materialized_temps(const Kernel& k, const Substituted& s) {
   std::vector<Temp> temps;
-  Namer namer(k.inputs);
+  const ValueNames names(k);
   const ExSet materialized(s.materialized.begin(), s.materialized.end());  // (a list scan per value was quadratic)
-  for (const auto& v : k.values)
+  for (size_t vi = 0; vi < k.values.size(); ++vi) {
+    const auto& v = k.values[vi];
     for (size_t i = 0; i < v.blades.size(); ++i)
       if (materialized.count(v.symbols[i]))
-        temps.push_back({namer.fresh("v_" + sanitize(v.name) + "_" + algebra::blade_ident(v.blades[i])), v.symbols[i],
-                         s.full.at(v.symbols[i]).value()});
+        temps.push_back({names.of(vi, i), v.symbols[i], s.full.at(v.symbols[i]).value()});
+  }
   return temps;
 }
 
