@@ -4,7 +4,9 @@
 
 #include "symbolic/dag.hpp"
 #include "symbolic/multivector.hpp"
+#include <algorithm>
 #include <set>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -330,10 +332,43 @@ ZeroTests::Verdict ZeroTests::precise_verdict(const ex& c) {
 // The exact test: the chain of values inlined and expanded. Past this many tree nodes it would take minutes
 // and gigabytes, so the coefficient is kept: a coefficient kept that is in fact zero costs code, never a
 // wrong value.
+constexpr size_t kMaxInlinedNodes = 200000;
+
+namespace {
+
+// Whether expand(e) could have more than `cap` terms: a sum has at most the sum of its terms' counts, a
+// product the product of its factors', a positive integer power the power of its base's; anything else is
+// one term. Each node is counted once (inlined values share their subexpressions), saturating at cap + 1.
+bool expansion_larger_than(const ex& e, size_t cap) {
+  std::unordered_map<const GiNaC::basic*, size_t> memo;
+  auto sat_mul = [cap](size_t a, size_t b) { return a != 0 && b > (cap + 1) / a ? cap + 1 : std::min(a * b, cap + 1); };
+  auto terms = [&](auto&& self, const ex& x) -> size_t {
+    if (x.nops() == 0 || GiNaC::is_a<GiNaC::function>(x)) return 1;
+    if (auto it = memo.find(node_of(x)); it != memo.end()) return it->second;
+    size_t n = 1;
+    if (GiNaC::is_a<GiNaC::add>(x)) {
+      n = 0;
+      for (size_t i = 0; i < x.nops(); ++i) n = std::min(n + self(self, x.op(i)), cap + 1);
+    } else if (GiNaC::is_a<GiNaC::mul>(x)) {
+      for (size_t i = 0; i < x.nops(); ++i) n = sat_mul(n, self(self, x.op(i)));
+    } else if (GiNaC::is_a<GiNaC::power>(x) && GiNaC::is_a<GiNaC::numeric>(x.op(1)) &&
+               GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_pos_integer()) {
+      const size_t base = self(self, x.op(0));
+      const long k = GiNaC::ex_to<GiNaC::numeric>(x.op(1)).to_long();
+      for (long i = 0; i < k && n <= cap; ++i) n = sat_mul(n, base);
+    }
+    memo.emplace(node_of(x), n);
+    return n;
+  };
+  return terms(terms, e) > cap;
+}
+
+}  // namespace
+
 bool ZeroTests::exactly_zero(const ex& c) {
-  constexpr size_t kMaxInlinedNodes = 200000;
+  met_over_cap_ = false;
   const ex inlined = inline_values(c);
-  if (tree_size(inlined, kMaxInlinedNodes) > kMaxInlinedNodes) return false;
+  if (met_over_cap_ || tree_size(inlined, kMaxInlinedNodes) > kMaxInlinedNodes) return false;
   return is_identically_zero(trig_reduced(zero_preserving_core(inlined)));
 }
 
@@ -348,8 +383,26 @@ void ZeroTests::collect_inlined(const ex& e, GiNaC::exmap& subs) {
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     auto def = definitions_.find(e);
     if (def == definitions_.end() || subs.count(e)) return;
+    if (over_cap_.count(e)) {
+      met_over_cap_ = true;
+      return;
+    }
     auto done = inlined_.find(e);
-    if (done == inlined_.end()) done = inlined_.emplace(e, inline_values(def->second).expand()).first;
+    if (done == inlined_.end()) {
+      // The size is checked before expanding: each squaring M = M*M doubles the expanded size, and expanding
+      // the 128th would not finish. A definition past the cap makes every test that inlines it inexact.
+      const bool outer = met_over_cap_;
+      met_over_cap_ = false;
+      const ex body = inline_values(def->second);
+      const bool inner_over_cap = met_over_cap_;
+      met_over_cap_ = outer;
+      if (inner_over_cap || tree_larger_than(body, kMaxInlinedNodes) || expansion_larger_than(body, kMaxInlinedNodes)) {
+        over_cap_.insert(e);
+        met_over_cap_ = true;
+        return;
+      }
+      done = inlined_.emplace(e, body.expand()).first;
+    }
     subs[e] = done->second;
     return;
   }

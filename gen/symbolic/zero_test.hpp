@@ -76,6 +76,10 @@ class ZeroTests {
   // Each value symbol's definition, and (on demand) that definition inlined down to the inputs.
   GiNaC::exmap definitions_;
   GiNaC::exmap inlined_;
+  // The value symbols whose inlined definitions are past the exact test's size cap (never expanded), and
+  // whether the last inline_values met one.
+  std::set<GiNaC::ex, GiNaC::ex_is_less> over_cap_;
+  bool met_over_cap_ = false;
   // The value symbols whose definitions are analytic in the inputs (step 4 may call them zero).
   std::set<GiNaC::ex, GiNaC::ex_is_less> analytic_values_;
   // The value symbols whose definitions depend on no input (a point of constants, its magnitude).
