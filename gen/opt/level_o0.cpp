@@ -1,4 +1,5 @@
-// -O0: every value coefficient of the script as a temporary, as written; outputs copy the value symbols.
+// -O0: every value coefficient of the script that an output reads as a temporary, as written; outputs copy
+// the value symbols.
 #include "opt/levels.hpp"
 
 namespace cgagen::opt::detail {
@@ -22,6 +23,7 @@ Program optimize_o0(const Kernel& k) {
     }
     p.outputs.push_back(std::move(po));
   }
+  drop_unread_temps(p);
   return p;
 }
 }  // namespace cgagen::opt::detail

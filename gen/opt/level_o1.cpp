@@ -58,6 +58,7 @@ Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std
       for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, f.roots.at(ri++)});
       p.outputs.push_back(std::move(po));
     }
+    drop_unread_temps(p);
     return p;
   }
   for (size_t oi = 0; oi < k.outputs.size(); ++oi) {
@@ -65,6 +66,7 @@ Program optimize_o1(const Kernel& k, const Substituted& s, const std::vector<std
     for (const auto& sp : plans[oi]) po.slots.push_back({sp.blade, sp.value.value()});
     p.outputs.push_back(std::move(po));
   }
+  drop_unread_temps(p);
   return p;
 }
 }  // namespace cgagen::opt::detail

@@ -57,6 +57,33 @@ Program skeleton(const Kernel& k, Level level) {
   return p;
 }
 
+void drop_unread_temps(Program& p) {
+  symbolic::ExHashMap<size_t> index;
+  for (size_t i = 0; i < p.temps.size(); ++i) index[p.temps[i].sym] = i;
+  std::vector<bool> read(p.temps.size(), false);
+  std::vector<size_t> todo;
+  auto reads = [&](const ex& e) {
+    ExSet syms;
+    collect_symbols(e, syms);
+    for (const auto& sym : syms)
+      if (auto it = index.find(sym); it != index.end() && !read[it->second]) {
+        read[it->second] = true;
+        todo.push_back(it->second);
+      }
+  };
+  for (const auto& o : p.outputs)
+    for (const auto& slot : o.slots) reads(slot.value);
+  while (!todo.empty()) {
+    const size_t i = todo.back();
+    todo.pop_back();
+    reads(p.temps[i].value);
+  }
+  std::vector<Temp> kept;
+  for (size_t i = 0; i < p.temps.size(); ++i)
+    if (read[i]) kept.push_back(std::move(p.temps[i]));
+  p.temps = std::move(kept);
+}
+
 }  // namespace detail
 
 namespace {

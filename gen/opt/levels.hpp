@@ -39,6 +39,9 @@ class ValueNames {
 int blade_pos(const KernelValue& v, algebra::BladeIndex b);
 // An empty program for the kernel at the level (name, algebra, inputs).
 Program skeleton(const Kernel& k, Level level);
+// Drops the temporaries no output reads, directly or through other temporaries (a value's blade that an
+// `#pragma output` leaves out): every target then compiles -O0 and -O1 code without unused variables.
+void drop_unread_temps(Program& p);
 
 // Values substituted into each other, only for the coefficients the outputs need. A value coefficient
 // whose expansion would be too large keeps its earlier values as temporaries ("materialized").

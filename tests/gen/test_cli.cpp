@@ -1,13 +1,16 @@
 // The cgagen command line: exit codes and messages, determinism across processes, --stats/--diff/--eval.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <sstream>
 #include <vector>
 #include <fstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "cli_run.hpp"
 #include "opt/passes.hpp"
@@ -311,4 +314,36 @@ TEST_CASE("cli: --target list prints the table of targets, --target-extension th
   CHECK(r.out == ".py\n");
   r = run("--target-extension fortran");
   CHECK(r.code == 2);
+}
+
+TEST_CASE("the C++ of every bundled kernel compiles without a warning at every level", "[cli]") {
+  // -O0 and -O1 print the script's statements: a value's blade that no output reads (one an `#pragma output`
+  // leaves out) must not become an unused variable, or a user's -Wall -Werror build fails. All kernels of a
+  // level go into one translation unit (their names differ), compiled once.
+  namespace fs = std::filesystem;
+  std::vector<fs::path> scripts;
+  for (const auto& e : fs::directory_iterator(fs::path(CGA_SOURCE_DIR) / "runtime" / "scripts"))
+    if (e.path().extension() == ".clu") scripts.push_back(e.path());
+  std::sort(scripts.begin(), scripts.end());
+  scripts.push_back(fs::path(CGA_SOURCE_DIR) / "bench" / "ik_arm" / "arm5.clu");
+  scripts.push_back(fs::path(CGA_SOURCE_DIR) / "tests" / "diff" / "regressions" / "products_words.clu");
+  const fs::path dir = fs::path(CGA_BINARY_DIR) / ("warnings_" + std::to_string(static_cast<long>(getpid())));
+  fs::create_directories(dir);
+  for (const char* level : {"-O0", "-O1", "-O2"}) {
+    std::string tu;
+    for (const auto& s : scripts) {
+      const fs::path out = dir / (s.stem().string() + level + ".hpp");
+      auto r = run(std::string(level) + " --target cpp -o " + out.string() + " " + s.string());
+      INFO(s << " " << level << ": " << r.out);
+      REQUIRE(r.code == 0);
+      tu += "#include \"" + out.string() + "\"\n";
+    }
+    tu += "int main() { return 0; }\n";
+    const fs::path src = dir / (std::string("all") + level + ".cpp");
+    std::ofstream(src) << tu;
+    auto c = cga_test::shell("c++ -std=c++17 -Wall -Wextra -Wshadow -Wunused -Werror -fsyntax-only " + src.string() + " 2>&1");
+    INFO(level << ": " << c.out.substr(0, 2000));
+    CHECK(c.code == 0);
+  }
+  fs::remove_all(dir);
 }

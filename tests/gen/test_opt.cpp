@@ -144,7 +144,7 @@ TEST_CASE("O1 drops dead values and zero blades, keeps pragma'd blades as 0", "[
   auto k = cga_test::normalize_kernel();
   auto p0 = opt::optimize(k, Level::O0);
   auto p1 = opt::optimize(k, Level::O1);
-  CHECK(p0.temps.size() == 5);  // n, u (2 blades), dead, s: kept at -O0
+  CHECK(p0.temps.size() == 4);  // n, u (2 blades), s: as written; the value no output reads (dead) is dropped
   CHECK(p1.temps.empty());
   REQUIRE(p1.outputs.size() == 2);
   CHECK(p1.outputs[0].slots.size() == 2);
