@@ -19,6 +19,7 @@
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/runtime/jobs.hpp"
 #include "cga/io/loader.hpp"
+#include "model_files.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
@@ -32,37 +33,9 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-std::string model(const char* rel) { return std::string(CGA_MODELS_DIR) + "/" + rel; }
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in.good());
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// A temporary folder of this process, removed at exit. Per process because ctest runs each test case as
-// its own process, in parallel: a shared folder was removed by one while another wrote into it.
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("cga_test_bad_input." + std::to_string(::getpid()));
-  TempDir() {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
-
-// A file in this process's temporary folder.
-std::string temp_file(const std::string& name, const std::string& bytes) {
-  static const TempDir dir;
-  const fs::path p = dir.path / name;
-  std::ofstream out(p, std::ios::binary);
-  out << bytes;
-  REQUIRE(out.good());
-  return p.string();
-}
+using cga_test::model;
+using cga_test::read_bytes;
+using cga_test::temp_file;
 
 // Loading must either throw LoadError naming the path, or give a character that is safe to use.
 // Returns true when it threw.

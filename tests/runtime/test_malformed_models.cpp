@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cga/io/loader.hpp"
+#include "model_files.hpp"
 #include "isolated.hpp"
 
 using namespace cga;
@@ -26,35 +27,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string model(const char* rel) { return std::string(CGA_MODELS_DIR) + "/" + rel; }
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in.good());
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// A temporary folder of this process, removed at exit (ctest runs test cases as parallel processes).
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("cga_test_malformed_models." + std::to_string(::getpid()));
-  TempDir() {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
-
-std::string temp_file(const std::string& name, const std::string& bytes) {
-  static const TempDir dir;
-  const fs::path p = dir.path / name;
-  std::ofstream out(p, std::ios::binary);
-  out << bytes;
-  REQUIRE(out.good());
-  return p.string();
-}
+using cga_test::model;
+using cga_test::read_bytes;
+using cga_test::temp_file;
 
 bool finite(float x) { return std::isfinite(x); }
 bool finite_transform(const Transform& x) {
