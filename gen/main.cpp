@@ -474,7 +474,8 @@ int run(const Options& o) {
       return 0;
     }
     if (o.stats) {
-      write_text(o.output, opt::format_stats(program) + opt::format_products(kernel) + opt::format_inputs(program));
+      write_text(o.output, opt::format_stats(program) + opt::format_passes(program) + opt::format_products(kernel) +
+                               opt::format_inputs(program));
       return 0;
     }
     std::string code = emit::emit(program, eo);

@@ -1,6 +1,8 @@
 // --stats text, double-precision evaluation, line diffs (see report.hpp).
 #include "opt/report.hpp"
 
+#include "opt/passes.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -25,6 +27,13 @@ std::string format_stats(const Program& p) {
   s += "total: " + format_counts(st.total) + "\n";
   for (const auto& n : p.notes) s += "note: " + n + "\n";
   return s;
+}
+
+std::string format_passes(const Program& p) {
+  if (p.level != Level::O2) return "";
+  std::string s = "passes:";
+  for (const auto& pass : pass_table()) s += " " + pass.name;
+  return s + "\n";
 }
 
 std::string format_products(const Kernel& k) {

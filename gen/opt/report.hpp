@@ -19,6 +19,9 @@ std::string format_counts(const OpCounts& c);
 // The products the expander's products stage named once and reused (expand/words.hpp), one line each:
 // "product R2_R1 = R2*R1: bound once, 2 reuses"; "" when there are none.
 std::string format_products(const Kernel& kernel);
+// "passes: orient, pair-products, ...": the -O2 passes in the order they ran (cgagen --passes describes
+// them); "" below -O2.
+std::string format_passes(const Program& program);
 
 // Input values by name: one value for a scalar input, one per declared blade for a multivector input.
 using InputValues = std::map<std::string, std::vector<double>>;

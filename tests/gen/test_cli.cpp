@@ -59,6 +59,11 @@ TEST_CASE("the pass table: cgagen --passes lists the -O2 passes in run order and
                            "drop-aliases", "merge-equal"})
     CHECK(r.out.find(name) != std::string::npos);
   CHECK(run("--help").out.find("--passes") != std::string::npos);
+  // --stats names them at -O2, in the same order, and not below.
+  std::string names = "\npasses:";
+  for (const auto& p : cgagen::opt::pass_table()) names += " " + p.name;
+  CHECK(run("--stats -O2 " + script("motor_mul.clu")).out.find(names + "\n") != std::string::npos);
+  CHECK(run("--stats -O1 " + script("motor_mul.clu")).out.find("passes:") == std::string::npos);
 }
 
 TEST_CASE("script errors exit 1 with file:line:col and a caret", "[cli]") {
