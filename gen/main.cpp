@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "algebra/algebra.hpp"
+#include "expand/algebra_pragma.hpp"
 #include "emit/emit.hpp"
 #include "emit/names.hpp"
 #include "emit/statements.hpp"
@@ -99,6 +100,7 @@ struct Options {
   opt::InputValues eval_inputs;
   bool werror = false;
   std::string algebra = "cga";
+  bool algebra_given = false;  // --algebra on the command line (a script's #pragma algebra must agree)
   std::vector<std::string> uniforms;  // --uniform
   bool gpc = false;                   // --gpc
   std::string type;                   // --type (--gpc)
@@ -188,6 +190,7 @@ Options parse_args(int argc, char** argv) {
         o.emit.return_output = value(i, a);
       } else if (a == "--algebra") {
         o.algebra = value(i, a);
+        o.algebra_given = true;
       } else if (a == "--uniform") {
         std::stringstream ss(value(i, a));
         std::string item;
@@ -432,6 +435,13 @@ int run(const Options& o) {
   try {
     symbolic::NodeCacheScope caches;  // shared by the expander and every optimization of this script
     front::Script script = front::parse(file);
+    const std::string dir = from_stdin ? "" : std::filesystem::path(o.script).parent_path().string();
+    if (auto sa = expand_algebra_pragma::script_algebra(script, dir)) {
+      if (o.algebra_given &&
+          expand_algebra_pragma::algebra_name(o.algebra) != expand_algebra_pragma::algebra_name(sa->spelling))
+        throw front::CompileError(sa->loc, "'#pragma algebra " + sa->spelling + "' conflicts with --algebra " + o.algebra);
+      algebra::use(sa->algebra);
+    }
     if (o.dump_ast) {
       std::string out;
       for (const auto& s : script.statements) dump_stmt(*s, out, "");

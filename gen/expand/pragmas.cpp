@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "algebra/algebra.hpp"
+#include "expand/algebra_pragma.hpp"
 
 namespace cgagen::expand_pragmas {
 
@@ -154,6 +155,12 @@ void Pragmas::apply(const Stmt& s, Kernel& kernel, PragmaHost& host) {
     // A promise about inputs (X ~X = 1) for -O2 (opt/levels.cpp checks the names once all inputs are known).
     if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma normalized' needs at least one input name");
     for (size_t i = 1; i < s.words.size(); ++i) kernel.normalized.push_back({s.words[i], word_loc(s, i)});
+  } else if (kind == "algebra") {
+    // Chosen before expansion (expand/algebra_pragma.hpp); here only checked, so that no caller expands the
+    // script in another algebra without a word.
+    if (s.words.size() == 2 && expand_algebra_pragma::algebra_name(s.words[1]) != algebra::current().name())
+      throw CompileError(word_loc(s, 1), "'#pragma algebra " + s.words[1] + "': the script is being compiled in '" +
+                                             algebra::current().name() + "' (a conflicting --algebra or ALGEBRA?)");
   } else if (kind == "versor") {
     // A promise that a name's value is a versor for every input passed: division by it takes ~x / <x ~x>_0.
     if (s.words.size() < 2) throw CompileError(s.loc, "'#pragma versor' needs at least one name");
@@ -165,7 +172,7 @@ void Pragmas::apply(const Stmt& s, Kernel& kernel, PragmaHost& host) {
     }
   } else {
     throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
-                                       "normalized, versor, onlyEvaluate, in2out, normalize, segments or triangles)");
+                                       "normalized, versor, algebra, onlyEvaluate, in2out, normalize, segments or triangles)");
   }
 }
 

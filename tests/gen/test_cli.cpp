@@ -352,3 +352,27 @@ TEST_CASE("the C++ of every bundled kernel compiles without a warning at every l
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("#pragma algebra: a script names its algebra; a conflicting --algebra is a located error", "[cli]") {
+  const std::string pga = write_temp("pragma_algebra_pga.clu", "#pragma algebra 3dpga\n?p = e0^e1;\n");
+  auto r = run("--eval " + pga);
+  INFO(r.out);
+  CHECK(r.code == 0);
+  CHECK(r.out == "p e0^e1 1\n");  // in CGA, e0^e1 would be -e1^e0
+  CHECK(run("--algebra 3dpga --eval " + pga).code == 0);  // the same algebra named twice
+  r = run("--algebra cga " + pga);
+  CHECK(r.code == 1);
+  CHECK(r.out.rfind(pga + ":1:17: error: '#pragma algebra 3dpga' conflicts with --algebra cga\n", 0) == 0);
+  // A definition file next to the script, by a relative name.
+  write_temp("pragma_algebra_plane.csv", "1,e1,e2\n\n1,e1,e2\ne1=1,e2=1\n\n");
+  const std::string file = write_temp("pragma_algebra_file.clu", "#pragma algebra pragma_algebra_plane.csv\n?q = e1*e2*e1;\n");
+  r = run("--eval " + file);
+  INFO(r.out);
+  CHECK(r.out == "q e2 -1\n");
+  r = run(write_temp("pragma_algebra_bad.clu", "#pragma algebra nowhere\n?p = e1;\n"));
+  CHECK(r.code == 1);
+  CHECK(r.out.find("pragma_algebra_bad.clu:1:17: error: '#pragma algebra': unknown algebra") != std::string::npos);
+  r = run(write_temp("pragma_algebra_two.clu", "#pragma algebra 3dpga\n#pragma algebra cga\n?p = e1;\n"));
+  CHECK(r.out.find("pragma_algebra_two.clu:2:17: error: '#pragma algebra cga' after '#pragma algebra 3dpga' at line 1") !=
+        std::string::npos);
+}

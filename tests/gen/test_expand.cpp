@@ -418,6 +418,11 @@ TEST_CASE("expander diagnostics") {
         "t.clu:1:24: error: 'exp' of a bivector B of two commuting planes is supported where one is a rotation and "
         "the other a boost (<B*B>_4 squared visibly <= 0, as a rotation with a dilation); write the product of the "
         "exps of its commuting parts\n?x = exp(e1^e2 + e3^e0 - 0.5*(e3^einf));\n                       ^\n");
+  // A script that names another algebra than the one it is expanded in (a caller that did not select it).
+  CHECK(diagnostic("#pragma algebra 3dpga\n?x = e1;\n") ==
+        "t.clu:1:17: error: '#pragma algebra 3dpga': the script is being compiled in 'cga' (a conflicting --algebra "
+        "or ALGEBRA?)\n#pragma algebra 3dpga\n                ^\n");
+  CHECK(diagnostic("#pragma algebra cga\n?x = e1;\n").empty());
   // A square of no visible sign: rotation or boost is chosen at run time (test_exp_log).
   CHECK(diagnostic("?x = exp(a*(e1^e2) + b*(e1^em));\n").empty());
   CHECK(diagnostic("?x = e1/(1 + e1);\n") ==
@@ -440,7 +445,7 @@ TEST_CASE("expander diagnostics") {
 
 TEST_CASE("pragma diagnostics") {
   CHECK(diagnostic("#pragma foo x\n?x = 1;\n") ==
-        "t.clu:1:9: error: unknown pragma 'foo' (expected output, input, range, uniform, normalized, versor, onlyEvaluate, in2out, normalize, segments or triangles)\n#pragma foo x\n        ^\n");
+        "t.clu:1:9: error: unknown pragma 'foo' (expected output, input, range, uniform, normalized, versor, algebra, onlyEvaluate, in2out, normalize, segments or triangles)\n#pragma foo x\n        ^\n");
   CHECK(diagnostic("#pragma output x e1 e5\n?x = 1;\n") ==
         "t.clu:1:21: error: unknown blade 'e5' in '#pragma output'\n#pragma output x e1 e5\n                    ^\n");
   CHECK(diagnostic("#pragma output x e0^einf\n?x = 1;\n") ==
