@@ -353,7 +353,7 @@ TEST_CASE("the C++ of every bundled kernel compiles without a warning at every l
   fs::remove_all(dir);
 }
 
-TEST_CASE("#pragma algebra: a script names its algebra; a conflicting --algebra is a located error", "[cli]") {
+TEST_CASE("#pragma algebra: a script names its algebra, and a conflicting --algebra is a located error", "[cli]") {
   const std::string pga = write_temp("pragma_algebra_pga.clu", "#pragma algebra 3dpga\n?p = e0^e1;\n");
   auto r = run("--eval " + pga);
   INFO(r.out);
