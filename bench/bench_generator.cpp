@@ -124,10 +124,21 @@ void bm_generate(benchmark::State& state, const fs::path& script, const std::str
   state.SetLabel(fmt::format("-O2 ops {:.0f}% of -O0", 100.0 * ops[2].total() / std::max(1L, ops[0].total())));
 }
 
+// One generator row: cgagen on `script` in `algebra`, `iterations` runs (each takes tens to hundreds of ms, so a
+// few are enough and keep the whole bench short), with its op counts per level.
+void register_script(const std::string& name, const fs::path& script, const std::string& algebra, int iterations) {
+  benchmark::RegisterBenchmark(name.c_str(), bm_generate, script, algebra)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(iterations);
+  add_figure({name, "Generator: cgagen -O2 per bundled script (wall time) and op counts", script.filename().string(),
+              Metric::ms_per_iter, "", "", std::nullopt,
+              {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
+}
+
 }  // namespace
 
 void register_generator_benchmarks() {
-  const std::string section = "Generator: cgagen -O2 per bundled script (wall time) and op counts";
   std::vector<fs::path> scripts;
   std::error_code ec;
   if (!scripts_dir().empty())
@@ -149,17 +160,10 @@ void register_generator_benchmarks() {
     scripts.insert(scripts.end(), worst.begin(), worst.end());
   }
 #endif
-  for (const fs::path& script : scripts) {
-    const std::string name = "generator/" + script.stem().string() +
-                             (script.parent_path() == fs::path(scripts_dir()) ? "" : " (worst case)");
-    // A run takes tens to hundreds of ms: a few iterations are enough and keep the whole bench short.
-    benchmark::RegisterBenchmark(name.c_str(), bm_generate, script, std::string("cga"))
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->Iterations(5);
-    add_figure({name, section, script.filename().string(), Metric::ms_per_iter, "", "", std::nullopt,
-                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
-  }
+  for (const fs::path& script : scripts)
+    register_script("generator/" + script.stem().string() +
+                        (script.parent_path() == fs::path(scripts_dir()) ? "" : " (worst case)"),
+                    script, "cga", 5);
   // Chains written as ga-benchmark writes its arm: every carrier an explicit product of all earlier rotors
   // (cga/testing/joint_chain.hpp). The products stage keeps time and ops about linear in n
   // (docs/generator.md, "Products").
@@ -170,37 +174,15 @@ void register_generator_benchmarks() {
       std::fwrite(text.data(), 1, text.size(), f);
       std::fclose(f);
     }
-    const std::string name = fmt::format("generator/explicit_chain n={}", n);
-    benchmark::RegisterBenchmark(name.c_str(), bm_generate, script, std::string("cga"))
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->Iterations(3);
-    add_figure({name, section, script.filename().string(), Metric::ms_per_iter, "", "", std::nullopt,
-                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
+    register_script(fmt::format("generator/explicit_chain n={}", n), script, "cga", 3);
   }
 #ifdef CGA_BENCH_CCGA_200
   // The largest algebra: a 200-line script in ccga (16 vectors), docs/generator.md "Algebras".
-  {
-    const std::string name = "generator/ccga_200 (--algebra ccga)";
-    benchmark::RegisterBenchmark(name.c_str(), bm_generate, fs::path(CGA_BENCH_CCGA_200), std::string("ccga"))
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->Iterations(3);
-    add_figure({name, section, "ccga_200.clu", Metric::ms_per_iter, "", "", std::nullopt,
-                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
-  }
+  register_script("generator/ccga_200 (--algebra ccga)", CGA_BENCH_CCGA_200, "ccga", 3);
 #endif
 #ifdef CGA_BENCH_DCGA_200
   // The slowest built-in algebra's 200-line script (tests/gen/test_algebras.cpp's script_200 for dcga).
-  {
-    const std::string name = "generator/dcga_200 (--algebra dcga)";
-    benchmark::RegisterBenchmark(name.c_str(), bm_generate, fs::path(CGA_BENCH_DCGA_200), std::string("dcga"))
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->Iterations(3);
-    add_figure({name, section, "dcga_200.clu", Metric::ms_per_iter, "", "", std::nullopt,
-                {"ops_O0", "ops_O1", "ops_O2", "add_O2", "mul_O2", "div_O2", "call_O2"}});
-  }
+  register_script("generator/dcga_200 (--algebra dcga)", CGA_BENCH_DCGA_200, "dcga", 3);
 #endif
 }
 
