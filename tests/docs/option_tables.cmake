@@ -13,21 +13,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${PROGRAM} --help exited ${rc}: ${help_err}")
 endif()
 get_filename_component(name ${PROGRAM} NAME)
-set(option_re "--?[A-Za-z][A-Za-z0-9-]*")
-
-# Every option named anywhere in TEXT (after a blank, a bracket, a bar, a comma, a quote or a line start).
-function(named_options text out)
-  # Square brackets would group CMake list elements: blanks instead.
-  string(REGEX REPLACE "[][]" " " text "${text}")
-  string(REGEX MATCHALL "(^|[ \n|(,`\"'/])${option_re}" tokens "${text}")
-  set(found)
-  foreach(t ${tokens})
-    string(REGEX REPLACE "^[^-]+" "" t "${t}")
-    list(APPEND found ${t})
-  endforeach()
-  list(REMOVE_DUPLICATES found)
-  set(${out} ${found} PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/named_options.cmake)
 
 # --help's option lines: after "options:", lines that begin with two blanks and a '-' (a continuation
 # begins with more); each name before the description (alternatives separated by " | ", arguments in
