@@ -7,6 +7,8 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libginac-dev libcln-dev libfmt-dev libglm-dev
   glslang-dev glslang-tools spirv-tools
+  libhwy-dev                                 # targets: simd (Google Highway), the runtime's batch kernels
+  g++-aarch64-linux-gnu qemu-user            # targets: simd-aarch64 (NEON, run under qemu)
   catch2 libassimp-dev assimp-testmodels libbenchmark-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libstb-dev
   clang libclang-rt-14-dev

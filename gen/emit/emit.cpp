@@ -1,6 +1,7 @@
 // The emitter (see emit.hpp): one code path driven by the target's Syntax record (gen/emit/targets.cpp); GLSL packing
 // and the dot dataflow graph are the only target-specific branches. Expressions are printed by lower/lower.hpp's rules.
 #include "emit/emit.hpp"
+#include "emit/batch.hpp"
 #include "emit/names.hpp"
 #include "emit/printer.hpp"
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <fstream>
 #include <sstream>
@@ -250,6 +252,7 @@ struct FileContext {
   const Syntax& sx;
   const EmitOptions& options;
   std::string file_tmpl_path, fn_tmpl_path, file_tmpl, fn_tmpl;
+  std::string dispatch_tmpl_path, dispatch_tmpl;  // templates/NAME/dispatch.in, where the target has one
   std::map<std::string, std::string> spelt;
 
   // A name of the file as spelt for the target (emit/names.hpp).
@@ -281,15 +284,17 @@ struct FileContext {
   }
 };
 
-// The templates of the target (the function template only for code targets).
-FileContext load_file_context(const EmitOptions& options) {
-  const Target target = options.target;
+// The templates of a target (the function template only for code targets; the file template only for the
+// file's own target, not for a scalar twin).
+FileContext load_file_context(const EmitOptions& options, Target target, bool file = true) {
   const Syntax& sx = target.syntax();
   const std::string dir = (options.template_dir.empty() ? default_template_dir() : options.template_dir) + "/" +
                           sx.name;
-  FileContext f{target, sx, options, dir + "/file" + sx.extension + ".in", dir + "/function.in", "", "", {}};
-  f.file_tmpl = read_file(f.file_tmpl_path);
+  FileContext f{target, sx, options, dir + "/file" + sx.extension + ".in", dir + "/function.in", "", "",
+                dir + "/dispatch.in", "", {}};
+  if (file) f.file_tmpl = read_file(f.file_tmpl_path);
   f.fn_tmpl = sx.kind == Syntax::Kind::Code ? read_file(f.fn_tmpl_path) : "";
+  if (std::filesystem::exists(f.dispatch_tmpl_path)) f.dispatch_tmpl = read_file(f.dispatch_tmpl_path);
   return f;
 }
 
@@ -319,11 +324,13 @@ void check_pack_and_return(const FileContext& f, const std::vector<const opt::Pr
 // changed name cannot meet another.
 std::map<std::string, std::string> spell_file_names(const Syntax& sx, const std::vector<const opt::Program*>& programs) {
   std::set<std::string> raw_names;
+  // The locals of loaded inputs, where this target or its scalar twin (which prints with these names) loads.
+  const bool loads = !sx.load.empty() || (!sx.scalar_twin.empty() && !syntax(sx.scalar_twin).load.empty());
   for (const opt::Program* pr : programs) {
     raw_names.insert(pr->name);
     for (const auto& in : pr->inputs) {
       raw_names.insert(in.name);
-      if (!sx.load.empty() && in.is_multivector)
+      if (loads && in.is_multivector)
         for (size_t k = 0; k < in.blades.size(); ++k) raw_names.insert(load_name(in, k));
     }
     for (const auto& o : pr->outputs) raw_names.insert(o.name);
@@ -357,6 +364,14 @@ class ProgramEmitter {
   }
   std::string blade_lists() const;
   std::string inputs_doc() const;
+  // templates/NAME/dispatch.in filled for this program ("" where the target has none).
+  std::string dispatch() const {
+    if (f_.dispatch_tmpl.empty()) return "";
+    const BatchParts b = batch_parts(sx_, program_, [this](const std::string& n) { return f_.id(n); });
+    return fill_template(f_.dispatch_tmpl,
+                         {{"name", f_.fn_name(program_.name)}, {"batch_params", b.params}, {"batch_names", b.names}},
+                         f_.dispatch_tmpl_path);
+  }
 
  private:
   // The label of element k of input or output NAME: its blade, or the program's label for it (staging).
@@ -529,13 +544,19 @@ std::string ProgramEmitter::function_text(const Precision& prec) const {
   std::string store;
   if (sx_.glsl_pack && prepared_k_)
     store = fill_pattern(packing(f_.pack_of("prepared", prepared_k_)).declaration, pack_fields("prepared", 0));
+  const BatchParts b = batch_parts(sx_, program_, [this](const std::string& n) { return f_.id(n); });
   return prec.before + store + fill_template(f_.fn_tmpl,
                                              {{"return_type", sig.return_type},
                                               {"name", f_.fn_name(program_.name, prec.fn_suffix)},
                                               {"params", sig.params},
                                               {"body", indent(body)},
                                               {"type", T},
-                                              {"qualifiers", sx_.qualifiers}},
+                                              {"qualifiers", sx_.qualifiers},
+                                              {"batch_params", b.params},
+                                              {"batch_loads", b.loads},
+                                              {"batch_args", b.args},
+                                              {"batch_stores", b.stores},
+                                              {"batch_names", b.names}},
                                              f_.fn_tmpl_path) +
          prec.after;
 }
@@ -576,16 +597,25 @@ std::string ProgramEmitter::inputs_doc() const {
 
 std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options) {
   algebra::Using in(programs.empty() ? nullptr : programs.front()->algebra);
-  FileContext f = load_file_context(options);
+  FileContext f = load_file_context(options, options.target);
   check_pack_and_return(f, programs);
   f.spelt = spell_file_names(f.sx, programs);
+  // A staged kernel's prepare functions in the scalar twin's syntax and templates, with this file's names.
+  std::optional<FileContext> twin;
+  if (!f.sx.scalar_twin.empty()) {
+    twin.emplace(load_file_context(options, parse_target(f.sx.scalar_twin), false));
+    twin->spelt = f.spelt;
+  }
 
-  std::string functions, blade_lists, inputs_doc;
+  std::string functions, scalar_functions, blade_lists, inputs_doc, dispatch;
   for (size_t i = 0; i < programs.size(); ++i) {
-    const ProgramEmitter pe(f, *programs[i]);
-    functions += (i ? "\n" : "") + pe.functions();
+    const bool prepare = i + 1 < programs.size();
+    const ProgramEmitter pe(prepare && twin ? *twin : f, *programs[i]);
+    std::string& out = prepare && twin ? scalar_functions : functions;
+    out += (out.empty() ? "" : "\n") + pe.functions();
     blade_lists += pe.blade_lists();
     inputs_doc += pe.inputs_doc();
+    dispatch += pe.dispatch();
   }
   // The file is named after the last program (a staged kernel's body: the function a user calls per element).
   const opt::Program& program = *programs.back();
@@ -597,7 +627,9 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
                         {"name", f.fn_name(program.name)},
                         {"inputs", inputs_doc},
                         {"blade_lists", blade_lists},
-                        {"functions", functions}},
+                        {"functions", functions},
+                        {"scalar_functions", scalar_functions},
+                        {"dispatch", dispatch}},
                        f.file_tmpl_path);
 }
 

@@ -47,6 +47,9 @@ struct Syntax {
   std::string select = "(${a} ${op} ${b} ? ${x} : ${y})";
   std::map<std::string, std::string> compare_names;  // "<=" -> "\\le" (LaTeX); others as written
   std::string mul = " * ", div = " / ";
+  std::string negate = "-${x}";        // a negated operand ${x} (printed as an operand of *)
+  std::string constant;                // a literal ${value} where it is not a number of the language
+                                       // (a SIMD lane vector: hn::Set(d, ${value})); empty: the literal itself
   std::string comment = "//";          // line comment
   std::string qualifiers;              // {{qualifiers}} of the function template ("inline", CUDA's)
   std::string indent = "  ";           // body indentation
@@ -72,6 +75,18 @@ struct Syntax {
   std::string blade_list;              // one line per output: ${fn} ${out} ${n} ${list}
   std::string blade_quote = "\"";      // around each blade name in ${list}
   bool glsl_pack = false;              // --pack / --return apply
+  // A lane-wise target (simd): besides the kernel, a batch entry runs it over many elements. Each input is
+  // a stream parameter (batch_in), loaded into lanes before the call (batch_load_scalar / _mv: ${name}
+  // the stream, ${lanes} the lanes, ${n} the blades), passed as ${lanes}; each output is declared as lanes
+  // (batch_out_decl), stored after the call (batch_store). The lanes of NAME are spelt lanes_NAME (a
+  // reserved prefix of the target). The function template gets {{batch_params}}, {{batch_loads}},
+  // {{batch_args}}, {{batch_stores}} and {{batch_names}} (the stream parameters' names, for a forwarding
+  // call); templates/NAME/dispatch.in, where it exists, is filled per program into the file's
+  // {{dispatch}}. Empty batch_in: no batch entry, and those placeholders are empty.
+  std::string batch_in, batch_out, batch_load_scalar, batch_load_mv, batch_out_decl, batch_store;
+  // A staged kernel's NAME_prepare printed by another target's record and templates (simd: cpp's scalar
+  // functions, once per batch) into the file's {{scalar_functions}}; empty: by this target, into {{functions}}.
+  std::string scalar_twin;
   // Identifiers (emit/names.hpp): words a name must not be, prefixes it must not start with, and whether
   // "__" is reserved anywhere in a name (then a run of underscores is spelt as one).
   std::set<std::string> reserved;

@@ -9,22 +9,22 @@ using namespace GiNaC;
 
 std::string Printer::print(const ex& e, int prec) {
   if (is_a<numeric>(e)) {
-    std::string s = literal(ex_to<numeric>(e), target_, single_);
-    return (prec >= 1 && ex_to<numeric>(e).is_negative()) ? "(" + s + ")" : s;
+    std::string s = number(ex_to<numeric>(e));
+    return (prec >= 1 && ex_to<numeric>(e).is_negative() && sx_.constant.empty()) ? "(" + s + ")" : s;
   }
   if (is_a<symbol>(e)) {
     auto it = code_.find(e);
     if (it == code_.end()) throw std::logic_error("cgagen emitter: unknown symbol " + ex_to<symbol>(e).get_name());
     return it->second;
   }
-  if (is_a<constant>(e)) return literal(numeric(ex_to<numeric>(e.evalf()).to_double()), target_, single_);
+  if (is_a<constant>(e)) return number(numeric(ex_to<numeric>(e.evalf()).to_double()));
   if (is_a<add>(e)) {
     std::string s;
     bool first = true;
     for (const ex& t : opt::sum_terms(e, keys_)) {
       bool neg = opt::is_negative_term(t, keys_);
       ex a = neg ? ex(-t) : t;
-      if (first) s += neg ? "-" + print(a, 1) : print(a, 0);
+      if (first) s += neg ? negated(print(a, 1)) : print(a, 0);
       else s += (neg ? " - " : " + ") + print(a, 1);
       first = false;
     }
@@ -37,7 +37,7 @@ std::string Printer::print_product(const ex& e, int prec) {
   opt::ProductParts p = opt::split_product(e, keys_);
   std::vector<std::string> num;
   numeric c = abs(p.coeff);
-  if (c != 1 || p.num.empty()) num.push_back(literal(c, target_, single_));
+  if (c != 1 || p.num.empty()) num.push_back(number(c));
   for (const auto& f : p.num) {
     std::string a = atom(f.base);
     for (int k = 0; k < f.exponent; ++k) num.push_back(a);
@@ -56,7 +56,7 @@ std::string Printer::print_product(const ex& e, int prec) {
   }
   bool compound = num.size() + den.size() > 1;
   if (p.coeff.is_negative()) {
-    s = "-" + (den.empty() ? s : "(" + s + ")");
+    s = negated(den.empty() ? s : "(" + s + ")");
     return prec >= 1 ? "(" + s + ")" : s;
   }
   return (compound && prec >= 2) || (!den.empty() && prec >= 1) ? "(" + s + ")" : s;
@@ -85,6 +85,13 @@ std::string Printer::atom(const ex& b) {
   }
   throw std::logic_error("cgagen emitter: cannot print expression of this kind");
 }
+
+std::string Printer::number(const numeric& v) const {
+  const std::string s = literal(v, target_, single_);
+  return sx_.constant.empty() ? s : fill_pattern(sx_.constant, {{"value", s}});
+}
+
+std::string Printer::negated(const std::string& operand) const { return fill_pattern(sx_.negate, {{"x", operand}}); }
 
 std::string Printer::call(const std::string& name, const std::string& args) const {
   auto it = sx_.math_names.find(name);

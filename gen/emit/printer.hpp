@@ -24,6 +24,9 @@ class Printer {
  private:
   std::string print_product(const GiNaC::ex& e, int prec);
   std::string atom(const GiNaC::ex& b);
+  // A literal in the target's spelling (Syntax::constant), and a negated operand (Syntax::negate).
+  std::string number(const GiNaC::numeric& v) const;
+  std::string negated(const std::string& operand) const;
   // A math call in the target's spelling: prefix + (renamed) name, or a whole pattern from math_names.
   std::string call(const std::string& name, const std::string& args) const;
 

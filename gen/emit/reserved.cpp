@@ -155,8 +155,10 @@ void add_vectors(std::set<std::string>& s, const char* prefixes, bool matrices) 
 
 std::set<std::string> reserved_words(const std::string& target) {
   std::set<std::string> s;
-  if (target == "cpp" || target == "cuda" || target == "opencl") add(s, kC);
-  if (target == "cpp" || target == "cuda") add(s, kGlibcMacros);
+  if (target == "cpp" || target == "cuda" || target == "opencl" || target == "simd") add(s, kC);
+  if (target == "cpp" || target == "cuda" || target == "simd") add(s, kGlibcMacros);
+  // simd: what its kernels and batch entries name (the tag d, its types, the namespaces, loop counters).
+  if (target == "simd") add(s, "d D V hn hwy simd In Out i n k N");
   if (target == "cuda") add(s, kCuda);
   if (target == "glsl" || target == "glsl-es") {
     add(s, kGlsl);

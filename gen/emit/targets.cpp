@@ -61,6 +61,32 @@ std::vector<Syntax> make_targets() {
   cpp.blade_quote = "\"";
   t.push_back(cpp);
 
+  // Lane-wise C++ over Google Highway (templates/simd): the kernel takes and returns vectors of lanes, each
+  // operation a lane operation, a select a masked blend, the math Highway's vector math (cgagen_NAME in the
+  // file template); NAME_batch runs it over streams with run-time dispatch (docs/generator.md, "simd").
+  Syntax simd = c_family();
+  simd.name = "simd";
+  simd.extension = ".simd.hpp";
+  simd.summary = "C++ SIMD batch kernels (Google Highway): NAME over lanes, NAME_batch over n elements, dispatched";
+  simd.precisions = {prec("V", true)};
+  simd.call = "cgagen_${fn}(d, ${args})";
+  simd.select = "hn::IfThenElse(${op}(${a}, ${b}), ${x}, ${y})";
+  simd.compare_names = {{"<", "hn::Lt"}, {"<=", "hn::Le"}, {"==", "hn::Eq"}};
+  simd.negate = "hn::Neg(${x})";
+  simd.constant = "hn::Set(d, ${value})";
+  simd.qualifiers = "HWY_INLINE";
+  simd.blade_list = cpp.blade_list;
+  simd.blade_quote = "\"";
+  simd.unused = "(void)${name};";
+  simd.batch_in = "const In& ${name}";
+  simd.batch_out = "const Out& ${name}";
+  simd.batch_load_scalar = "const V ${lanes} = cgagen_load(d, ${name}, 0, i);";
+  simd.batch_load_mv = "V ${lanes}[${n}];\n  for (std::size_t k = 0; k < ${n}; ++k) ${lanes}[k] = cgagen_load(d, ${name}, k, i);";
+  simd.batch_out_decl = "V ${lanes}[${n}];";
+  simd.batch_store = "for (std::size_t k = 0; k < ${n}; ++k) cgagen_store(d, ${lanes}[k], ${name}, k, i);";
+  simd.scalar_twin = "cpp";
+  t.push_back(simd);
+
   Syntax glsl = c_family();
   glsl.name = "glsl";
   glsl.extension = ".glsl";
@@ -223,9 +249,11 @@ std::vector<Syntax> make_targets() {
   for (char c = 'A'; c <= 'Z'; ++c) underscore_upper.push_back(std::string("_") + c);
   for (Syntax& x : t) {
     x.reserved = reserved_words(x.name);
-    if (x.name == "cpp" || x.name == "cuda" || x.name == "opencl" || x.name == "hlsl") {
+    if (x.name == "cpp" || x.name == "cuda" || x.name == "opencl" || x.name == "hlsl" || x.name == "simd") {
       x.single_underscores = true;
       x.reserved_prefixes = underscore_upper;
+      // simd: its lanes (lanes_NAME), vector math (cgagen_NAME) and Highway's macros.
+      if (x.name == "simd") x.reserved_prefixes.insert(x.reserved_prefixes.end(), {"lanes_", "cgagen_", "HWY_"});
     } else if (x.name == "glsl" || x.name == "glsl-es") {
       x.single_underscores = true;
       x.reserved_prefixes = {"gl_", "webgl_", "_webgl_"};
@@ -235,6 +263,7 @@ std::vector<Syntax> make_targets() {
   }
   const std::map<std::string, std::string> toolchains = {
       {"cpp", "g++ (tests/kernels, tests/targets)"},
+      {"simd", "g++ with libhwy: every ISA of the machine; aarch64-linux-gnu-g++ under qemu-aarch64 (tests/targets)"},
       {"glsl", "glslangValidator, Mesa GL 4.5 (tests/gpu, tests/targets)"},
       {"cuda", "nvcc when found; g++ with the qualifiers defined away (tests/targets)"},
       {"hlsl", "glslangValidator -D -> SPIR-V -> spirv-cross -> Mesa GL"},

@@ -313,7 +313,7 @@ TEST_CASE("fuzzer find: a quotient by exp(g) optimizes at every level", "[cli]")
 TEST_CASE("cli: --target list prints the table of targets, --target-extension the extension of one", "[cli]") {
   auto r = run("--target list");
   CHECK(r.code == 0);
-  CHECK(r.out == "cpp\nglsl\ncuda\nhlsl\nglsl-es\nwgsl\nopencl\npython\njavascript\nrust\nlatex\ndot\n");
+  CHECK(r.out == "cpp\nsimd\nglsl\ncuda\nhlsl\nglsl-es\nwgsl\nopencl\npython\njavascript\nrust\nlatex\ndot\n");
   r = run("--target-extension python");
   CHECK(r.code == 0);
   CHECK(r.out == ".py\n");

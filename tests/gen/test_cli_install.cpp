@@ -24,7 +24,7 @@ TEST_CASE("version: --version prints the project version", "[cli]") {
 TEST_CASE("target list: --target list prints every target, one per line, each of them accepted", "[cli]") {
   auto r = run("--target list");
   CHECK(r.code == 0);
-  CHECK(r.out.rfind("cpp\nglsl\ncuda\n", 0) == 0);  // the original three first (tests/targets checks the rest)
+  CHECK(r.out.rfind("cpp\nsimd\nglsl\ncuda\n", 0) == 0);  // C++, its SIMD form, then the shading languages (tests/targets checks the rest)
   std::istringstream lines(r.out);
   std::string target;
   while (std::getline(lines, target)) {

@@ -147,7 +147,7 @@ TEST_CASE("the table of targets: unique names and extensions, every template pre
   for (const char* t : {"cpp", "glsl", "cuda", "hlsl", "glsl-es", "wgsl", "opencl", "python", "javascript", "rust", "latex",
                         "dot"})
     CHECK(names.count(t) == 1);
-  CHECK_THROWS_WITH(emit::parse_target("fortran"), Catch::Contains("expected cpp, glsl, cuda"));
+  CHECK_THROWS_WITH(emit::parse_target("fortran"), Catch::Contains("expected cpp, simd, glsl, cuda"));
 }
 
 TEST_CASE("interfaces of the targets besides C++/GLSL/CUDA", "[emit][targets]") {

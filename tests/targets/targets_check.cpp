@@ -51,6 +51,7 @@
 #include "opt/report.hpp"
 #include "opt/stage.hpp"
 #include "interpreter.hpp"  // tests/diff: CluScript over the oracle
+#include "simd_driver.hpp"
 
 using namespace cgagen;
 namespace fs = std::filesystem;
@@ -597,6 +598,88 @@ void run_native(const std::vector<Case>& cases, const std::string& gendir, const
   }
 }
 
+// simd: every script's NAME.simd.hpp in one driver (simd_driver.hpp), built once, run per case in every
+// instruction set the build has and the CPU runs, with varied layouts and with broadcast inputs. `cross`:
+// built for aarch64 (NEON, Highway's static target) by CROSS_CXX and run under QEMU_AARCH64.
+void run_simd(const std::vector<Case>& cases, const std::string& gendir, const std::string& work, bool cross) {
+  std::vector<targets::SimdCase> sc;
+  std::string all;
+  for (const auto& c : cases) {
+    const std::string header = gendir + "/" + c.name + ".simd.hpp";
+    all += "#include \"" + header + "\"\n";
+    std::vector<bool> uniform = c.prepared ? c.is_uniform : std::vector<bool>(c.in_sizes.size(), false);
+    sc.push_back({header, spelt(c, "simd", c.name), spelt(c, "simd", c.name + "_prepare"), c.in_sizes, uniform,
+                  c.prepared, c.out_sizes});
+  }
+  // Re-included once per instruction set by Highway (no include guard).
+  std::ofstream(work + "/all.simd.hpp") << all;
+  const std::string base = work + "/drive_simd";
+  std::ofstream(base + ".cpp") << targets::simd_driver_source(sc, !cross);
+  std::string cmd, run;
+  if (cross && (std::string(CROSS_CXX).find("NOTFOUND") != std::string::npos ||
+                std::string(QEMU_AARCH64).find("NOTFOUND") != std::string::npos)) {
+    std::printf("FAIL aarch64-linux-gnu-g++ or qemu-aarch64 not found (apt-get install g++-aarch64-linux-gnu "
+                "qemu-user; scripts/setup.sh installs them)\n");
+    ++failures;
+    return;
+  }
+  if (cross) {
+    // The cross compiler's sysroot has no /usr/include: Highway's headers (architecture-independent) by a link.
+    fs::create_directories(work + "/include");
+    fs::remove(work + "/include/hwy");
+    fs::create_directory_symlink("/usr/include/hwy", work + "/include/hwy");
+    cmd = std::string(CROSS_CXX) + " -std=c++17 -O1 -static -Wall -Wextra -Werror -I" + work + " -I" + work +
+          "/include -o " + base + " " + base + ".cpp > " + base + ".log 2>&1";
+    run = std::string(QEMU_AARCH64) + " " + base;
+  } else {
+    cmd = std::string(CXX_COMPILER) + " -std=c++17 -O1 -Wall -Wextra -Werror -I" + work + " -o " + base + " " +
+          base + ".cpp -lhwy > " + base + ".log 2>&1";
+    run = base;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool built = sh(cmd) == 0;
+  std::printf("%s %s in %.1f s\n%s", cross ? CROSS_CXX : CXX_COMPILER, built ? "ok" : "FAILED",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              built ? "" : slurp(base + ".log").c_str());
+  if (!built) {
+    ++failures;
+    return;
+  }
+  if (sh(run + " list > " + base + ".isa") != 0) {
+    std::printf("FAIL the driver cannot list its instruction sets\n");
+    ++failures;
+    return;
+  }
+  std::vector<std::pair<std::string, std::string>> isas;  // bits, name
+  std::istringstream list(slurp(base + ".isa"));
+  for (std::string bits, name; list >> bits >> name;) isas.emplace_back(bits, name);
+  std::printf("instruction sets:");
+  for (const auto& [bits, name] : isas) std::printf(" %s", name.c_str());
+  std::printf("\n");
+  if (isas.empty()) ++failures;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    const std::string in = work + "/" + c.name + ".in";
+    write_rows(in, c.inputs);
+    for (const auto& [bits, name] : isas)
+      for (const std::string mode : {"layouts", "broadcast"}) {
+        const std::string out = work + "/" + c.name + "." + name + "." + mode;
+        if (sh(run + " " + std::to_string(i) + " " + bits + " " + mode + " < " + in + " > " + out) != 0) {
+          std::printf("FAIL %-20s simd driver failed (%s, %s)\n", c.name.c_str(), name.c_str(), mode.c_str());
+          ++failures;
+          continue;
+        }
+        if (mode == "layouts") {
+          check(c, "simd " + name, out, kTolFloat);
+        } else {  // every row is the first row's value
+          Case first = c;
+          first.expected.assign(c.expected.size(), c.expected.front());
+          check(first, "simd " + name + " broadcast", out, kTolFloat);
+        }
+      }
+  }
+}
+
 // glsl (tests/targets/names only; tests/gpu runs the bundled kernels): the file in a GLSL 4.30 compute shader,
 // validated by glslang and run by gl_compute_runner on the headless GL 4.5 context.
 void run_glsl(const std::vector<Case>& cases, const std::string& gendir, const std::string& work) {
@@ -1100,6 +1183,8 @@ int main(int argc, char** argv) {
   else if (lang == "dot") run_dot(cases, gendir, work);
   else if (lang == "cpp" || lang == "cuda") run_native(cases, gendir, work, lang);
   else if (lang == "glsl") run_glsl(cases, gendir, work);
+  else if (lang == "simd") run_simd(cases, gendir, work, false);
+  else if (lang == "simd-aarch64") run_simd(cases, gendir, work, true);
   else {
     std::fprintf(stderr, "targets_check: no driver for %s\n", lang.c_str());
     return 2;
