@@ -194,8 +194,12 @@ Jobs make_jobs(const SkinScene& scene, SkinningMethod method, bool normals) {
   return j;
 }
 
+// What SkinningJob runs: its default (hand-written loops where a method has them, else the batch kernels), the
+// generated batch kernels for every method, or the generated scalar loop.
+enum class Path { best, batch, scalar };
+
 void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), SkinningMethod method, bool normals,
-                 bool use_simd) {
+                 Path path) {
   const SkinScene* scene = nullptr;
   try {
     scene = &scene_fn();
@@ -208,7 +212,10 @@ void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), Skinni
     return;
   }
   Jobs jobs = make_jobs(*scene, method, normals);
-  for (SkinningJob& job : jobs.jobs) job.use_simd = use_simd;
+  for (SkinningJob& job : jobs.jobs) {
+    job.use_simd = path != Path::scalar;
+    job.use_hand_loops = path == Path::best;
+  }
   for (const SkinningJob& job : jobs.jobs)
     if (const std::string error = job.ValidationError(); !error.empty()) {
       state.SkipWithError(error.c_str());
@@ -324,22 +331,26 @@ void register_skinning_benchmarks() {
       const std::string baseline = prefix + "lbs";
       for (SkinningMethod m : kAllSkinningMethods) {
         const std::string name = prefix + std::string(to_string(m));
-        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, true)
+        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, Path::best)
             ->Unit(benchmark::kMillisecond);
         add_figure({name, section, std::string(to_string(m)), Metric::mega_items_per_s, baseline, "lbs",
                     sc.fn == random_scene ? target_for(m, normals) : std::nullopt, {}});
       }
-      // The A/B of the hand-written AVX2 / AVX-512 loops: the same jobs on the generated portable loop
-      // (use_simd = false), for the methods that have SIMD loops (dqs and cga-log always run generated).
+      // The A/B of the paths: every method on the generated scalar loop (use_simd = false), and the methods
+      // with hand-written AVX2 / AVX-512 loops on their generated batch kernels (use_hand_loops = false).
       if (sc.fn == random_scene)
-        for (SkinningMethod m : {SkinningMethod::lbs, SkinningMethod::cga_points, SkinningMethod::cga_motors}) {
-          const std::string name = prefix + std::string(to_string(m)) + "-generated";
-          benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, false)
-              ->Unit(benchmark::kMillisecond);
-          add_figure({name, section, std::string(to_string(m)) + ", generated portable loop",
-                      Metric::mega_items_per_s, prefix + std::string(to_string(m)), std::string(to_string(m)),
-                      std::nullopt, {}});
-        }
+        for (SkinningMethod m : kAllSkinningMethods)
+          for (const Path path : {Path::batch, Path::scalar}) {
+            const bool hand = m == SkinningMethod::lbs || m == SkinningMethod::cga_points || m == SkinningMethod::cga_motors;
+            if (path == Path::batch && !hand) continue;  // the default row is the batch kernels
+            const std::string name = prefix + std::string(to_string(m)) + (path == Path::batch ? "-batch" : "-generated");
+            benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, path)
+                ->Unit(benchmark::kMillisecond);
+            add_figure({name, section,
+                        std::string(to_string(m)) + (path == Path::batch ? ", generated batch kernels" : ", generated scalar loop"),
+                        Metric::mega_items_per_s, prefix + std::string(to_string(m)), std::string(to_string(m)),
+                        std::nullopt, {}});
+          }
       if (sc.fn != random_scene) continue;
       for (SkinningMethod m : kAllSkinningMethods) {
         const std::string name = std::string("skinning/interleaved1M/") + kind + "/" + std::string(to_string(m));

@@ -10,6 +10,7 @@
 #                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
 #                   [RETURN OUT]                # glsl only: --return OUT
 #                   [UNIFORM NAME ...]          # --uniform: stage the kernels (NAME_prepare + NAME)
+#                   [OUTPUTS NAME ...]          # --outputs: only these outputs of the scripts
 #                   [NAME name]                 # --name: the kernel's (and the files') name instead of the
 #                                               # script's stem; one script only (e.g. a staged second copy)
 #                   [TEMPLATES <dir>]           # default: the tool's built-in templates/
@@ -35,7 +36,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM"
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM;OUTPUTS"
                         ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
@@ -113,7 +114,7 @@ function(cgagen_generate target)
     endif()
     if(_gpc_out)
       list(GET CG_TARGETS 0 _t)
-      if(NOT _t MATCHES "^(cpp|cuda|opencl)$" OR CG_UNIFORM OR CG_NAME OR CG_PACK OR CG_RETURN)
+      if(NOT _t MATCHES "^(cpp|cuda|opencl)$" OR CG_UNIFORM OR CG_OUTPUTS OR CG_NAME OR CG_PACK OR CG_RETURN)
         message(FATAL_ERROR "cgagen_generate(${target}): the GPC source ${_file} takes TARGETS cpp, cuda or opencl, "
                             "OPT, ALGEBRA, GPC_TYPE and NO_WERROR only")
       endif()
@@ -151,6 +152,10 @@ function(cgagen_generate target)
       if(CG_UNIFORM)
         list(JOIN CG_UNIFORM "," _uniform)
         list(APPEND _args --uniform ${_uniform})
+      endif()
+      if(CG_OUTPUTS)
+        list(JOIN CG_OUTPUTS "," _kept)
+        list(APPEND _args --outputs ${_kept})
       endif()
       if(NOT CG_NO_WERROR)
         list(APPEND _args --Werror)

@@ -59,6 +59,8 @@ options:
                           kernel's prepared values also as block (a uniform block) or buffer (a
                           storage buffer of many sets, selected by an int prepared_index)
   --return OUT            glsl: return output OUT instead of an out parameter
+  --outputs A,B,...       keep only these outputs of the script (in the script's order); the work
+                          only the others need is not emitted
   --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
                           `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values
                           and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
@@ -102,10 +104,23 @@ struct Options {
   std::string algebra = "cga";
   bool algebra_given = false;  // --algebra on the command line (a script's #pragma algebra must agree)
   std::vector<std::string> uniforms;  // --uniform
+  std::vector<std::string> outputs;   // --outputs (empty: all)
   bool gpc = false;                   // --gpc
   std::string type;                   // --type (--gpc)
   bool target_given = false;
 };
+
+// --outputs: the kernel with only the named outputs (each must be one of the script's).
+void keep_outputs(Kernel& kernel, const std::vector<std::string>& names) {
+  std::string known;
+  for (const auto& out : kernel.outputs) known += (known.empty() ? "" : ", ") + out.name;
+  for (const auto& n : names)
+    if (std::none_of(kernel.outputs.begin(), kernel.outputs.end(), [&](const KernelOutput& out) { return out.name == n; }))
+      throw UsageError("--outputs names '" + n + "', which is not an output of the script (its outputs: " + known + ")");
+  std::erase_if(kernel.outputs, [&](const KernelOutput& out) {
+    return std::find(names.begin(), names.end(), out.name) == names.end();
+  });
+}
 
 double parse_number(const std::string& text, const std::string& what) {
   try {
@@ -191,6 +206,11 @@ Options parse_args(int argc, char** argv) {
       } else if (a == "--algebra") {
         o.algebra = value(i, a);
         o.algebra_given = true;
+      } else if (a == "--outputs") {
+        std::stringstream ss(value(i, a));
+        for (std::string item; std::getline(ss, item, ',');)
+          if (!item.empty()) o.outputs.push_back(item);
+        if (o.outputs.empty()) throw UsageError("--outputs names no output");
       } else if (a == "--uniform") {
         std::stringstream ss(value(i, a));
         std::string item;
@@ -238,7 +258,7 @@ Options parse_args(int argc, char** argv) {
   int modes = o.stats + o.diff.has_value() + o.dump_ast + o.eval;
   if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
   if (o.gpc) {
-    if (modes || !o.uniforms.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
+    if (modes || !o.uniforms.empty() || !o.outputs.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
         !o.emit.return_output.empty())
       throw UsageError("--gpc takes --algebra, -O, -o, --Werror, --target, --type and --templates only");
     bool known = !o.target_given;
@@ -455,6 +475,7 @@ int run(const Options& o) {
       std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),
                                             o.werror ? "error" : "warning");
     if (o.werror && !kernel.warnings.empty()) return 1;
+    if (!o.outputs.empty()) keep_outputs(kernel, o.outputs);
     emit::EmitOptions eo = o.emit;
     eo.script_name = from_stdin ? "<stdin>" : std::filesystem::path(o.script).filename().string();
     std::vector<std::string> uniforms;

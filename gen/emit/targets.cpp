@@ -80,10 +80,10 @@ std::vector<Syntax> make_targets() {
   simd.unused = "(void)${name};";
   simd.batch_in = "const In& ${name}";
   simd.batch_out = "const Out& ${name}";
-  simd.batch_load_scalar = "const V ${lanes} = cgagen_load(d, ${name}, 0, i);";
-  simd.batch_load_mv = "V ${lanes}[${n}];\n  for (std::size_t k = 0; k < ${n}; ++k) ${lanes}[k] = cgagen_load(d, ${name}, k, i);";
+  simd.batch_load_scalar = "const V ${lanes} = cgagen_load(d, ${name}, i, cgagen_rows_cache);";
+  simd.batch_load_mv = "V ${lanes}[${n}];\n  cgagen_load(d, ${name}, i, ${lanes}, cgagen_rows_cache);";
   simd.batch_out_decl = "V ${lanes}[${n}];";
-  simd.batch_store = "for (std::size_t k = 0; k < ${n}; ++k) cgagen_store(d, ${lanes}[k], ${name}, k, i);";
+  simd.batch_store = "cgagen_store(d, ${name}, i, ${lanes});";
   simd.scalar_twin = "cpp";
   t.push_back(simd);
 

@@ -1,5 +1,6 @@
-// The SIMD skinning loops (8 vertices per step, remainder and block edges) against the portable loops and
-// against a plain per-vertex reference, for vertex counts around the step (8) and block (256) sizes.
+// The SIMD skinning paths (the hand-written loops, 8 vertices per step, and every method's generated batch
+// kernels, a vector of lanes per step; remainders and block edges) against the portable loop and against a
+// plain per-vertex reference, for vertex counts around the step (8, 16) and block (256) sizes.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -37,7 +38,7 @@ Palettes make_palettes(const std::vector<Transform>& xs) {
 }
 
 SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palettes& pal, bool simd,
-                   bool avx512 = true) {
+                   bool avx512 = true, bool hand_loops = true) {
   SkinnedOutput out;
   SkinningJob job = make_skinning_job(method, mesh, out);
   job.matrices = pal.matrices;
@@ -45,6 +46,7 @@ SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palette
   job.motors = pal.motors;
   job.use_simd = simd;
   job.use_avx512 = avx512;
+  job.use_hand_loops = hand_loops;
   REQUIRE(job.Run());
   return out;
 }
@@ -87,10 +89,13 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
           INFO(to_string(method));
           const SkinnedOutput portable = skin(method, mesh, *pal, false);
           const SkinnedOutput simd = skin(method, mesh, *pal, true);
-          // The widest loops the CPU has, and the AVX2 ones (the same on a CPU without AVX-512).
-          for (const bool avx512 : {true, false}) {
-            INFO((avx512 ? "widest SIMD loops" : "AVX2 loops"));
-            const SkinnedOutput got = avx512 ? simd : skin(method, mesh, *pal, true, false);
+          // The widest loops the CPU has, the AVX2 ones (the same on a CPU without AVX-512), and the batch
+          // kernels (what every method without a hand-written loop runs).
+          for (const int path : {0, 1, 2}) {
+            INFO((path == 0 ? "widest SIMD loops" : path == 1 ? "AVX2 loops" : "batch kernels"));
+            const SkinnedOutput got = path == 0   ? simd
+                                      : path == 1 ? skin(method, mesh, *pal, true, false)
+                                                  : skin(method, mesh, *pal, true, true, false);
             for (std::size_t i = 0; i < n; ++i) {
               REQUIRE(std::hypot(got.px[i] - portable.px[i], got.py[i] - portable.py[i],
                                  got.pz[i] - portable.pz[i]) <= 1e-5f * size);
@@ -151,7 +156,7 @@ TEST_CASE("large meshes (prefetching) skin as the portable loops, aligned output
   const SkinnedMesh mesh = make_random_skinned_mesh(n, 64, 71);
   const Palettes pal = make_palettes(make_random_transforms(64, 72, 2.0f, 0.3f));
   const float size = 3.0f * std::exp(0.3f);
-  for (SkinningMethod method : {SkinningMethod::lbs, SkinningMethod::cga_points, SkinningMethod::cga_motors}) {
+  for (SkinningMethod method : kAllSkinningMethods) {
     INFO(to_string(method));
     const SkinnedOutput portable = skin(method, mesh, pal, false);
     for (const std::size_t offset : {0u, 1u}) {
@@ -160,7 +165,9 @@ TEST_CASE("large meshes (prefetching) skin as the portable loops, aligned output
       SkinnedOutput unused;
       SkinningJob job = make_skinning_job(method, mesh, unused);
       job.matrices = pal.matrices;
+      job.dual_quats = pal.dual_quats;
       job.motors = pal.motors;
+      job.use_hand_loops = offset == 0;  // the batch kernels of every method too
       std::span<float>* outs[6] = {&job.out_px, &job.out_py, &job.out_pz, &job.out_nx, &job.out_ny, &job.out_nz};
       for (int k = 0; k < 6; ++k) *outs[k] = std::span<float>(buf.data() + k * (n + 1) + offset, n);
       REQUIRE(job.Run());

@@ -1,6 +1,7 @@
 // SkinningJob: names, validation, the per-run palette conversion, strided streams and the dispatch: to one
 // instruction set's hand-written block functions (the table of loops.hpp, chosen once per process: avx512.cpp,
-// avx2.cpp) where it has them for the method, else to the generated path (generated.hpp, portable.cpp).
+// avx2.cpp) where it has them for the method, else to the method's generated SIMD batch kernels (batch.cpp),
+// or with use_simd = false to the generated scalar loop (generated.hpp, portable.cpp).
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/packed_palette.hpp"
 
@@ -14,6 +15,7 @@
 #include <fmt/format.h>
 
 
+#include "batch.hpp"
 #include "generated.hpp"
 
 namespace cga {
@@ -243,7 +245,7 @@ bool SkinningJob::Run() const {
       if (4 * m.entry_vec4s > kEntry) return false;
     return true;
   }(), "a prepared entry must fit the converted palette's entry size");
-  const SkinKernels& k = kernels_for(use_simd, use_avx512);
+  const SkinKernels& k = kernels_for(use_simd && use_hand_loops, use_avx512);
   BlockFn block = nullptr;
   bool signed_motors = false;  // cga_motors with the pair-sign data after its palette
   const std::size_t palette = palette_size(*this);
@@ -285,7 +287,7 @@ bool SkinningJob::Run() const {
   const bool generated = block == nullptr;
   if (generated) {
     prepare_palette(method, matrices, dual_quats, motors, std::span<float>(converted, sizeof converted / sizeof(float)));
-    block = generated_blocks()[static_cast<std::size_t>(method)][normals];
+    block = (use_simd ? batch_blocks() : generated_blocks())[static_cast<std::size_t>(method)][normals];
   }
   const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
                   in_nz.data(),  joints.data(), weights.data(), out_px.data(), out_py.data(),

@@ -87,9 +87,14 @@ struct SkinningJob {
   // Entries of their own span (quadruples) from one vertex's joints / weights to the next; 1 = packed.
   std::size_t joints_stride = 1, weights_stride = 1;
 
-  // Run lbs / cga_points / cga_motors on the hand-written AVX2 + FMA loops when the CPU has them (the default).
-  // false: always the generated portable loop, which agrees to float rounding; tests use it to check both.
+  // Run every method on SIMD code (the default): the blend's generated batch kernels (the simd target, the
+  // best instruction set of the CPU), or for lbs / cga_points / cga_motors the hand-written AVX2 + FMA loops
+  // when the CPU has them and use_hand_loops is set. false: the generated scalar loop, one vertex at a time,
+  // which agrees to float rounding; tests use it to check the others.
   bool use_simd = true;
+  // With use_simd, take the hand-written loops of lbs / cga_points / cga_motors where the CPU has them (they
+  // are faster than those methods' batch kernels: docs/bench.md); false runs every method on its batch kernels.
+  bool use_hand_loops = true;
   // With use_simd, take the AVX-512 loops where the CPU has them (cga_motors); false keeps the AVX2 ones, so
   // tests and A/B benchmarks reach those on an AVX-512 machine too.
   bool use_avx512 = true;
