@@ -121,7 +121,7 @@ endif()
 # Debian package: cd build && cpack -G DEB -> cgagen_<version>_<arch>.deb, installed under /usr.
 # Depends: the shared libraries of bin/cgagen (libginac11, libcln6, libfmt9, libstdc++6, libc6 by
 # dpkg-shlibdeps, from dpkg-dev), plus the -dev packages that find_package(cgagen)'s find_dependency() and
-# the exported cgagen::runtime and cgagen::io need (glm, fmt; assimp's CMake files for cgagen::io). cgagen::gpu links EGL and
+# the exported cgagen::runtime and cgagen::io need (glm, fmt, Highway; assimp's CMake files for cgagen::io). cgagen::gpu links EGL and
 # libOpenGL: recommended, not required, as a consumer of the generator and the CPU runtime does not need GL.
 set(CPACK_PACKAGE_NAME cgagen)
 set(CPACK_PACKAGE_VENDOR "cgagen")
@@ -135,7 +135,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION devel)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libglm-dev, libfmt-dev, libassimp-dev")
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libglm-dev, libfmt-dev, libassimp-dev, libhwy-dev")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "cmake, libegl-dev, libopengl-dev")
 set(CPACK_GENERATOR DEB)
 set(CPACK_STRIP_FILES ON)  # bin/cgagen without debug info (the static libraries keep theirs)

@@ -44,7 +44,15 @@ done
 python3 - "$work" "$ROUNDS" <<'PY'
 import json, re, statistics, sys
 work, rounds = sys.argv[1], int(sys.argv[2])
-methods = ["lbs", "cga-points", "cga-motors", "dqs"]
+# The methods: the skinning table's, as cga-bench names its rows (skinning/random1M/positions/NAME), with the
+# other paths' rows (NAME-batch: the generated batch kernels where a hand-written loop is the default), not
+# the scalar generated loop (NAME-generated) or the plain GLM loops.
+def methods_of(work):
+    names = [b["run_name"] for b in json.load(open(f"{work}/cga_1_1M.json"))["benchmarks"]
+             if b.get("aggregate_name") == "median" and b["run_name"].startswith("skinning/random1M/positions/")]
+    ms = [n.split("/")[-1] for n in names]
+    return [m for m in ms if not m.startswith("plain_glm") and not m.endswith("-generated")]
+methods = methods_of(work)
 # (cga-bench scene, ozz line tag, title)
 cases = [("random1M", "1M", "1 M random vertices"),
          ("random64K", "64K", "64 K random vertices (cache-resident)"),

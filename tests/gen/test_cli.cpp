@@ -376,3 +376,29 @@ TEST_CASE("#pragma algebra: a script names its algebra, and a conflicting --alge
   CHECK(r.out.find("pragma_algebra_two.clu:2:17: error: '#pragma algebra cga' after '#pragma algebra 3dpga' at line 1") !=
         std::string::npos);
 }
+
+TEST_CASE("cli: --outputs keeps the named outputs and drops the work only the others need", "[cli]") {
+  const std::string src = write_temp("outputs.clu", "?a = x*y + z;\n?b = x*x*x*y;\n?c = a + 1;\n");
+  auto all = run("--stats " + src);
+  auto some = run("--stats --outputs c,a " + src);
+  REQUIRE(all.code == 0);
+  REQUIRE(some.code == 0);
+  CHECK(all.out.find("output b: ") != std::string::npos);
+  CHECK(some.out.find("output b: ") == std::string::npos);
+  // The script's order, not the option's.
+  CHECK(some.out.find("output a: ") < some.out.find("output c: "));
+  // What only b needs is gone: a's one multiplication is left of the three (b shares x*y with a).
+  auto total_mul = [](const std::string& out) {
+    const auto at = out.find("\ntotal: ");
+    return std::stoi(out.substr(out.find("add, ", at) + 5));
+  };
+  CHECK(total_mul(all.out) == 3);
+  CHECK(total_mul(some.out) == 1);
+  auto r = run("--eval x=2 y=3 z=1 --outputs b " + src);
+  CHECK(r.code == 0);
+  CHECK(r.out == "b 1 24\n");
+  r = run("--outputs q " + src);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("--outputs names 'q', which is not an output of the script (its outputs: a, b, c)") !=
+        std::string::npos);
+}
