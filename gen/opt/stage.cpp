@@ -130,18 +130,25 @@ class Stager {
     return s;
   }
 
-  // Children of e staged (per-element ones recursively, uniform ones as prepared values).
+  // The operands of e in the canonical order: prepared values are numbered in the order they are met, and
+  // GiNaC's own operand order depends on addresses (its type hash seeds), so walking it would number them
+  // differently from one process to the next.
+  exvector canonical_ops(const ex& e) {
+    exvector ops(e.begin(), e.end());
+    std::stable_sort(ops.begin(), ops.end(), [this](const ex& a, const ex& b) { return keys_.less(a, b); });
+    return ops;
+  }
+
+  // Children of e staged (per-element ones recursively, uniform ones as prepared values), in canonical order.
   ex map_children(const ex& e, const std::string& label) {
+    std::map<ex, ex, ex_is_less> staged;
+    for (const ex& x : canonical_ops(e))
+      if (!is_a<numeric>(x) && !staged.count(x)) staged.emplace(x, varies(x) ? stage(x, label) : prepared(x, label));
     struct F : map_function {
-      Stager* self;
-      const std::string* label;
-      ex operator()(const ex& x) override {
-        if (is_a<numeric>(x)) return x;
-        return self->varies(x) ? self->stage(x, *label) : self->prepared(x, *label);
-      }
+      const std::map<ex, ex, ex_is_less>* staged;
+      ex operator()(const ex& x) override { return is_a<numeric>(x) ? x : staged->at(x); }
     } f;
-    f.self = this;
-    f.label = &label;
+    f.staged = &staged;
     return e.map(f);
   }
 
@@ -183,7 +190,7 @@ class Stager {
       const ex c = prepared(dynallocate<add>(g.uniform_parts), label + "[" + monomial(g.element_part) + "]");
       exvector fs;
       if (is_a<mul>(g.element_part))
-        for (size_t i = 0; i < g.element_part.nops(); ++i) fs.push_back(factor(g.element_part.op(i), label));
+        for (const ex& f : canonical_ops(g.element_part)) fs.push_back(factor(f, label));
       else
         fs.push_back(factor(g.element_part, label));
       terms.push_back(c * dynallocate<mul>(fs));
@@ -196,11 +203,11 @@ class Stager {
     if (is_a<symbol>(e)) return e;
     if (is_a<add>(e) || is_a<mul>(e)) {
       exvector el, un;
-      for (size_t i = 0; i < e.nops(); ++i) {
-        if (varies(e.op(i)))
-          el.push_back(lift(e.op(i), label));
+      for (const ex& x : canonical_ops(e)) {
+        if (varies(x))
+          el.push_back(lift(x, label));
         else
-          un.push_back(e.op(i));
+          un.push_back(x);
       }
       if (is_a<add>(e)) return prepared(dynallocate<add>(un), label + "[1]") + dynallocate<add>(el);
       return prepared(dynallocate<mul>(un), label) * dynallocate<mul>(el);
