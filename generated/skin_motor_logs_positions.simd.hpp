@@ -5,7 +5,8 @@
 //   NAME_batch(n, streams...)       NAME over n elements, streams described by In / Out below.
 // Static use: include this header (after <hwy/highway.h> or not) and call cga::kernels::simd::NAME_batch:
 // it runs the code of the instruction set the file is compiled for (-march). Run-time dispatch: in one
-// source file, `#define CGAGEN_SIMD_DISPATCH`, `#define HWY_TARGET_INCLUDE "this header"`, then include
+// source file, `#define CGAGEN_SIMD_DISPATCH`, `#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 |
+// HWY_SVE2_128 | HWY_RVV)`, `#define HWY_TARGET_INCLUDE "this header"`, then include
 // <hwy/foreach_target.h> and this header, and link libhwy: NAME_batch then runs the best instruction set
 // of the CPU (AVX-512, AVX2, SSE4, NEON, or the scalar fallback).
 // input Lr0: e1^e2 e1^e3 e2^e3 einf^e0

@@ -14,6 +14,7 @@
 
 // The batch kernel with run-time dispatch: this file is Highway's per-target include of the generated header.
 #define CGAGEN_SIMD_DISPATCH
+#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)  // see the header
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "move_points.simd.hpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep

@@ -5,6 +5,9 @@
 // entries through them) and the stream descriptors. The entries are the method's prepared palette
 // (prepare_palette: 4 * VEC4S floats each), the blend's entry inputs read at 4 * v within an entry.
 #define CGAGEN_SIMD_DISPATCH
+// Before Highway's first header: the generated kernels take arrays of vectors, which sizeless vectors (SVE,
+// RVV) cannot be elements of.
+#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "skinning_batch_kernels.hpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
