@@ -22,6 +22,9 @@
 #include "front/diagnostics.hpp"
 #include "front/parser.hpp"
 #include "gpc/gpc.hpp"
+#include "library/build.hpp"
+#include "library/emit.hpp"
+#include "library/spec.hpp"
 #include "opt/passes.hpp"
 #include "opt/program.hpp"
 #include "opt/report.hpp"
@@ -34,6 +37,7 @@ using namespace cgagen;
 
 const char* kUsage = R"(usage: cgagen [options] SCRIPT
        cgagen --gpc [options] SOURCE
+       cgagen --library [options] SPEC
 
 Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code. SCRIPT - reads the script from
 standard input (diagnostics then name <stdin>, the function is named kernel unless --name is given).
@@ -41,6 +45,9 @@ standard input (diagnostics then name <stdin>, the function is named kernel unle
 With --gpc, SOURCE is a C, C++ or CUDA file whose `#pragma gpc begin` ... `#pragma gpc end` blocks are
 compiled in place (mv_from_array inputs, a `#pragma clucalc` script, to_array / mv_to_array /
 mv_get_bladecoeff of its outputs after it; see docs/gpc.md); the rest of the text is copied unchanged.
+
+With --library, SPEC is a library spec (an algebra and named types, see docs/library.md): the output is
+a typed library with every operation between the types, each one optimized kernel.
 
 options:
   --algebra NAME|FILE     the geometric algebra (default cga): 2d 3d 2dpga 3dpga cra sta cga gac qga
@@ -66,6 +73,8 @@ options:
                           and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
   --gpc                   SOURCE is a C/C++/CUDA source with GPC blocks: write it with each block compiled
                           (with --algebra, -O, -o, --Werror, --target cpp|cuda|opencl, --type)
+  --library               SCRIPT is a library spec: write the library (with -O, -o, --target, --templates;
+                          --stats prints each function's op counts instead)
   --type T                --gpc: the number type of the blocks' outputs and temporaries (default float;
                           double or another C type name: literals then have no f suffix)
   --stats                 print op counts instead of code
@@ -106,6 +115,7 @@ struct Options {
   std::vector<std::string> uniforms;  // --uniform
   std::vector<std::string> outputs;   // --outputs (empty: all)
   bool gpc = false;                   // --gpc
+  bool library = false;               // --library
   std::string type;                   // --type (--gpc)
   bool target_given = false;
 };
@@ -218,6 +228,8 @@ Options parse_args(int argc, char** argv) {
           if (!item.empty()) o.uniforms.push_back(item);
       } else if (a == "--gpc") {
         o.gpc = true;
+      } else if (a == "--library") {
+        o.library = true;
       } else if (a == "--type") {
         o.type = value(i, a);
         bool ok = !o.type.empty();
@@ -257,6 +269,7 @@ Options parse_args(int argc, char** argv) {
   if (o.script.empty()) throw UsageError("no script given");
   int modes = o.stats + o.diff.has_value() + o.dump_ast + o.eval;
   if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
+  if (o.gpc && o.library) throw UsageError("--gpc and --library exclude each other");
   if (o.gpc) {
     if (modes || !o.uniforms.empty() || !o.outputs.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
         !o.emit.return_output.empty())
@@ -266,6 +279,10 @@ Options parse_args(int argc, char** argv) {
     if (!known)
       throw UsageError(std::string("--gpc prints C, C++, CUDA or OpenCL statements: --target cpp, cuda or opencl, not ") +
                        o.emit.target.name);
+  } else if (o.library) {
+    if (o.diff || o.dump_ast || o.eval || !o.uniforms.empty() || !o.outputs.empty() || !o.name.empty() ||
+        !o.stats_out.empty() || !o.emit.pack.empty() || !o.emit.return_output.empty() || o.algebra_given || !o.type.empty())
+      throw UsageError("--library takes -O, -o, --target, --templates and --stats only (the spec names the algebra)");
   } else if (!o.type.empty()) {
     throw UsageError("--type applies to --gpc");
   }
@@ -434,7 +451,44 @@ int run_gpc(const Options& o, const front::SourceFile& file) {
   }
 }
 
+// --library: the spec's library in the target, or one op-count line per function (--stats).
+int run_library(const Options& o) {
+  std::optional<front::SourceFile> loaded;
+  try {
+    loaded.emplace(load_script(o.script));
+  } catch (const front::FileError& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  const front::SourceFile& file = *loaded;
+  try {
+    const library::Spec spec =
+        library::parse_spec(file, o.script == "-" ? "" : std::filesystem::path(o.script).parent_path().string());
+    const library::Library lib = library::build(spec, o.level);
+    if (o.stats) {
+      std::string out;
+      for (const auto& f : lib.functions) {
+        out += std::string(f.op->name) + "(" + lib.types[f.a].name + (f.op->arity == 2 ? ", " + lib.types[f.b].name : "") +
+               ") -> " + lib.types[f.result].name + ": " + opt::format_counts(opt::program_stats(f.program).total) + "\n";
+      }
+      for (const auto& sk : lib.skipped)
+        out += std::string(sk.op->name) + "(" + lib.types[sk.a].name + (sk.op->arity == 2 ? ", " + lib.types[sk.b].name : "") +
+               "): not generated: " + sk.reason + "\n";
+      write_text(o.output, out);
+      return 0;
+    }
+    emit::EmitOptions eo = o.emit;
+    eo.script_name = std::filesystem::path(o.script).filename().string();
+    write_text(o.output, library::emit_library(lib, eo, eo.script_name));
+    return 0;
+  } catch (const front::CompileError& e) {
+    std::cerr << front::format_diagnostic(file, e.loc(), e.what());
+    return 1;
+  }
+}
+
 int run(const Options& o) {
+  if (o.library) return run_library(o);
   try {
     algebra::use(algebra::load(o.algebra));
   } catch (const algebra::AlgebraError& e) {  // "file:line: error: ..." for a bad definition file

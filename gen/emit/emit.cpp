@@ -633,5 +633,13 @@ std::string emit(const std::vector<const opt::Program*>& programs, const EmitOpt
                        f.file_tmpl_path);
 }
 
-}  // namespace cgagen::emit
+std::string emit_functions(const std::vector<const opt::Program*>& programs, const EmitOptions& options) {
+  algebra::Using in(programs.empty() ? nullptr : programs.front()->algebra);
+  FileContext f = load_file_context(options, options.target, false);
+  f.spelt = spell_file_names(f.sx, programs);
+  std::string functions;
+  for (const opt::Program* p : programs) functions += (functions.empty() ? "" : "\n") + ProgramEmitter(f, *p).functions();
+  return functions;
+}
 
+}  // namespace cgagen::emit

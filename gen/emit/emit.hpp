@@ -155,6 +155,10 @@ std::string emit(const opt::Program& program, const EmitOptions& options);
 // Each is printed exactly as emit() prints a single program; the file lists all their blade lists and inputs.
 std::string emit(const std::vector<const opt::Program*>& programs, const EmitOptions& options);
 
+// The functions of independent programs (a generated library's kernels), each printed as emit() prints a
+// program, their names spelt together; no file template, no blade lists.
+std::string emit_functions(const std::vector<const opt::Program*>& programs, const EmitOptions& options);
+
 // Replaces each {{key}} with values[key]; throws std::runtime_error (naming the template) for a
 // placeholder without a value or an unterminated one.
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values,

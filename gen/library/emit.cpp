@@ -1,0 +1,128 @@
+// Library files (emit.hpp): the kernels in the target's own syntax, then the templates of
+// templates/TARGET/library/ filled per type, per function, per registry entry and per skipped operation.
+#include "library/emit.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "emit/names.hpp"
+
+namespace cgagen::library {
+
+namespace {
+
+std::string folder(const std::string& template_dir, const std::string& target) {
+  return (template_dir.empty() ? emit::default_template_dir() : template_dir) + "/" + target + "/library";
+}
+
+struct Templates {
+  std::string dir;
+  std::map<std::string, std::string> text;
+  const std::string& operator[](const std::string& name) const { return text.at(name); }
+  std::string path(const std::string& name) const { return dir + "/" + name + ".in"; }
+};
+
+Templates load(const std::string& dir) {
+  Templates t{dir, {}};
+  for (const char* name : {"file", "type", "unary", "binary", "unary_operator", "binary_operator", "unary_registry", "binary_registry", "skipped", "alias", "type_registry"}) {
+    std::ifstream in(t.path(name), std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read library template " + t.path(name));
+    std::ostringstream s;
+    s << in.rdbuf();
+    t.text[name] = s.str();
+  }
+  return t;
+}
+
+std::string blade_text(const algebra::Algebra& alg, algebra::BladeIndex b) { return b == 0 ? "1" : alg.blade_name(b); }
+
+}  // namespace
+
+std::vector<std::string> library_targets(const std::string& template_dir) {
+  std::vector<std::string> out;
+  for (const emit::Syntax& sx : emit::targets())
+    if (std::filesystem::exists(folder(template_dir, sx.name) + "/file.in")) out.push_back(sx.name);
+  return out;
+}
+
+std::string emit_library(const Library& lib, const emit::EmitOptions& options, const std::string& spec_file) {
+  const emit::Syntax& sx = options.target.syntax();
+  const std::string dir = folder(options.template_dir, sx.name);
+  if (!std::filesystem::exists(dir + "/file.in")) {
+    std::string have;
+    for (const auto& n : library_targets(options.template_dir)) have += (have.empty() ? "" : ", ") + n;
+    throw std::runtime_error("the " + sx.name + " target has no library templates (" + dir + "); targets with a library: " + have);
+  }
+  const Templates t = load(dir);
+  const algebra::Algebra& alg = *lib.algebra_ptr;
+  auto type_name = [&](size_t t) { return emit::spell(sx, lib.types[t].name); };
+  auto fill = [&](const std::string& name, const std::map<std::string, std::string>& v) {
+    return emit::fill_template(t[name], v, t.path(name));
+  };
+
+  std::vector<const opt::Program*> programs;
+  for (const Function& f : lib.functions) programs.push_back(&f.program);
+  const std::string kernels = emit::emit_functions(programs, options);
+
+  std::string types, type_registry;
+  for (size_t i = 1; i < lib.types.size(); ++i) {
+    const Type& ty = lib.types[i];
+    std::string quoted, layout;
+    for (size_t k = 0; k < ty.blades.size(); ++k) {
+      quoted += std::string(k ? ", " : "") + "\"" + blade_text(alg, ty.blades[k]) + "\"";
+      layout += std::string(k ? " " : "") + blade_text(alg, ty.blades[k]);
+    }
+    types += fill("type", {{"type", type_name(i)},
+                           {"n", std::to_string(ty.blades.size())},
+                           {"blades", quoted},
+                           {"layout", layout},
+                           {"origin", ty.declared ? "declared in the spec" : "named by the generator for a result"}});
+    type_registry += fill("type_registry", {{"type", type_name(i)}, {"n", std::to_string(ty.blades.size())}});
+  }
+
+  for (const Alias& al : lib.aliases) types += fill("alias", {{"alias", emit::spell(sx, al.name)}, {"type", emit::spell(sx, al.type)}});
+
+  std::string functions, registry, skipped;
+  for (const Function& f : lib.functions) {
+    const std::map<std::string, std::string> v = {
+        {"fn", f.op->name},
+        {"kernel", emit::spell(sx, f.program.name)},
+        {"a", type_name(f.a)},
+        {"b", f.op->arity == 2 ? type_name(f.b) : ""},
+        {"result", type_name(f.result)},
+        {"symbol", f.op->symbol},
+        {"description", f.op->description},
+        {"arity", std::to_string(f.op->arity)}};
+    const std::string kind = f.op->arity == 2 ? "binary" : "unary";
+    functions += fill(kind, v);
+    if (*f.op->symbol) functions += fill(kind + "_operator", v);
+    registry += fill(kind + "_registry", v);
+  }
+  for (const Skipped& s : lib.skipped) {
+    std::string reason = s.reason;
+    for (char& c : reason)
+      if (c == '\n') c = ' ';
+    skipped += fill("skipped", {{"fn", s.op->name},
+                                {"operands", type_name(s.a) + (s.op->arity == 2 ? ", " + type_name(s.b) : "")},
+                                {"reason", reason}});
+  }
+  std::string declared;
+  for (size_t i = 1; i < lib.declared; ++i) declared += (declared.empty() ? "" : " ") + type_name(i);
+  return fill("file", {{"library", lib.name},
+                       {"spec", spec_file},
+                       {"algebra", lib.algebra},
+                       {"level", std::to_string(programs.empty() ? 2 : static_cast<int>(programs.front()->level))},
+                       {"declared", declared},
+                       {"function_count", std::to_string(lib.functions.size())},
+                       {"skipped_count", std::to_string(lib.skipped.size())},
+                       {"kernels", kernels},
+                       {"types", types},
+                       {"type_registry", type_registry},
+                       {"functions", functions},
+                       {"registry", registry},
+                       {"skipped", skipped}});
+}
+
+}  // namespace cgagen::library
