@@ -60,15 +60,38 @@ bool Expander::is_algebra_builtin(const Stmt* def) const {
   return false;
 }
 
-// Every name the script assigns or defines as a macro, inside if/else branches too.
+// Every name the script assigns or defines as a macro, inside if/else branches too; and every name its
+// statements assign or read (Gaalop's inliner sees the whole script, macro bodies and if conditions aside).
 void Expander::collect_script_names(const std::vector<front::StmtPtr>& statements) {
+  std::function<void(const Expr&)> reads = [&](const Expr& x) {
+    if (x.kind == Expr::Kind::Name) inlined_taken_.insert(x.text);
+    for (const auto& a : x.args)
+      if (a) reads(*a);
+  };
   for (const auto& s : statements) {
     if (s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::MacroDef) script_names_.insert(s->name);
+    if (s->kind == Stmt::Kind::Assign) inlined_taken_.insert(s->name);
+    if ((s->kind == Stmt::Kind::Assign || s->kind == Stmt::Kind::ExprStmt) && s->value) reads(*s->value);
     if (s->kind == Stmt::Kind::If) {
       collect_script_names(s->body);
       collect_script_names(s->else_body);
     }
   }
+}
+
+// Gaalop's Inliner.createNewVariable: "macro_" + M + "_" + k, else that name with the first free number
+// appended. Names only ever become taken, so the search for a name resumes where the last one stopped.
+std::string Expander::inlined_name(const std::string& macro, const std::string& local) {
+  const std::string base = "macro_" + macro + "_" + local;
+  std::string name = base;
+  if (inlined_taken_.count(name)) {
+    int& k = inlined_suffix_[base];
+    if (k == 0) k = 1;
+    while (inlined_taken_.count(base + std::to_string(k))) ++k;
+    name = base + std::to_string(k);
+  }
+  inlined_taken_.insert(name);
+  return name;
 }
 
 void Expander::exec_top(const Stmt& s) {
@@ -131,11 +154,10 @@ void Expander::exec_local(const Stmt& s) {
   if (output) macro_output(s, v);  // "?k = e;" inside a macro: also an output (Gaalop's QuestionLineMacro)
 }
 
-// An output marked inside a macro: named after the local, or MACRO_local where the script has a top-level
-// name of that spelling. A macro called twice outputs the value of its last call (the last assignment).
+// An output marked inside a macro, under the name this call gave the local (inlined_name).
 void Expander::macro_output(const Stmt& s, const Multivector& v) {
   Stmt out = s;
-  out.name = script_names_.count(s.name) ? frames_.back().macro + "_" + s.name : s.name;
+  out.name = frames_.back().inlined.at(s.name);
   record_value(out, v, /*bind=*/false);
   mark(out.name, s.loc);
 }
@@ -211,7 +233,11 @@ Multivector Expander::call_macro(const Stmt& def, std::vector<Multivector> args,
     for (size_t j = i; j < frames_.size(); ++j) chain += "'" + frames_[j].macro + "' -> ";
     throw CompileError(e.loc, "recursive macro call " + chain + "'" + def.name + "'");
   }
-  frames_.push_back({def.name, &def, std::move(args), {}});
+  frames_.push_back({def.name, &def, std::move(args), {}, {}});
+  // As Gaalop inlines a call: every local the body assigns gets its own name before the body runs.
+  for (const auto& s : def.body)
+    if (s->kind == Stmt::Kind::Assign && s->value && !frames_.back().inlined.count(s->name))
+      frames_.back().inlined[s->name] = inlined_name(def.name, s->name);
   for (const auto& s : def.body) exec_local(*s);
   Multivector r = def.result ? eval(*def.result) : Multivector();
   frames_.pop_back();

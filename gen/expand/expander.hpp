@@ -68,6 +68,7 @@ class Expander : private expand_pragmas::PragmaHost,
     const Stmt* def;  // which definition (macros overload by arity)
     std::vector<Multivector> args;
     std::map<std::string, Multivector> locals;
+    std::map<std::string, std::string> inlined;  // each local's name in the inlined script (macro_M_k)
   };
   struct Mark {
     std::string name;
@@ -87,6 +88,10 @@ class Expander : private expand_pragmas::PragmaHost,
   symbolic::ZeroTests zeros_;
   std::vector<Mark> marks_;                        // in order of first marking
   std::set<std::string> script_names_;             // every name the script assigns or defines as a macro
+  // The names Gaalop's inliner checks a new macro_M_k against: every name a statement of the script (not a
+  // macro body) assigns or reads, and every name a call has given a local so far.
+  std::set<std::string> inlined_taken_;
+  std::map<std::string, int> inlined_suffix_;     // per macro_M_k: the next number to try after it
   std::map<std::string, const Stmt*> latest_macro_;  // the last definition of each macro name
   expand_pragmas::Pragmas pragmas_;
   std::vector<int> evaluated_values_;   // values of '!x = e;' (kept though no output needs them)
@@ -105,8 +110,13 @@ class Expander : private expand_pragmas::PragmaHost,
 
   // ---- statements --------------------------------------------------------------------------------
 
-  // Every name the script assigns or defines as a macro, inside if/else branches too.
+  // Every name the script assigns or defines as a macro, inside if/else branches too; and into
+  // inlined_taken_, every name its statements assign or read.
   void collect_script_names(const std::vector<front::StmtPtr>& statements);
+
+  // The name a local k of macro M takes in one call, as Gaalop's inliner names it: macro_M_k, or where
+  // that name is taken, macro_M_k1, macro_M_k2, ... (the first free one). Each call renames every local.
+  std::string inlined_name(const std::string& macro, const std::string& local);
 
   void exec_top(const Stmt& s);
 
@@ -126,8 +136,8 @@ class Expander : private expand_pragmas::PragmaHost,
 
   void exec_local(const Stmt& s);
 
-  // An output marked inside a macro: named after the local, or MACRO_local where the script has a top-level
-  // name of that spelling. A macro called twice outputs the value of its last call (the last assignment).
+  // An output marked inside a macro: named as the call renamed the local (inlined_name), so each call of
+  // the macro gives an output of its own (macro_M_k, then macro_M_k1, ...), as in Gaalop.
   void macro_output(const Stmt& s, const Multivector& v);
 
   void check_assignable(const Stmt& s);

@@ -79,6 +79,8 @@ class Interp {
     for (const auto& s : script.statements)
       if (s->kind == Stmt::Kind::If) assigned({s}, in_branches);
     for (const auto& [n, output] : in_branches) top_names_.insert(n);
+    taken_ = top_names_;
+    for (const auto& [n, v] : inputs_) taken_.insert(n);
     for (const auto& s : script.statements) top(*s);
     Outputs out;
     for (const auto& n : marks_) {
@@ -94,7 +96,20 @@ class Interp {
   struct Frame {
     std::vector<MV> args;
     std::map<std::string, MV> locals;
+    std::map<std::string, std::string> inlined;  // each local's name in this call
   };
+
+  // Gaalop's Inliner: local k of macro M becomes macro_M_k in a call, or macro_M_kN with the smallest N >= 1
+  // where that name is taken (by the script or an earlier call). Once per call and local.
+  std::string inlined_name(const std::string& macro, const std::string& local) {
+    auto& named = frames_.back().inlined;
+    auto known = named.find(local);
+    if (known != named.end()) return known->second;
+    std::string n = "macro_" + macro + "_" + local;
+    for (int k = 1; taken_.count(n); ++k) n = "macro_" + macro + "_" + local + std::to_string(k);
+    taken_.insert(n);
+    return named[local] = n;
+  }
 
   void mark(const std::string& n) {
     for (const auto& m : marks_)
@@ -247,13 +262,16 @@ class Interp {
     if (m != macros_.end()) {
       auto d = m->second.find(a.size());
       const Stmt* def = d != m->second.end() ? d->second : latest_.at(f);
-      frames_.push_back({a, {}});
+      frames_.push_back({a, {}, {}});
+      // Every local of the call is renamed, an output or not: each takes its name (Gaalop numbers them so).
+      for (const auto& st : def->body)
+        if (st->kind == Stmt::Kind::Assign && st->value) inlined_name(f, st->name);
       for (const auto& st : def->body) {
         if (st->kind != Stmt::Kind::Assign || !st->value) continue;
         frames_.back().locals[st->name] = eval(*st->value);
         if (st->marker == Marker::Output || st->marker == Marker::Visual) {
-          // Gaalop: a '?k' inside a macro is an output (named MACRO_k where the script has a top-level k).
-          const std::string n = top_names_.count(st->name) ? f + "_" + st->name : st->name;
+          // Gaalop: a '?k' inside a macro is an output, named as the inliner renames the call's local.
+          const std::string n = inlined_name(f, st->name);
           globals_[n] = frames_.back().locals[st->name];
           mark(n);
         }
@@ -315,6 +333,7 @@ class Interp {
   std::vector<Frame> frames_;
   std::vector<std::string> marks_;
   std::set<std::string> top_names_;
+  std::set<std::string> taken_;  // the names a call's macro_M_k must differ from
 };
 
 }  // namespace

@@ -82,13 +82,31 @@ void check_error(const std::string& script, const std::string& where, const std:
 TEST_CASE("?k inside a macro is an output: Gaalop's QuestionLineMacro gives five outputs", "[gaalop]") {
   // Gaalop's own test script, whose '?k = ...' line has no ';' (its parser recovers; cgagen warns).
   const std::string script = "myMac = {\n\t?k = _P(1) + _P(2)\n\tk\n}\n\n?a = b;\n?c = b + x;\n?d = myMac(a, c);\n?f = d - b;";
-  check_eval(script, "b=5 x=3", {{"a/1", 5}, {"c/1", 8}, {"k/1", 13}, {"d/1", 13}, {"f/1", 8}});
+  check_eval(script, "b=5 x=3", {{"a/1", 5}, {"c/1", 8}, {"macro_myMac_k/1", 13}, {"d/1", 13}, {"f/1", 8}});
   auto r = run("--eval " + write_temp("gaalop_case.clu", script) + " b=5 x=3");
   CHECK(r.out.find("2:20: warning: missing ';' after the assignment to 'k'") != std::string::npos);
   // Outside a macro a missing ';' stays an error.
   check_error("a = b\nc = a;", "1:6", "expected ';' after statement");
-  // A macro's output named like a top-level name is prefixed with the macro's name.
-  check_eval("M = { ?a = _P(1)*2; a }\n?a = M(x) + 1;", "x=3", {{"M_a/1", 6}, {"a/1", 7}});
+  // A local named like a top-level name is renamed all the same: the two stay apart.
+  check_eval("M = { ?a = _P(1)*2; a }\n?a = M(x) + 1;", "x=3", {{"macro_M_a/1", 6}, {"a/1", 7}});
+}
+
+TEST_CASE("an output marked inside a macro is named as Gaalop's inliner renames the call's local", "[gaalop]") {
+  // Gaalop (algebra/Inliner.java, createNewVariable): local k of macro M becomes macro_M_k in a call.
+  check_eval("M = { ?k = _P(1)*2; k }\n?a = M(e1);", "", {{"macro_M_k/e1", 2}, {"a/e1", 2}});
+  // Each call renames its locals anew, with the first free number appended: one output per call.
+  check_eval("M = { ?k = _P(1)*2; k }\n?a = M(x) + M(y);\n?b = M(z);", "x=1 y=3 z=5",
+             {{"macro_M_k/1", 2}, {"macro_M_k1/1", 6}, {"a/1", 8}, {"macro_M_k2/1", 10}, {"b/1", 10}});
+  // A name the script uses is taken; so is a local's name from an earlier call that is not an output.
+  check_eval("M = { ?k = _P(1)*2; k }\n?macro_M_k = x;\n?a = M(y);", "x=1 y=2",
+             {{"macro_M_k/1", 1}, {"macro_M_k1/1", 4}, {"a/1", 4}});
+  check_eval("M_a = { b = _P(1); b }\nM = { ?a_b = _P(1)*2; a_b }\n?p = M_a(x) + M(y);", "x=1 y=3",
+             {{"macro_M_a_b1/1", 6}, {"p/1", 7}});
+  // '?k;' marks the local as its call renamed it; the kernel's parameters carry the same names.
+  check_eval("M = { k = _P(1)*2; ?k; k }\n?a = M(x) - M(x);", "x=1", {{"macro_M_k/1", 2}, {"macro_M_k1/1", 2}, {"a/1", 0}});
+  auto r = run(write_temp("gaalop_case.clu", "M = { ?k = _P(1)*2; k }\n?a = M(x) + M(y);"));
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("float macro_M_k[1], float macro_M_k1[1], float a[1]") != std::string::npos);
 }
 
 TEST_CASE("pragmas: normalize, in2out, output groups, onlyEvaluate", "[gaalop]") {
