@@ -26,8 +26,8 @@ std::vector<int> grades_of(const algebra::Algebra& alg, const std::vector<algebr
   return {g.begin(), g.end()};
 }
 
-// True when <a ~a>_0 of type t is never positive (every term of its polynomial negative: PGA's points, whose
-// <P ~P>_0 is -w^2): such a versor is normalized to <a ~a>_0 = -1, and its inverse is -~a.
+// True when <a ~a>_0 of type t is never positive (every term of its polynomial negative: CGA's flat points,
+// whose <F ~F>_0 is -w^2 for the einf^e0 coefficient w): such a versor is normalized to <a ~a>_0 = -1, and its inverse is -~a.
 bool negative_norm(const Type& t, const algebra::Algebra& alg) {
   const std::string script = "#pragma input a" + blade_words(alg, t.blades) + "\n?q = rnorm_sqr(a);\n";
   front::SourceFile file("norm.clu", script);

@@ -1,0 +1,127 @@
+// cgagen --library's front and middle: the spec's located errors, the result types, what is not generated and
+// why, the sandwich's normalization per type, and the CLI (usage errors, byte-identical output across runs).
+// tests/library runs every generated function against the oracle.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "cli_run.hpp"
+#include "library/build.hpp"
+#include "library/spec.hpp"
+
+using namespace cgagen;
+
+namespace {
+
+// "spec.gal:line:col: error: message" of parsing `text`, or "no error".
+std::string spec_error(const std::string& text) {
+  front::SourceFile file("spec.gal", text);
+  try {
+    library::parse_spec(file, "");
+  } catch (const front::CompileError& e) {
+    return "spec.gal:" + std::to_string(e.loc().line) + ":" + std::to_string(e.loc().col) + ": error: " + e.what();
+  }
+  return "no error";
+}
+
+library::Spec spec_of(const std::string& text) { return library::parse_spec(front::SourceFile("spec.gal", text), ""); }
+
+const library::Function* find(const library::Library& lib, const std::string& op, const std::string& a,
+                              const std::string& b = "") {
+  for (const auto& f : lib.functions)
+    if (f.op->name == op && lib.types[f.a].name == a && (f.op->arity == 1 || lib.types[f.b].name == b)) return &f;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("library spec: every fault is located at its word") {
+  const std::string head = "library l\nalgebra 3dpga\n";
+  CHECK(spec_error(head + "type plane e0 e1 e2 e3\n") == "no error");
+  CHECK(spec_error("library l\nalgebra nope\n") ==
+        "spec.gal:2:9: error: unknown algebra 'nope': neither a built-in (2d, 3d, 2dpga, 3dpga, cra, sta, cga, gac, qga, "
+        "dcga, ccga) nor a readable definition.csv file");
+  CHECK(spec_error(head + "type line e0^e1 e3^e1\n") ==
+        "spec.gal:3:17: error: write 'e1^e3' for 'e3^e1' (3dpga's spelling; the coefficient then changes sign)");
+  CHECK(spec_error(head + "type p e0 e9\n") ==
+        "spec.gal:3:11: error: 'e9' is not a blade of 3dpga (its vectors: e0 e1 e2 e3; blades join them with ^, the "
+        "scalar is 1)");
+  CHECK(spec_error(head + "type p e0 e1 e0\n") == "spec.gal:3:14: error: blade 'e0' twice in type 'p'");
+  CHECK(spec_error(head + "type p e0\ntype p e1\n") == "spec.gal:4:6: error: type 'p' again (first on line 3)");
+  CHECK(spec_error(head + "type p e0 e1\ntype q e1 e0\n") ==
+        "spec.gal:4:6: error: type 'q' has the blades of 'p' (a result's type would be ambiguous)");
+  CHECK(spec_error(head + "type gp e0\n") ==
+        "spec.gal:3:6: error: 'gp' is the name of an operation of the library; choose another name");
+  CHECK(spec_error(head + "type scalar 1\n").find("spec.gal:3:6: error: 'scalar' is the library's own type") == 0);
+  CHECK(spec_error(head + "type 2p e0\n").find("spec.gal:3:6: error: '2p' is not a type name") == 0);
+  CHECK(spec_error(head + "type a__b e0\n").find("spec.gal:3:6: error: 'a__b': a type name may not") == 0);
+  CHECK(spec_error(head + "type s 1\n") == "spec.gal:3:6: error: the scalar blade alone is the library's type 'scalar'");
+  CHECK(spec_error(head + "type p\n") == "spec.gal:3:1: error: 'type' takes a name and at least one blade");
+  CHECK(spec_error("library l\ntype p e0\n") == "spec.gal:2:1: error: a type before the 'algebra' line (its blades need the algebra)");
+  CHECK(spec_error(head + "library m\n") == "spec.gal:3:1: error: a second 'library' line (the first is on line 1)");
+  CHECK(spec_error(head + "types p e0\n").find("spec.gal:3:1: error: unknown declaration 'types'") == 0);
+  CHECK(spec_error(head + "alias q p\n") == "spec.gal:3:9: error: 'p' is not a type declared above");
+  CHECK(spec_error("algebra 3dpga\ntype p e0\n") == "spec.gal:1:1: error: no 'library NAME' line");
+  CHECK(spec_error("library l\n# only a comment\n") == "spec.gal:1:1: error: no 'algebra NAME|FILE' line");
+  CHECK(spec_error(head) == "spec.gal:3:1: error: no 'type NAME BLADE...' line");
+  CHECK(spec_error("library\nalgebra 3dpga\n") == "spec.gal:1:1: error: 'library' takes one word");
+}
+
+TEST_CASE("library build: the smallest declared type holds each result, else a named one") {
+  const library::Library lib = library::build(spec_of("library l\nalgebra 3d\ntype vector e1 e2 e3\n"
+                                                      "type bivector e1^e2 e1^e3 e2^e3\ntype rotor 1 e1^e2 e1^e3 e2^e3\n"),
+                                              opt::Level::O2);
+  auto result = [&](const std::string& op, const std::string& a, const std::string& b = "") {
+    const library::Function* f = find(lib, op, a, b);
+    return f ? lib.types[f->result].name : std::string("(none)");
+  };
+  CHECK(result("gp", "vector", "vector") == "rotor");        // 1 and e_ij: the rotor, not a new type
+  CHECK(result("outer", "vector", "vector") == "bivector");  // e_ij only: the smaller bivector
+  CHECK(result("scp", "vector", "vector") == "scalar");
+  CHECK(result("norm", "rotor") == "scalar");
+  CHECK(result("gp", "vector", "bivector") == "mv_96");      // e1 e2 e3 e1^e2^e3: bits 1 2 4 7, mask 0x96
+  CHECK(result("sandwich", "rotor", "vector") == "vector");
+  CHECK(result("exp", "bivector") == "rotor");
+  // Not generated, with the reason: a result that is always 0, an operand the operator set refuses.
+  std::map<std::string, std::string> skipped;
+  for (const auto& s : lib.skipped)
+    skipped[std::string(s.op->name) + "(" + lib.types[s.a].name + (s.op->arity == 2 ? ", " + lib.types[s.b].name : "") + ")"] = s.reason;
+  CHECK(skipped.at("outer(bivector, bivector)") == "the result is 0 for every value of the operands");
+  CHECK(skipped.at("exp(vector)").find("'exp' takes a scalar or a bivector") == 0);
+  CHECK(skipped.at("log(vector)") == "takes a type with the scalar blade (a rotor, boost or motor)");
+  CHECK(find(lib, "outer", "bivector", "bivector") == nullptr);
+}
+
+TEST_CASE("library sandwich: a b ~a for a normalized versor, -a b ~a where its norm is never positive") {
+  // CGA: a vector's <a ~a>_0 takes both signs; a flat point's is -w^2 (its einf^e0 coefficient squared).
+  const library::Spec spec = spec_of("library l\nalgebra cga\ntype plane e1 e2 e3 einf\n"
+                                     "type flat_point e1^einf e2^einf e3^einf einf^e0\n");
+  const auto& alg = *spec.algebra;
+  const std::string plane = library::operation_script(library::operations().at(11), spec.types[0], &spec.types[1], alg);
+  const std::string point = library::operation_script(library::operations().at(11), spec.types[1], &spec.types[0], alg);
+  REQUIRE(std::string(library::operations().at(11).name) == "sandwich");
+  CHECK(plane.find("#pragma normalized a\nm = a * b * ~a;\n?r = grade(m, 2);") != std::string::npos);
+  CHECK(point.find("m = -(a * b * ~a);\n?r = grade(m, 1);") != std::string::npos);
+  CHECK(point.find("normalized") == std::string::npos);
+}
+
+TEST_CASE("cli: --library writes the library, the same bytes every run, and refuses script options") {
+  const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
+  const auto a = cga_test::run("--library " + spec), b = cga_test::run("--library " + spec);
+  REQUIRE(a.code == 0);
+  CHECK(a.out == b.out);
+  CHECK(a.out.find("namespace e3 {") != std::string::npos);
+  CHECK(a.out.find("inline rotor_t<T> gp(const vector_t<T>& a, const vector_t<T>& b)") != std::string::npos);
+  const auto stats = cga_test::run("--library --stats " + spec);
+  CHECK(stats.code == 0);
+  CHECK(stats.out.find("gp(vector, vector) -> rotor: 5 add, 9 mul, 0 div, 0 call\n") != std::string::npos);
+  CHECK(cga_test::run("--library --algebra cga " + spec).code == 2);
+  CHECK(cga_test::run("--library --gpc " + spec).code == 2);
+  const auto glsl = cga_test::run("--library --target wgsl " + spec);
+  CHECK(glsl.code == 1);
+  CHECK(glsl.out.find("the wgsl target has no library templates") != std::string::npos);
+  const auto bad = cga_test::run("--library " + cga_test::write_temp("bad.gal", "library x\nalgebra 3d\ntype v e1 e4\n"));
+  CHECK(bad.code == 1);
+  CHECK(bad.out.find("bad.gal:3:11: error: 'e4' is not a blade of 3d") != std::string::npos);
+  CHECK(bad.out.find("type v e1 e4\n          ^") != std::string::npos);
+}
