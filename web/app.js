@@ -175,8 +175,8 @@ async function createWebGL2(canvas) {
       gl.uniform1i(loc.u_entries, gpu[which].scene.entries);
       gl.uniform1i(loc.u_method, method);
       gl.uniform1i(loc.u_heat, heat.on ? 1 : 0);
-      gl.uniform1i(loc.u_heat_a, heat.a);
-      gl.uniform1i(loc.u_heat_b, heat.b);
+      gl.uniform1i(loc.u_heat_a, heat.pairs[method][0]);
+      gl.uniform1i(loc.u_heat_b, heat.pairs[method][1]);
       gl.uniform1f(loc.u_heat_scale, heat.scale);
       gl.uniform3fv(loc.u_color, METHODS[method].colour);
       gl.bindVertexArray(gpu[which].vao);
@@ -212,7 +212,7 @@ async function createWebGL2(canvas) {
       const tf = gl.createTransformFeedback();
       gl.bindTransformFeedback(gl.TRANSFORM_FEEDBACK, tf);
       gl.bindBufferBase(gl.TRANSFORM_FEEDBACK_BUFFER, 0, out);
-      this.bind(which, method, {on: false, a: 0, b: 0, scale: 1});
+      this.bind(which, method, NO_HEAT);
       gl.uniformMatrix4fv(loc.u_view_proj, false, new Float32Array([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]));
       gl.uniform3fv(loc.u_light, [0, 0, 1]);
       gl.enable(gl.RASTERIZER_DISCARD);
@@ -294,7 +294,7 @@ async function createWebGPU(canvas, present) {
     f.set(vp, 0);
     f.set(METHODS[m].colour, 16);
     f.set(normalize3([0.3, 0.5, 0.8]), 20);
-    i[24] = m, i[25] = heat.on ? 1 : 0, i[26] = heat.a, i[27] = heat.b;
+    i[24] = m, i[25] = heat.on ? 1 : 0, i[26] = heat.pairs[m][0], i[27] = heat.pairs[m][1];
     f[28] = heat.scale;
     new Uint32Array(data)[29] = g.scene.vertexCount;
     i[30] = g.scene.entries;
@@ -351,7 +351,7 @@ async function createWebGPU(canvas, present) {
     },
     async readback(which, method) {
       const g = gpu[which];
-      writeUniforms(g, method, new Float32Array(16), {on: false, a: 0, b: 0, scale: 1});
+      writeUniforms(g, method, new Float32Array(16), NO_HEAT);
       const bytes = 12 * g.scene.vertexCount;
       const read = device.createBuffer({size: bytes, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST});
       const enc = device.createCommandEncoder();
@@ -372,12 +372,18 @@ async function createWebGPU(canvas, present) {
 }
 
 // ---- the page
-const state = {scene: "character", playing: true, time: 0, weight: 0, mode: 0, twist: 0, heat: {on: false, a: 0, b: METHODS.length - 1, scale: 0.01}};
+// The heat map's reference (web/ui.js, heatPairs): dqs, the established volume-keeping method, so that
+// red marks where a method departs from it (the candy wrapper of lbs and cga-points on the twist strip).
+const state = {scene: "character", playing: true, time: 0, weight: 0, mode: 0, twist: 0,
+               heat: {on: false, ref: Math.max(0, METHODS.findIndex((m) => m.name === "dqs")), scale: 0.01}};
 let frameMs = null;  // smoothed time of one frame (draw calls + waiting for the GPU)
 
+// The heat map as the renderers take it: pairs[m] = [a, b], the two methods panel m's colours compare.
 function heatUniforms(scene) {
-  return {on: state.heat.on, a: state.heat.a, b: state.heat.b, scale: state.heat.scale * (scene === "twist" ? CGA_DATA.twist.size : CGA_DATA.size)};
+  return {on: state.heat.on, pairs: heatPairs(state.heat),
+          scale: state.heat.scale * (scene === "twist" ? CGA_DATA.twist.size : CGA_DATA.size)};
 }
+const NO_HEAT = {on: false, pairs: METHODS.map((_, m) => [m, m]), scale: 1};
 
 // Set when the picture must be drawn again (a control, the camera, the canvas size, the animation): a still
 // pose is not redrawn every frame, which keeps a laptop cool and a virtual-time screenshot quick.
@@ -493,9 +499,8 @@ async function main() {
   const backend = renderer.describe() + (options.has("webgl2") ? " (asked for by #webgl2)" : "") +
                   (why ? " \u2014 fell back from WebGPU: " + why : "");
   const report = (extra) => {
-    // Where the panels are (CSS pixels), for tests/web's look at a screenshot.
-    const r = $("view").getBoundingClientRect();
-    document.body.dataset.canvas = [r.left, r.top, r.width, r.height].map((v) => v.toFixed(0)).join(" ");
+    // Where the panels and the legend are, for tests/web's look at a screenshot.
+    noteLayout();
     document.body.dataset.panels = METHODS.length;
     setStatus(why ? "fallback" : "ready", backend + extra);
   };

@@ -25,7 +25,7 @@ const METHOD_NOTES = {
           "the twist strip keeps its radius; a bone's scale is dropped"],
   "cga-points": ["CGA, blended points",
                  "each bone's CGA motor moves the vertex and the points are averaged: lbs computed with motors",
-                 "the same picture as lbs (the heat map of the two is blue: rounding only)"],
+                 "the same picture as lbs (with lbs as the heat map's reference its panel is blue: rounding only)"],
   "cga-motors": ["CGA, blended motors (the paper's method)",
                  "the bones' motors (rotation + translation + uniform scale in one versor) are blended, then applied once",
                  "no candy wrapper, like dqs, and scaled bones keep their scale"],
@@ -52,20 +52,51 @@ function labelPanels() {
   });
 }
 
-// The heat map's legend in plain words, with the colour bar.
+// What each panel's heat map compares, per panel [its own method, the reference]: one reference for every
+// panel, so a panel's colours tell how far its own method moves a vertex from where the reference puts it.
+function heatPairs(heat) {
+  return CGA_DATA.methods.map((_, m) => [m, heat.ref]);
+}
+
+// The heat map's legend in plain words, with the colour bar; each panel's name says what it is compared
+// with (and its label carries the pair as data-heat-a / data-heat-b, which tests/web reads).
 function heatLegend(heat, scene) {
-  const legend = $("legend");
+  const legend = $("legend"), names = CGA_DATA.methods.map((m) => m.name), ref = names[heat.ref];
+  const pairs = heatPairs(heat);
+  document.querySelectorAll(".panel-label").forEach((label, i) => {
+    const [a, b] = pairs[i];
+    label.textContent = names[i] + (!heat.on ? "" : a === b ? " (the reference)" : " vs " + names[b]);
+    if (heat.on) {
+      label.dataset.heatA = names[a];
+      label.dataset.heatB = names[b];
+    } else {
+      delete label.dataset.heatA;
+      delete label.dataset.heatB;
+    }
+  });
   legend.classList.toggle("hidden", !heat.on);
+  $("heat-of").textContent = "of " + (scene === "twist" ? "the strip's length" : "the character's size");
   if (!heat.on) return;
   const of = scene === "twist" ? "the strip's length" : "the character's size (its bounding box's diagonal)";
   const red = +(100 * heat.scale).toPrecision(2) + "%";
   legend.replaceChildren(
-      "Heat map: every panel colours each vertex by how far apart " + CGA_DATA.methods[heat.a].name + " and " +
-      CGA_DATA.methods[heat.b].name + " put it. blue: the same place",
+      "Heat map: each panel colours a vertex by how far its own method puts it from where " + ref +
+      " (the reference) puts it. blue: the same place",
       Object.assign(document.createElement("span"), {className: "bar"}),
-      "red: " + red + " of " + of + " apart or more (green: half that). " +
-      (heat.a === heat.b ? "Both are the same method: all blue." : "The panels' own methods do not matter here."));
-  $("heat-of").textContent = "of " + (scene === "twist" ? "the strip's length" : "the character's size");
+      "red: " + red + " of " + of + " apart or more (green: half that). The " + ref + " panel is all blue: it " +
+      "is the reference.");
+}
+
+// Where the canvas and the legend are and the window's size (CSS pixels; the legend's is empty while it is
+// hidden), as body[data-canvas], body[data-legend] and body[data-window], for tests/web.
+function noteLayout() {
+  const box = (el) => {
+    const r = el.getBoundingClientRect();
+    return [r.left, r.top, r.width, r.height].map((v) => v.toFixed(0)).join(" ");
+  };
+  document.body.dataset.canvas = box($("view"));
+  document.body.dataset.legend = $("legend").classList.contains("hidden") ? "" : box($("legend"));
+  document.body.dataset.window = window.innerWidth + " " + window.innerHeight;
 }
 
 // Wires the controls to `state` and the renderer's palettes; returns update(), which re-reads them.
@@ -78,14 +109,14 @@ function setupControls(renderer, state) {
   CGA_DATA.modes.forEach((m, i) => $("mode").add(new Option(m, i)));
   state.mode = CGA_DATA.modes.indexOf("screw");
   $("mode").value = state.mode;
-  for (const id of ["heat-a", "heat-b"]) CGA_DATA.methods.forEach((m, i) => $(id).add(new Option(m.name, i)));
-  $("heat-a").value = state.heat.a, $("heat-b").value = state.heat.b;
+  CGA_DATA.methods.forEach((m, i) => $("heat-ref").add(new Option(m.name, i)));
+  $("heat-ref").value = state.heat.ref;
   state.twist = CGA_DATA.twist.angles - 1;
   twistSlider.value = state.twist;
   const update = () => {
     state.time = +time.value, state.weight = +weight.value, state.twist = +twistSlider.value;
     state.mode = +$("mode").value, state.scene = $("scene").value;
-    state.heat = {on: $("heat").checked, a: +$("heat-a").value, b: +$("heat-b").value, scale: +$("heat-scale").value};
+    state.heat = {on: $("heat").checked, ref: +$("heat-ref").value, scale: +$("heat-scale").value};
     const labels = CGA_DATA.timeLabels;
     $("time-value").textContent = (state.time + 1) + "/" + CGA_DATA.times + (labels ? " (" + labels[state.time] + ")" : "");
     $("weight-value").textContent = (state.weight / (CGA_DATA.weights - 1)).toFixed(2) + " of clip b";
@@ -96,11 +127,12 @@ function setupControls(renderer, state) {
       el.classList.toggle("hidden", f === "heat" ? !state.heat.on : f !== state.scene);
     }
     heatLegend(state.heat, state.scene);
+    noteLayout();
     dirty = true;
     renderer.setPalette("character", characterPalette(state.mode, state.time, state.weight));
     renderer.setPalette("twist", twistPalette(state.twist));
   };
-  for (const id of ["time", "weight", "twist", "mode", "scene", "heat", "heat-a", "heat-b", "heat-scale"])
+  for (const id of ["time", "weight", "twist", "mode", "scene", "heat", "heat-ref", "heat-scale"])
     $(id).addEventListener("input", update);
   $("play").onclick = () => {
     state.playing = !state.playing;

@@ -11,6 +11,12 @@ the runtime's method table) shows a coloured character. Fails (exit 1,
 a line saying why) on "loading" (nothing came up in time: the blank page), "error", no status, or an empty
 panel. --fragment adds #F to the address; --copy-to copies the screenshot there when the check passes (the
 web-page-picture target refreshes docs/img/web-page.png this way).
+
+With "heat" in the fragment it checks the heat map too (check_heat): the legend lies inside the 1280x760
+window (body[data-legend] against body[data-window]) and says what the colours compare (each panel's own
+method against the reference), every panel's label compares its own method with one reference
+(data-heat-a, data-heat-b), and the screenshot agrees: the reference's panel has no red, and on the twist
+strip ("twist" in the fragment, turned 180 degrees) a panel whose method pinches the strip has some.
 """
 import os
 import re
@@ -79,6 +85,54 @@ def method_names(html):
     return re.findall(r'\{name: "([^"]*)"', m.group(1)) if m else []
 
 
+def box(dom, attribute):
+    """body[ATTRIBUTE] as numbers ("left top width height", "width height"); None when absent or empty."""
+    m = re.search(r'<body[^>]*\b%s="([0-9. -]+)"' % attribute, dom)
+    return [float(v) for v in m.group(1).split()] if m else None
+
+
+def check_heat(dom, pixels, x0, y0, w, h, methods, twist):
+    """The heat map's checks (see the module's text): None when they hold, else why not."""
+    window, legend = box(dom, "data-window"), box(dom, "data-legend")
+    if window != [1280, 760]:
+        return "the window is %s, not the 1280x760 the check is for" % window
+    if not legend or len(legend) != 4:
+        return "the heat map is on but the page gives no legend position"
+    left, top, width, height = legend
+    if left < 0 or top < 0 or left + width > window[0] or top + height > window[1]:
+        return "the legend (%g %g %g %g) is not inside the %gx%g window" % (left, top, width, height, *window)
+    text = re.search(r'<div id="legend"[^>]*>(.*?)</div>', dom, re.S)
+    text = re.sub(r"\s+", " ", re.sub(r"<[^>]*>", " ", text.group(1))) if text else ""
+    labels = re.findall(r'<div class="panel-label"([^>]*)>', dom)
+    pairs = [(re.search(r'data-heat-a="([^"]*)"', a), re.search(r'data-heat-b="([^"]*)"', a)) for a in labels]
+    pairs = [(a.group(1), b.group(1)) if a and b else None for a, b in pairs]
+    print("heat map pairs: %s" % ", ".join("%s vs %s" % p if p else "none" for p in pairs))
+    print("legend at %g %g %g %g: %s" % (left, top, width, height, text))
+    if len(pairs) != len(methods) or None in pairs:
+        return "not every panel says what its heat map compares (data-heat-a, data-heat-b)"
+    refs = {b for _, b in pairs}
+    if [a for a, _ in pairs] != methods or len(refs) != 1:
+        return "the panels do not each compare their own method with one reference: %s" % pairs
+    ref = refs.pop()
+    if "own method" not in text or ref not in text or "reference" not in text:
+        return "the legend does not say that each panel's own method is compared with %s: %r" % (ref, text)
+    # Red (heat near 1) against blue: a pixel whose red beats green and blue by a margin; the legend's own
+    # colour bar is left out.
+    def hot(panel):
+        xs = range(int(x0 + panel * w / len(methods)) + 2, int(x0 + (panel + 1) * w / len(methods)) - 2)
+        ys = range(int(y0) + 24, min(len(pixels), int(y0 + h) - 2))
+        return sum(1 for y in ys for x in xs
+                   if not (top <= y <= top + height) and pixels[y][x][0] > max(pixels[y][x][1:]) + 60)
+    counts = [hot(p) for p in range(len(methods))]
+    print("red pixels per panel: %s" % ", ".join("%s %d" % (m, c) for m, c in zip(methods, counts)))
+    if counts[methods.index(ref)] > 0:
+        return "the reference %s's own panel has red pixels: it is not compared with itself" % ref
+    pinching = [m for m in ("lbs", "cga-points") if m in methods]
+    if twist and pinching and not any(counts[methods.index(m)] > 0 for m in pinching):
+        return "no red in the %s panel(s) on the twisted strip: the heat map shows no difference" % ", ".join(pinching)
+    return None
+
+
 def run(chromium, what, url, profile):
     cmd = [chromium, *FLAGS, *HOUSEKEEPING, "--user-data-dir=" + profile, *what, url]
     return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=90, text=True)
@@ -143,10 +197,17 @@ def main():
         if share < 0.01:
             print("FAIL panel %d of the screenshot shows no character" % (panel + 1))
             return 1
+    heat = ""
+    if "heat" in fragment.lstrip("#").split("&"):
+        why = check_heat(dom, pixels, x0, y0, w, h, methods, "twist" in fragment.lstrip("#").split("&"))
+        if why:
+            print("FAIL heat map: " + why)
+            return 1
+        heat = "; the heat map compares each panel's own method with the reference, legend in view"
     if copy_to:
         shutil.copyfile(out_png, copy_to)
         print("copied to %s" % copy_to)
-    print("PASS the page came up (%s) and draws all %d panels" % (status, panels))
+    print("PASS the page came up (%s) and draws all %d panels%s" % (status, panels, heat))
     return 0
 
 
