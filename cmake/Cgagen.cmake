@@ -2,6 +2,8 @@
 #
 #   cgagen_generate(<target>
 #                   SCRIPTS a.clu [b.clu ...]
+#                   [LIBRARIES a.gal ...]        # library specs (cgagen --library, docs/library.md): each
+#                                               # a.gal -> OUTPUT_DIR/A<ext> per target (SCRIPTS optional)
 #                   OUTPUT_DIR <dir>
 #                   [TARGETS cpp glsl ...]      # default: cpp; any of cmake/CgagenTargets.cmake
 #                   [OPT -O2]                   # default: -O2
@@ -36,13 +38,13 @@ include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM;OUTPUTS"
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM;OUTPUTS;LIBRARIES"
                         ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
   endif()
-  if(NOT CG_SCRIPTS OR NOT CG_OUTPUT_DIR)
-    message(FATAL_ERROR "cgagen_generate(${target}): SCRIPTS and OUTPUT_DIR are required")
+  if((NOT CG_SCRIPTS AND NOT CG_LIBRARIES) OR NOT CG_OUTPUT_DIR)
+    message(FATAL_ERROR "cgagen_generate(${target}): SCRIPTS or LIBRARIES, and OUTPUT_DIR, are required")
   endif()
   if(CG_NAME)
     list(LENGTH CG_SCRIPTS _n_scripts)
@@ -176,6 +178,26 @@ function(cgagen_generate target)
         COMMENT "cgagen ${_name}${_ext}"
         VERBATIM)
       list(APPEND _outputs ${_byproducts})
+    endforeach()
+  endforeach()
+
+  # Library specs: one file per target, named after the spec's stem (the spec names its namespace).
+  foreach(_spec ${CG_LIBRARIES})
+    get_filename_component(_spec ${_spec} ABSOLUTE)
+    get_filename_component(_name ${_spec} NAME_WE)
+    string(MAKE_C_IDENTIFIER "${_name}" _name)
+    foreach(_t ${CG_TARGETS})
+      if(NOT DEFINED CGAGEN_EXT_${_t})
+        message(FATAL_ERROR "cgagen_generate(${target}): unknown target '${_t}' (${CGAGEN_TARGETS})")
+      endif()
+      set(_out ${CG_OUTPUT_DIR}/${_name}${CGAGEN_EXT_${_t}})
+      add_custom_command(
+        OUTPUT ${_out}
+        COMMAND ${_tool} --library --target ${_t} ${CG_OPT} ${_templates_arg} -o ${_out} ${_spec}
+        DEPENDS ${_spec} ${_templates} ${_tool_dep}
+        COMMENT "cgagen --library ${_name}${CGAGEN_EXT_${_t}}"
+        VERBATIM)
+      list(APPEND _outputs ${_out})
     endforeach()
   endforeach()
 

@@ -1,10 +1,11 @@
-// Motor decomposition and the screw logarithm/exponential, on a motor's 12 coefficients. The geometric
-// products go through the generated kernels (motor.hpp); what is here needs single coefficients, square
-// roots and trigonometry of grade parts, which the script language cannot express (it has no grade
-// projection and its functions take scalars only).
+// Motor decomposition (TRS from a motor's 12 coefficients) and the screw interpolation. The products go
+// through the generated kernels (motor.hpp), the screw's logarithm and exponential through the generated
+// library of runtime/scripts/cga_rigid.gal (cga_rigid.hpp).
 #include "cga/runtime/motor.hpp"
 
 #include <cmath>
+
+#include <cga_rigid.hpp>
 
 namespace cga {
 
@@ -34,49 +35,22 @@ Transform motor_to_transform(const Motor& m) {
 
 namespace {
 
-// Screw parameters of a rigid motion (rotation q, translation t), interpolated to the fraction alpha:
-// log gives the axis u, angle theta, pitch d = t.u and a point p on the axis; exp of alpha*log is the
-// rotation by alpha*theta about that axis followed by the slide alpha*d along it.
-Transform screw_fraction(glm::dquat q, const glm::dvec3& t, double alpha) {
-  if (q.w < 0.0) q = -q;  // the shortest way: theta in [0, pi]
-  const glm::dvec3 v(q.x, q.y, q.z);
-  const double sin_half = glm::length(v);
-  const double theta = 2.0 * std::atan2(sin_half, q.w);
-  Transform out;
-  if (theta < 1e-6) {
-    // No rotation to speak of: the screw is a straight slide (the limit of the general case).
-    out.translation = glm::vec3(alpha * t);
-    out.rotation = glm::quat(glm::normalize(glm::dquat(1.0, alpha * v.x, alpha * v.y, alpha * v.z)));
-    return out;
-  }
-  const glm::dvec3 u = v / sin_half;
-  const double d = glm::dot(t, u);
-  const glm::dvec3 t_perp = t - d * u;
-  // 1/tan(theta/2) = q.w / sin_half (theta/2 = atan2(sin_half, q.w)); 0 at theta = pi, as it should be.
-  const glm::dvec3 p = 0.5 * (t_perp + glm::cross(u, t_perp) * (q.w / sin_half));
-  const double half = 0.5 * alpha * theta;
-  const glm::dquat qa(std::cos(half), std::sin(half) * u.x, std::sin(half) * u.y, std::sin(half) * u.z);
-  out.rotation = glm::quat(qa);
-  out.translation = glm::vec3(p - qa * p + alpha * d * u);
+// cga_rigid::motor's blades (runtime/scripts/cga_rigid.gal: 1 e12 e13 e23 e1inf e2inf e3inf e123inf) in a
+// Motor's coefficients (types.hpp).
+constexpr int kRigidBlades[8] = {0, 1, 2, 4, 3, 5, 6, 8};
+
+// The fraction alpha of a unit rigid motion along its screw, exp(alpha log(M)) (the generated library), the
+// shorter way: M and -M are the same motion, and the one with a non-negative scalar turns by at most pi.
+Motor screw_fraction(const Motor& m, double alpha) {
+  cga_rigid::motor_t<double> x;
+  const double sign = m.c[0] < 0.0f ? -1.0 : 1.0;
+  for (int k = 0; k < 8; ++k) x[k] = sign * m.c[kRigidBlades[k]];
+  const cga_rigid::motor_t<double> step = cga_rigid::exp(alpha * cga_rigid::log(x));
+  Motor out;
+  out.c.fill(0.0f);
+  for (int k = 0; k < 8; ++k) out.c[kRigidBlades[k]] = static_cast<float>(step[k]);
   return out;
 }
-
-}  // namespace
-
-Motor motor_screw(const Transform& x1, const Transform& x2, float alpha) {
-  Transform r1 = x1, r2 = x2;
-  r1.scale = r2.scale = 1.0f;
-  const Motor m1 = motor_from_transform(r1);
-  // The relative rigid motion ~M1 * M2 (M1 is a unit rigid motor, so ~M1 is its inverse).
-  const Motor rel = motor_mul(motor_reverse(m1), motor_from_transform(r2));
-  const Transform rel_x = motor_to_transform(rel);
-  Transform step = screw_fraction(glm::dquat(rel_x.rotation), glm::dvec3(rel_x.translation), alpha);
-  step.scale = static_cast<float>(std::pow(double(x1.scale), 1.0 - alpha) * std::pow(double(x2.scale), double(alpha)));
-  // M1 * exp(alpha log(~M1 M2)) * D(s): the dilator is the rightmost factor of a motor T*R*D.
-  return motor_mul(m1, motor_from_transform(step));
-}
-
-namespace {
 
 // The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast: with
 // a' = R and b' = k R, 1 + k = 1 + a'.b', and the einf blades are (1 + k) times the rigid ones.
@@ -96,24 +70,25 @@ Motor motor_screw(const Motor& m1, const Motor& m2, float alpha) {
   double s1, s2;
   const Motor r1 = rigid_part(m1, s1);
   const Motor r2 = rigid_part(m2, s2);
-  // The relative rigid motion ~R1 * R2: its rotor and, from the einf blades, its translation
-  // (t = -2 L(a)^T e for a unit rotor a, see motor_to_transform).
+  // The relative rigid motion ~R1 * R2 (R1 is unit, so ~R1 is its inverse), a fraction of it along its screw,
+  // then the dilator: a motor T*R*D has D rightmost.
   Motor rel;
   motor_mul_rigid_simd(motor_reverse(r1), r2, rel);
-  const auto& c = rel.c;
-  const glm::dquat q = glm::normalize(glm::dquat(quat_from_rotor(c[0], c[1], c[2], c[4])));
-  const double g[4] = {c[0], c[1], c[2], c[4]}, e[4] = {c[3], c[5], c[6], c[8]};
-  const double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + g[3] * g[3];
-  const glm::dvec3 t = (-2.0 / gg) * glm::dvec3((g[0] * e[0] + g[1] * e[1] + g[2] * e[2] + g[3] * e[3]),
-                                                (-g[1] * e[0] + g[0] * e[1] + g[3] * e[2] - g[2] * e[3]),
-                                                (-g[2] * e[0] - g[3] * e[1] + g[0] * e[2] + g[1] * e[3]));
-  Transform step = screw_fraction(q, t, alpha);
-  step.scale = s1 == s2 ? static_cast<float>(s1) : static_cast<float>(std::pow(s1, 1.0 - alpha) * std::pow(s2, double(alpha)));
-  const Motor m = motor_from_transform(step);
+  Motor m = screw_fraction(rel, alpha);
+  const double s = s1 == s2 ? s1 : std::pow(s1, 1.0 - alpha) * std::pow(s2, double(alpha));
+  if (s != 1.0) {
+    Transform dilation;
+    dilation.scale = static_cast<float>(s);
+    m = motor_mul(m, motor_from_transform(dilation));
+  }
   if (!motor_is_rigid(m)) return motor_mul(r1, m);
   Motor out;
   motor_mul_rigid_simd(r1, m, out);
   return out;
+}
+
+Motor motor_screw(const Transform& x1, const Transform& x2, float alpha) {
+  return motor_screw(motor_from_transform(x1), motor_from_transform(x2), alpha);
 }
 
 Transform transform_screw(const Transform& x1, const Transform& x2, float alpha) {

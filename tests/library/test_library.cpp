@@ -17,7 +17,8 @@
 #include <vector>
 
 #include "oracle_algebras.hpp"
-#include "cga.hpp"
+#include "cga3.hpp"
+#include "cga_rigid.hpp"
 #include "e3.hpp"
 #include "pga3.hpp"
 
@@ -211,5 +212,8 @@ void check_library(const std::string& algebra_name, const TypeInfo (&types)[NT],
 }  // namespace
 
 TEST_CASE("library pga3: every function agrees with the oracle") { check_library(std::string(pga3::algebra), pga3::types, pga3::functions); }
-TEST_CASE("library cga: every function agrees with the oracle") { check_library(std::string(cga::algebra), cga::types, cga::functions); }
+TEST_CASE("library cga3: every function agrees with the oracle") { check_library(std::string(cga3::algebra), cga3::types, cga3::functions); }
 TEST_CASE("library e3: every function agrees with the oracle") { check_library(std::string(e3::algebra), e3::types, e3::functions); }
+TEST_CASE("library cga_rigid (the runtime's): every function agrees with the oracle") {
+  check_library(std::string(cga_rigid::algebra), cga_rigid::types, cga_rigid::functions);
+}
