@@ -37,6 +37,7 @@ set(CGAGEN_INSTALL_CMAKEDIR ${CGAGEN_INSTALL_DATADIR}/cmake)
 set(CGAGEN_INSTALL_TEMPLATESDIR ${CGAGEN_INSTALL_DATADIR}/templates)
 set(CGAGEN_INSTALL_GLSLDIR ${CGAGEN_INSTALL_DATADIR}/glsl)
 set(CGAGEN_INSTALL_SCRIPTSDIR ${CGAGEN_INSTALL_DATADIR}/scripts)
+set(CGAGEN_INSTALL_LIBRARIESDIR ${CGAGEN_INSTALL_DATADIR}/libraries)  # the shipped library specs
 set(CGAGEN_INSTALL_KERNELSDIR ${CMAKE_INSTALL_INCLUDEDIR}/cga/kernels)
 
 # The tool and its templates.
@@ -56,8 +57,10 @@ foreach(_f ${_cgagen_kernel_files})
 endforeach()
 install(FILES ${_cgagen_kernel_headers} DESTINATION ${CGAGEN_INSTALL_KERNELSDIR})
 install(FILES ${_cgagen_kernel_glsl} DESTINATION ${CGAGEN_INSTALL_GLSLDIR})
-file(GLOB _cgagen_runtime_scripts ${PROJECT_SOURCE_DIR}/runtime/scripts/*.clu)
+file(GLOB _cgagen_runtime_scripts ${PROJECT_SOURCE_DIR}/runtime/scripts/*.clu ${PROJECT_SOURCE_DIR}/runtime/scripts/*.gal)
 install(FILES ${_cgagen_runtime_scripts} DESTINATION ${CGAGEN_INSTALL_SCRIPTSDIR})
+file(GLOB _cgagen_library_specs ${PROJECT_SOURCE_DIR}/libraries/*.gal)
+install(FILES ${_cgagen_library_specs} DESTINATION ${CGAGEN_INSTALL_LIBRARIESDIR})
 
 # The libraries: cga::kernels (headers above), cga::runtime, cga::gpu; exported as cgagen::kernels, ...
 set_target_properties(cga_kernels PROPERTIES EXPORT_NAME kernels)
@@ -98,7 +101,8 @@ install(EXPORT cgagenTargets NAMESPACE cgagen:: DESTINATION ${CGAGEN_INSTALL_CMA
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/cgagenConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/cgagenConfig.cmake
                               INSTALL_DESTINATION ${CGAGEN_INSTALL_CMAKEDIR}
-                              PATH_VARS CGAGEN_INSTALL_TEMPLATESDIR CGAGEN_INSTALL_GLSLDIR CGAGEN_INSTALL_SCRIPTSDIR)
+                              PATH_VARS CGAGEN_INSTALL_TEMPLATESDIR CGAGEN_INSTALL_GLSLDIR CGAGEN_INSTALL_SCRIPTSDIR
+                                        CGAGEN_INSTALL_LIBRARIESDIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/cgagenConfigVersion.cmake
                                  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/cgagenConfig.cmake ${PROJECT_BINARY_DIR}/cgagenConfigVersion.cmake

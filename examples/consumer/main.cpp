@@ -6,6 +6,7 @@
 #include <random>
 
 #include <cga/runtime/motor.hpp>  // cgagen::runtime (with the kernels it was built from, cgagen::kernels)
+#include <e3.hpp>                 // generated from the installed libraries/e3.gal: namespace e3
 #include <reflect.hpp>            // generated: cga::kernels::reflect(x, y, z, nx, ny, nz, d, q[5])
 
 namespace {
@@ -56,6 +57,16 @@ int main() {
   check(worst_d < 1e-9, "generated reflect (double) vs plain vector math", worst_d);
   check(worst_f < 1e-2, "generated reflect (float) vs plain vector math", worst_f);
   std::printf("reflect: worst error over 1000 random points and planes: double %.3g, float %.3g\n", worst_d, worst_f);
+
+  // The generated e3 library: the geometric product of two vectors is a rotor, their dot product plus their
+  // wedge (e1^e2, e1^e3, e2^e3 in the library's layout).
+  const e3::vector u{{1.0f, 2.0f, 3.0f}}, v{{-2.0f, 0.5f, 4.0f}};
+  const e3::rotor r = u * v;
+  const float want[4] = {1 * -2.0f + 2 * 0.5f + 3 * 4.0f, 1 * 0.5f - 2 * -2.0f, 1 * 4.0f - 3 * -2.0f, 2 * 4.0f - 3 * 0.5f};
+  double worst_l = 0;
+  for (int k = 0; k < 4; ++k) worst_l = std::fmax(worst_l, std::fabs(double(r[k]) - want[k]));
+  check(worst_l < 1e-6, "generated e3 library: vector * vector", worst_l);
+  std::printf("e3 library: u * v off by %.3g\n", worst_l);
 
   // cgagen::runtime: the motor of a scale, rotation and translation moves points as GLM's s R p + t does, and
   // decomposes back to the same transform (motor_to_transform is compiled into libcga_runtime.a).
