@@ -74,7 +74,8 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
       quoted += std::string(k ? ", " : "") + "\"" + blade_text(alg, ty.blades[k]) + "\"";
       layout += std::string(k ? " " : "") + blade_text(alg, ty.blades[k]);
     }
-    types += fill("type", {{"type", type_name(i)},
+    types += fill("type", {{"library", lib.name},
+                           {"type", type_name(i)},
                            {"n", std::to_string(ty.blades.size())},
                            {"blades", quoted},
                            {"layout", layout},
@@ -82,11 +83,12 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     type_registry += fill("type_registry", {{"type", type_name(i)}, {"n", std::to_string(ty.blades.size())}});
   }
 
-  for (const Alias& al : lib.aliases) types += fill("alias", {{"alias", emit::spell(sx, al.name)}, {"type", emit::spell(sx, al.type)}});
+  for (const Alias& al : lib.aliases) types += fill("alias", {{"library", lib.name}, {"alias", emit::spell(sx, al.name)}, {"type", emit::spell(sx, al.type)}});
 
   std::string functions, registry, skipped;
   for (const Function& f : lib.functions) {
     const std::map<std::string, std::string> v = {
+        {"library", lib.name},
         {"fn", f.op->name},
         {"kernel", emit::spell(sx, f.program.name)},
         {"a", type_name(f.a)},
