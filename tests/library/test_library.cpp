@@ -1,4 +1,5 @@
-// Every function of the generated libraries (libraries/*.gal through `cgagen --library`, C++ target) against
+// Every function of the generated libraries (libraries/*.gal through `cgagen --library`: the C++ target, and
+// built a second time with CGA_LIBRARY_CUDA, the CUDA target compiled as host C++) against
 // the any-signature oracle (tests/oracle) on seeded random operands, three draws each, in float against the
 // oracle's double:
 //  - products, sums, involutions, duals and norms against their definitions;
@@ -17,10 +18,17 @@
 #include <vector>
 
 #include "oracle_algebras.hpp"
+#ifdef CGA_LIBRARY_CUDA  // the CUDA files as host C++ (their qualifiers defined away on the command line)
+#include "cga3.cuh"
+#include "cga_rigid.cuh"
+#include "e3.cuh"
+#include "pga3.cuh"
+#else
 #include "cga3.hpp"
 #include "cga_rigid.hpp"
 #include "e3.hpp"
 #include "pga3.hpp"
+#endif
 
 namespace {
 
