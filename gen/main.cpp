@@ -68,6 +68,9 @@ options:
   --return OUT            glsl: return output OUT instead of an out parameter
   --outputs A,B,...       keep only these outputs of the script (in the script's order); the work
                           only the others need is not emitted
+  --jacobian A,B,...      also emit every output's partial derivatives with respect to inputs A, B, ...
+                          (a multivector input: each coefficient), as outputs OUT_d_A (also
+                          `#pragma jacobian [OUT...] wrt A B`)
   --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
                           `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values
                           and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
@@ -114,6 +117,7 @@ struct Options {
   bool algebra_given = false;  // --algebra on the command line (a script's #pragma algebra must agree)
   std::vector<std::string> uniforms;  // --uniform
   std::vector<std::string> outputs;   // --outputs (empty: all)
+  std::vector<std::string> jacobian;  // --jacobian
   bool gpc = false;                   // --gpc
   bool library = false;               // --library
   std::string type;                   // --type (--gpc)
@@ -221,6 +225,11 @@ Options parse_args(int argc, char** argv) {
         for (std::string item; std::getline(ss, item, ',');)
           if (!item.empty()) o.outputs.push_back(item);
         if (o.outputs.empty()) throw UsageError("--outputs names no output");
+      } else if (a == "--jacobian") {
+        std::stringstream ss(value(i, a));
+        for (std::string item; std::getline(ss, item, ',');)
+          if (!item.empty()) o.jacobian.push_back(item);
+        if (o.jacobian.empty()) throw UsageError("--jacobian names no input");
       } else if (a == "--uniform") {
         std::stringstream ss(value(i, a));
         std::string item;
@@ -271,7 +280,7 @@ Options parse_args(int argc, char** argv) {
   if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
   if (o.gpc && o.library) throw UsageError("--gpc and --library exclude each other");
   if (o.gpc) {
-    if (modes || !o.uniforms.empty() || !o.outputs.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
+    if (modes || !o.uniforms.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
         !o.emit.return_output.empty())
       throw UsageError("--gpc takes --algebra, -O, -o, --Werror, --target, --type and --templates only");
     bool known = !o.target_given;
@@ -280,7 +289,7 @@ Options parse_args(int argc, char** argv) {
       throw UsageError(std::string("--gpc prints C, C++, CUDA or OpenCL statements: --target cpp, cuda or opencl, not ") +
                        o.emit.target.name);
   } else if (o.library) {
-    if (o.diff || o.dump_ast || o.eval || !o.uniforms.empty() || !o.outputs.empty() || !o.name.empty() ||
+    if (o.diff || o.dump_ast || o.eval || !o.uniforms.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() ||
         !o.stats_out.empty() || !o.emit.pack.empty() || !o.emit.return_output.empty() || o.algebra_given || !o.type.empty())
       throw UsageError("--library takes -O, -o, --target, --templates and --stats only (the spec names the algebra)");
   } else if (!o.type.empty()) {
@@ -524,7 +533,7 @@ int run(const Options& o) {
     }
     std::string name = !o.name.empty() ? o.name : from_stdin ? "kernel"
                                                        : emit::c_identifier(std::filesystem::path(o.script).stem().string());
-    Kernel kernel = expand(script, name);
+    Kernel kernel = expand(script, name, nullptr, o.jacobian);
     for (const auto& w : kernel.warnings)
       std::cerr << front::format_diagnostic(file, w.loc, w.message + (o.werror ? " [-Werror]" : ""),
                                             o.werror ? "error" : "warning");

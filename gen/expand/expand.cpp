@@ -39,8 +39,9 @@ Kernel Expander::run(const front::Script& script) {
     if (!globals_.count(v.name))
       throw CompileError(v.loc, "'#pragma versor': '" + v.name + "' is neither an input nor a name the script assigns");
   finish_outputs();
-  drop_unused_values();
   pragmas_.apply_in2out(kernel_);
+  apply_jacobians();  // after in2out: the derivative outputs follow the ordered ones
+  drop_unused_values();
   kernel_.shared_products = words_.report();
   return std::move(kernel_);
 }
@@ -249,9 +250,9 @@ Multivector Expander::call_macro(const Stmt& def, std::vector<Multivector> args,
 namespace cgagen {
 
 Kernel expand(const front::Script& script, const std::string& kernel_name,
-              std::shared_ptr<const algebra::Algebra> algebra) {
+              std::shared_ptr<const algebra::Algebra> algebra, const std::vector<std::string>& jacobian_wrt) {
   algebra::Using in(std::move(algebra));
-  expand_detail::Expander x(kernel_name);
+  expand_detail::Expander x(kernel_name, jacobian_wrt);
   Kernel k = x.run(script);
   k.algebra = algebra::current_shared();
   return k;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "expand/kernel.hpp"
 #include "front/ast.hpp"
@@ -14,7 +15,10 @@ namespace cgagen {
 // script: unknown macro, wrong arity, non-scalar function argument, division by a non-invertible
 // multivector, macro recursion, unknown blade in a pragma, ...
 // Expands the script in `algebra` (null: the thread's current algebra, by default CGA); the Kernel keeps it.
+// `jacobian_wrt` (cgagen --jacobian): every output's partial derivatives with respect to these inputs, as
+// `#pragma jacobian wrt ...` gives them (docs/generator.md, "Derivatives").
 Kernel expand(const front::Script& script, const std::string& kernel_name,
-              std::shared_ptr<const algebra::Algebra> algebra = nullptr);
+              std::shared_ptr<const algebra::Algebra> algebra = nullptr,
+              const std::vector<std::string>& jacobian_wrt = {});
 
 }  // namespace cgagen

@@ -58,7 +58,10 @@ class Expander : private expand_pragmas::PragmaHost,
                  private expand_builtins::Context,
                  private expand_words::Host {
  public:
-  explicit Expander(std::string name) { kernel_.name = std::move(name); }
+  explicit Expander(std::string name, std::vector<std::string> jacobian_wrt = {})
+      : jacobian_wrt_(std::move(jacobian_wrt)) {
+    kernel_.name = std::move(name);
+  }
 
   Kernel run(const front::Script& script);
 
@@ -184,6 +187,12 @@ class Expander : private expand_pragmas::PragmaHost,
   void mark(const std::string& name, SourceLoc loc);
 
   void finish_outputs();
+
+  // `#pragma jacobian` and --jacobian (expand/jacobian.cpp): the derivative outputs, OUT_d_IN (a multivector
+  // input's coefficient: OUT_d_IN_BLADE), each over OUT's blades, from derivative values built by the chain
+  // rule through the kernel's values.
+  void apply_jacobians();
+  std::vector<std::string> jacobian_wrt_;  // --jacobian: every output with respect to these inputs
 
   // ---- what pragmas ask of the expander (expand/pragmas.hpp) -----------------------------------------
 

@@ -170,9 +170,19 @@ void Pragmas::apply(const Stmt& s, Kernel& kernel, PragmaHost& host) {
         throw CompileError(word_loc(s, i), "'#pragma versor': '" + s.words[i] + "' is a basis vector");
       versors_.push_back({s.words[i], word_loc(s, i)});
     }
+  } else if (kind == "jacobian") {
+    // Names are checked once the script is expanded (expand/jacobian.cpp): the outputs come later.
+    JacobianPragma j{s.loc, {}, {}};
+    size_t i = 1;
+    for (; i < s.words.size() && s.words[i] != "wrt"; ++i) j.outputs.push_back({s.words[i], word_loc(s, i)});
+    if (i == s.words.size()) throw CompileError(s.loc, "'#pragma jacobian' expects [OUTPUT...] wrt INPUT...");
+    for (++i; i < s.words.size(); ++i) j.wrt.push_back({s.words[i], word_loc(s, i)});
+    if (j.wrt.empty()) throw CompileError(s.loc, "'#pragma jacobian ... wrt' names no input");
+    jacobians_.push_back(std::move(j));
   } else {
     throw CompileError(word_loc(s, 0), "unknown pragma '" + kind + "' (expected output, input, range, uniform, "
-                                       "normalized, versor, algebra, onlyEvaluate, in2out, normalize, segments or triangles)");
+                                       "normalized, versor, jacobian, algebra, onlyEvaluate, in2out, normalize, "
+                                       "segments or triangles)");
   }
 }
 

@@ -34,6 +34,13 @@ struct OutputPragma {  // `#pragma output NAME BLADE...`
   std::vector<algebra::BladeIndex> blades;
 };
 
+// `#pragma jacobian [OUT...] wrt IN...`: the partial derivatives of the outputs (all of them when none is
+// named) with respect to the inputs (a multivector input: each of its coefficients).
+struct JacobianPragma {
+  front::SourceLoc loc;
+  std::vector<UniformName> outputs, wrt;
+};
+
 class Pragmas {
  public:
   // Checks and records one pragma statement; throws front::CompileError at the offending word.
@@ -45,6 +52,7 @@ class Pragmas {
   bool only_evaluate(const std::string& name) const;
   // `#pragma versor NAME...`: the names whose values the script promises are versors (x ~x a scalar).
   const std::vector<UniformName>& versors() const { return versors_; }
+  const std::vector<JacobianPragma>& jacobians() const { return jacobians_; }
   // The `#pragma output` of an output, or null.
   const OutputPragma* output(const std::string& name) const;
 
@@ -65,6 +73,7 @@ class Pragmas {
   std::optional<In2Out> in2out_;
   bool normalize_outputs_ = false;
   std::vector<UniformName> versors_;
+  std::vector<JacobianPragma> jacobians_;
 };
 
 }  // namespace cgagen::expand_pragmas

@@ -63,11 +63,21 @@ ex lt_im(const ex& a, const ex& b, const ex& x, const ex& y) { return select_lt(
 ex le_im(const ex& a, const ex& b, const ex& x, const ex& y) { return select_le(a, b, x.imag_part(), y.imag_part()); }
 ex eq_im(const ex& a, const ex& b, const ex& x, const ex& y) { return select_eq(a, b, x.imag_part(), y.imag_part()); }
 
+// Derivatives (derivative kernels, expand/jacobian.cpp): a select differentiates its taken branch, so the
+// partial derivative by x is the select of 1 and 0, by y of 0 and 1, and by the compared values 0 (the
+// comparison is piecewise constant).
+template <ex (*make)(const ex&, const ex&, const ex&, const ex&)>
+ex select_deriv(const ex& a, const ex& b, const ex&, const ex&, unsigned param) {
+  if (param == 2) return make(a, b, 1, 0);
+  if (param == 3) return make(a, b, 0, 1);
+  return 0;
+}
+
 }  // namespace
 
-REGISTER_FUNCTION(select_lt, eval_func(lt_eval).evalf_func(lt_evalf).conjugate_func(lt_conj).real_part_func(lt_re).imag_part_func(lt_im))
-REGISTER_FUNCTION(select_le, eval_func(le_eval).evalf_func(le_evalf).conjugate_func(le_conj).real_part_func(le_re).imag_part_func(le_im))
-REGISTER_FUNCTION(select_eq, eval_func(eq_eval).evalf_func(eq_evalf).conjugate_func(eq_conj).real_part_func(eq_re).imag_part_func(eq_im))
+REGISTER_FUNCTION(select_lt, eval_func(lt_eval).evalf_func(lt_evalf).conjugate_func(lt_conj).real_part_func(lt_re).imag_part_func(lt_im).derivative_func(select_deriv<make_lt>))
+REGISTER_FUNCTION(select_le, eval_func(le_eval).evalf_func(le_evalf).conjugate_func(le_conj).real_part_func(le_re).imag_part_func(le_im).derivative_func(select_deriv<make_le>))
+REGISTER_FUNCTION(select_eq, eval_func(eq_eval).evalf_func(eq_evalf).conjugate_func(eq_conj).real_part_func(eq_re).imag_part_func(eq_im).derivative_func(select_deriv<make_eq>))
 
 ex make_select(const Condition& c, const ex& x, const ex& y) {
   if (x.is_equal(y)) return x;

@@ -445,7 +445,7 @@ TEST_CASE("expander diagnostics") {
 
 TEST_CASE("pragma diagnostics") {
   CHECK(diagnostic("#pragma foo x\n?x = 1;\n") ==
-        "t.clu:1:9: error: unknown pragma 'foo' (expected output, input, range, uniform, normalized, versor, algebra, onlyEvaluate, in2out, normalize, segments or triangles)\n#pragma foo x\n        ^\n");
+        "t.clu:1:9: error: unknown pragma 'foo' (expected output, input, range, uniform, normalized, versor, jacobian, algebra, onlyEvaluate, in2out, normalize, segments or triangles)\n#pragma foo x\n        ^\n");
   CHECK(diagnostic("#pragma output x e1 e5\n?x = 1;\n") ==
         "t.clu:1:21: error: unknown blade 'e5' in '#pragma output'\n#pragma output x e1 e5\n                    ^\n");
   CHECK(diagnostic("#pragma output x e0^einf\n?x = 1;\n") ==
