@@ -200,7 +200,7 @@ std::vector<Syntax> make_targets() {
   rust.summary = "Rust module: pub fn NAME_f32 / NAME_f64 with &[T; N] inputs and &mut [T; N] outputs";
   rust.precisions = {prec("f32", true, "_f32"), prec("f64", false, "_f64")};
   rust.math_prefix = "${T}::";
-  rust.math_names = {{"pow", "powf"}};
+  rust.math_names = {{"pow", "powf"}, {"log", "ln"}};  // Rust's log takes a base; ln is the natural one
   rust.select = "(if ${a} ${op} ${b} { ${x} } else { ${y} })";
   rust.scalar_param = "${name}: ${T}";
   rust.mv_param = "${name}: &[${T}; ${n}]";
