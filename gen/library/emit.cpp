@@ -2,8 +2,10 @@
 // templates/TARGET/library/ filled per type, per function, per registry entry and per skipped operation.
 #include "library/emit.hpp"
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -38,6 +40,22 @@ Templates load(const std::string& dir) {
 
 std::string blade_text(const algebra::Algebra& alg, algebra::BladeIndex b) { return b == 0 ? "1" : alg.blade_name(b); }
 
+// The CamelCase form of a spelt type name ({{Type}}), for targets whose types are CamelCase (Rust, Python):
+// ideal_line -> IdealLine, mv_1a -> Mv1a. A reserved word (Rust's Self, Python's None) gets a trailing _.
+std::string camel(const std::string& spelt, const std::set<std::string>& reserved) {
+  std::string out;
+  bool up = true;
+  for (char c : spelt) {
+    if (c == '_') {
+      up = true;
+      continue;
+    }
+    out += up ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
+    up = false;
+  }
+  return reserved.count(out) ? out + "_" : out;
+}
+
 }  // namespace
 
 std::vector<std::string> library_targets(const std::string& template_dir) {
@@ -58,6 +76,16 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
   const Templates t = load(dir);
   const algebra::Algebra& alg = *lib.algebra_ptr;
   auto type_name = [&](size_t t) { return emit::spell(sx, lib.types[t].name); };
+  const std::set<std::string> reserved = emit::reserved_words(sx.name);
+  // Dropping the underscores could merge two names (line_2, line2): refused rather than emitted twice.
+  std::map<std::string, std::string> camel_of;
+  for (size_t i = 0; i < lib.types.size(); ++i) camel_of[type_name(i)] = camel(type_name(i), reserved);
+  for (const Alias& al : lib.aliases) camel_of[emit::spell(sx, al.name)] = camel(emit::spell(sx, al.name), reserved);
+  std::map<std::string, std::string> name_of_camel;
+  for (const auto& [name, c] : camel_of)
+    if (!name_of_camel.emplace(c, name).second)
+      throw std::runtime_error("types " + name_of_camel[c] + " and " + name + " are both " + c + " in CamelCase");
+  auto Type_name = [&](size_t t) { return camel_of.at(type_name(t)); };
   auto fill = [&](const std::string& name, const std::map<std::string, std::string>& v) {
     return emit::fill_template(t[name], v, t.path(name));
   };
@@ -76,14 +104,20 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     }
     types += fill("type", {{"library", lib.name},
                            {"type", type_name(i)},
+                           {"Type", Type_name(i)},
                            {"n", std::to_string(ty.blades.size())},
                            {"blades", quoted},
                            {"layout", layout},
                            {"origin", ty.declared ? "declared in the spec" : "named by the generator for a result"}});
-    type_registry += fill("type_registry", {{"type", type_name(i)}, {"n", std::to_string(ty.blades.size())}});
+    type_registry += fill("type_registry", {{"type", type_name(i)}, {"Type", Type_name(i)}, {"n", std::to_string(ty.blades.size())}});
   }
 
-  for (const Alias& al : lib.aliases) types += fill("alias", {{"library", lib.name}, {"alias", emit::spell(sx, al.name)}, {"type", emit::spell(sx, al.type)}});
+  for (const Alias& al : lib.aliases)
+    types += fill("alias", {{"library", lib.name},
+                            {"alias", emit::spell(sx, al.name)},
+                            {"Alias", camel_of.at(emit::spell(sx, al.name))},
+                            {"type", emit::spell(sx, al.type)},
+                            {"Type", camel_of.at(emit::spell(sx, al.type))}});
 
   std::string functions, registry, skipped;
   for (const Function& f : lib.functions) {
@@ -94,6 +128,9 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
         {"a", type_name(f.a)},
         {"b", f.op->arity == 2 ? type_name(f.b) : ""},
         {"result", type_name(f.result)},
+        {"A", Type_name(f.a)},
+        {"B", f.op->arity == 2 ? Type_name(f.b) : ""},
+        {"Result", Type_name(f.result)},
         {"symbol", f.op->symbol},
         {"description", f.op->description},
         {"arity", std::to_string(f.op->arity)}};
