@@ -1,6 +1,7 @@
 // Derivative outputs (`#pragma jacobian [OUT...] wrt IN...`, cgagen --jacobian IN,...): for each input
 // coefficient x, every kernel value gets a derivative value by the chain rule through the earlier values,
-//   d(c)/dx = ∂c/∂x + Σ_s ∂c/∂s · d(s)/dx   (s the earlier values' coefficient symbols c reads),
+//   d(c)/dx = ∂c/∂x + Σ_s ∂c/∂s · d(s)/dx   (s the earlier values' coefficient symbols c reads; one
+// memoized walk of c's DAG, symbolic/derivative.hpp),
 // so the derivatives reuse the values' own temporaries and the optimizer shares work between the values and
 // every derivative. A select differentiates its taken branch (symbolic/select.cpp); sqrt, abs, atan2, exp,
 // log and the other functions are GiNaC's exact derivatives. Each derivative output OUT_d_X has OUT's blades.
@@ -8,6 +9,7 @@
 #include <map>
 
 #include "expand/expander.hpp"
+#include "symbolic/derivative.hpp"
 
 namespace cgagen::expand_detail {
 
@@ -15,15 +17,10 @@ namespace {
 
 using ExMap = std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less>;
 
-// The symbols of `e` that are keys of `m` (each once).
-std::vector<GiNaC::ex> symbols_in(const GiNaC::ex& e, const ExMap& m) {
-  std::vector<GiNaC::ex> out;
-  for (GiNaC::const_preorder_iterator it = e.preorder_begin(); it != e.preorder_end(); ++it)
-    if (GiNaC::is_a<GiNaC::symbol>(*it) && m.count(*it) &&
-        std::find_if(out.begin(), out.end(), [&](const GiNaC::ex& s) { return s.is_equal(*it); }) == out.end())
-      out.push_back(*it);
-  return out;
-}
+// The distinct subexpressions one derivative may visit: the bundled scripts' largest coefficient DAGs have a
+// few thousand nodes; a random program's can have far more, and its derivatives stop here with a located
+// error rather than run for minutes.
+constexpr size_t kMaxDerivativeNodes = 200000;
 
 }  // namespace
 
@@ -72,20 +69,35 @@ void Expander::apply_jacobians() {
         } else {
           first = kernel_.values.size();
           derivative_of[x] = first;
-          ExMap d;  // value symbol -> its derivative (a derivative value's symbol, or an expression)
+          // Each symbol's derivative: x's is 1, a value coefficient's is its derivative value's symbol (filled
+          // in value order, so a coefficient's leaves are known when it is differentiated).
+          ExMap leaves{{in->symbols[k], GiNaC::ex(1)}};
           for (size_t i = 0; i < value_count; ++i) {
             const KernelValue& v = kernel_.values[i];
             Multivector dv;
+            symbolic::TotalDerivative total(leaves, kMaxDerivativeNodes);  // shared by the value's blades
             for (size_t b = 0; b < v.blades.size(); ++b) {
-              GiNaC::ex c = v.coeffs[b].diff(in->symbols[k]);
-              for (const GiNaC::ex& s : symbols_in(v.coeffs[b], d))
-                if (!d.at(s).is_zero()) c += v.coeffs[b].diff(GiNaC::ex_to<GiNaC::symbol>(s)) * d.at(s);
-              dv.set(v.blades[b], c);
+              try {
+                dv.set(v.blades[b], total(v.coeffs[b]));
+              } catch (const std::length_error& e) {
+                throw CompileError(v.loc, "the derivative of '" + v.name + "' with respect to '" + x +
+                                              "' is over cgagen's work budget: " + e.what());
+              }
             }
-            KernelValue kv = value_of("d_" + v.name + "_d_" + x, "d_" + v.name + "_" + x, v.loc, dv);
+            // Every coefficient that is not literally 0 is kept: an exact zero test (value_of's) of a derivative
+            // of a large coefficient can take minutes, and a kept zero only computes a 0.
+            KernelValue kv;
+            kv.name = "d_" + v.name + "_d_" + x;
+            kv.loc = v.loc;
+            for (const auto& [blade, c] : dv.terms()) {
+              if (c.is_zero()) continue;
+              kv.blades.push_back(blade);
+              kv.coeffs.push_back(c);
+              kv.symbols.push_back(GiNaC::realsymbol(unique_symbol_name("d_" + v.name + "_" + x + "_" + algebra::blade_ident(blade))));
+            }
             for (size_t b = 0; b < v.blades.size(); ++b) {
               auto at = std::find(kv.blades.begin(), kv.blades.end(), v.blades[b]);
-              d[v.symbols[b]] = at == kv.blades.end() ? GiNaC::ex(0) : GiNaC::ex(kv.symbols[at - kv.blades.begin()]);
+              if (at != kv.blades.end()) leaves[v.symbols[b]] = kv.symbols[at - kv.blades.begin()];
             }
             kernel_.values.push_back(std::move(kv));
           }

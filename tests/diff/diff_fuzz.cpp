@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <set>
 #include <string>
@@ -138,7 +139,96 @@ std::string compare(const Result& cg, const Result& ref, const std::set<std::str
 
 struct Stats {
   int programs = 0, agreed_values = 0, both_refused = 0, budget = 0, failures = 0;
+  long derivatives = 0, kinks = 0;  // partial derivatives compared; left out where the values are not smooth
 };
+
+// The Jacobian (expand's `jacobian` with respect to every input, -O2) against central differences of the
+// interpreter's values at steps h and h/2, Richardson-extrapolated. Where the two steps disagree, where
+// cgagen's derivative jumps within the step, or where the value is 0 up to rounding, the values are not smooth
+// there (a select's switch, abs or a square root at 0): that derivative is counted, not compared. "" or what
+// differs.
+std::string check_jacobian(const cgagen::front::Script& script, const std::map<std::string, double>& inputs,
+                           const std::string& name, Stats& st) {
+  static const std::map<std::string, unsigned> index = null_index();
+  std::vector<std::string> wrt;  // the script's inputs (the generator's inputs map may hold unused names)
+  using Table = std::map<std::string, std::array<double, oracle::kBlades>>;
+  std::map<std::string, std::array<bool, oracle::kBlades>> present;  // a '#pragma output' returns its blades only
+  std::optional<cgagen::opt::Program> program;
+  try {
+    for (const auto& ki : cgagen::expand(script, name).inputs) wrt.push_back(ki.name);
+    if (wrt.empty()) return "";
+    program.emplace(cgagen::opt::optimize(cgagen::expand(script, name, nullptr, wrt), cgagen::opt::Level::O2));
+  } catch (const std::exception& e) {
+    return std::string("the Jacobian of a program with values is refused: ") + e.what();
+  }
+  auto jacobian_at = [&](const std::map<std::string, double>& at) {
+    cgagen::opt::InputValues in;
+    for (const auto& x : wrt) in[x] = {at.at(x)};
+    Table t;
+    for (const auto& line : cgagen::opt::evaluate(*program, in)) {
+      const unsigned c = index.at(cgagen::algebra::blade_name(line.blade));
+      t[line.output][c] = line.value;
+      present[line.output][c] = true;
+    }
+    return t;
+  };
+  const Table jac = jacobian_at(inputs);
+  for (const auto& x : wrt) {
+    auto differences = [&](double h) {
+      std::map<std::string, double> lo = inputs, hi = inputs;
+      lo[x] -= h;
+      hi[x] += h;
+      const Result a = run_oracle(script, lo), b = run_oracle(script, hi);
+      Table d;
+      if (a.refused || b.refused) return d;
+      for (const auto& [o, vb] : b.outputs)
+        for (unsigned c = 0; c < oracle::kBlades; ++c) d[o][c] = (vb[c] - a.outputs.at(o)[c]) / (2 * h);
+      return d;
+    };
+    const double h = 1e-3 * std::max(1.0, std::abs(inputs.at(x)));
+    const Table d1 = differences(h), d2 = differences(h / 2);
+    // cgagen's own derivative half a step either side: where it jumps, the point is not smooth (abs or a square
+    // root of a value that is 0 up to rounding, a select switching).
+    std::map<std::string, double> lo = inputs, hi = inputs;
+    lo[x] -= h / 2;
+    hi[x] += h / 2;
+    const Table jl = jacobian_at(lo), jh = jacobian_at(hi);
+    const Result ref = run_oracle(script, inputs);
+    for (const auto& [o, v1] : d1) {
+      const std::string out = o + "_d_" + x;
+      const auto it = jac.find(out);
+      if (it == jac.end()) return "no derivative output " + out;
+      if (!d2.count(o) || ref.refused) continue;
+      double scale = 1;  // the output's magnitude: its values agree with the oracle's to 1e-9 of it
+      for (double v : ref.outputs.at(o)) scale = std::max(scale, std::abs(v));
+      for (unsigned c = 0; c < oracle::kBlades; ++c) {
+        if (!present[out][c]) continue;
+        const double a = v1[c], b = d2.at(o)[c], got = it->second[c];
+        const double around = std::abs(jh.at(out)[c] - jl.at(out)[c]);
+        // A value that is 0 up to rounding (as compare() treats it) may be the square root of a rounded zero,
+        // whose difference quotients are noise: not compared either.
+        const bool rounded_zero = std::abs(ref.outputs.at(o)[c]) < 1e-7 * scale;
+        if (rounded_zero || !std::isfinite(a) || !std::isfinite(b) || std::abs(a - b) > 1e-3 * std::max(1.0, std::abs(b)) ||
+            !(around <= 1e-2 * std::max(1.0, std::abs(got)))) {
+          ++st.kinks;
+          continue;
+        }
+        const double want = (4 * b - a) / 3;
+        ++st.derivatives;
+        // Rounding: the difference quotients carry the values' rounding (about 1e-12 of the output's scale)
+        // divided by the step.
+        if (!(std::abs(got - want) <= 1e-6 * std::max(1.0, std::abs(want)) + 1e-12 * scale / h)) {
+          std::ostringstream s;
+          s.precision(17);
+          s << "d " << o << " " << oracle::null_blade_names()[c] << " / d " << x << ": cgagen " << got
+            << ", central differences of the oracle " << want;
+          return s.str();
+        }
+      }
+    }
+  }
+  return "";
+}
 
 // Checks one script; returns "" or the failure.
 std::string check(const std::string& text, const std::map<std::string, double>& inputs, const std::string& name,
@@ -168,6 +258,7 @@ std::string check(const std::string& text, const std::map<std::string, double>& 
     else if (std::string d = compare(cg, ref, pragma_outputs); !d.empty()) failure = "-O" + std::to_string(static_cast<int>(level)) + ": " + d;
     if (!failure.empty()) break;
   }
+  if (failure.empty() && !any_budget && !ref.refused && !inputs.empty()) failure = check_jacobian(script, inputs, name, st);
   ++st.programs;
   if (!failure.empty()) ++st.failures;
   else if (any_budget) ++st.budget;
@@ -302,7 +393,9 @@ int main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "diff_fuzz: " << st.programs << " programs (seed " << seed << "): " << st.agreed_values
             << " agree on values, " << st.both_refused << " refused by both, " << st.budget
-            << " over cgagen's work budget, " << failures << " failures; " << compiled
+            << " over cgagen's work budget, " << failures << " failures; " << st.derivatives
+            << " partial derivatives against central differences of the oracle (" << st.kinks
+            << " left out where the values are not smooth); " << compiled
             << " emitted kernels compiled (C++ and GLSL); " << seconds << " s\n";
   return failures == 0 ? 0 : 1;
 }
