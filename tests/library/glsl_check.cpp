@@ -2,9 +2,9 @@
 // glsl) run on the headless GL context (gl_compute_runner: Mesa llvmpipe in CI) against the same library's
 // C++ (which tests/library checks against the oracle). COUNT functions (default 150; 0: every function) are
 // drawn with a fixed seed; each becomes one row of a compute shader that builds its operands from the input
-// row, calls LIBRARY_OP(a, b) and writes the result's coefficients. Operands are seeded random coefficients
-// in [-1, 1] (the same formula runs on both sides, so any operand does; inverse and normalize get operands
-// away from a zero norm). Exit status 0 when every coefficient agrees within 1e-4 (1 + |value|).
+// row, calls LIBRARY_OP(a, b) and writes the result's coefficients. The sample, the operands and the
+// comparison are check_sample.hpp's, as for the Rust and Python checks. Exit status 0 when every coefficient
+// agrees within 1e-4 (1 + |value|).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +20,7 @@
 #include "cga_rigid.hpp"
 #include "e3.hpp"
 #include "pga3.hpp"
+#include "check_sample.hpp"
 
 namespace {
 
@@ -30,70 +31,27 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-// Blade k of type `name` ("" past its end).
-template <class TypeInfo, size_t NT>
-std::string types_blade(const TypeInfo (&types)[NT], const std::string& name, size_t k) {
-  for (const auto& t : types)
-    if (t.name == name && k < t.size) return std::string(t.blades[k]);
-  return "";
-}
-
 template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
 int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& glsl,
           const std::string& runner, const std::string& work, size_t count) {
-  std::map<std::string, size_t> size;
-  for (const auto& t : types) size[std::string(t.name)] = t.size;
-  std::vector<size_t> picked(NF);
-  for (size_t i = 0; i < NF; ++i) picked[i] = i;
-  std::mt19937 rng(20261128u);
-  std::shuffle(picked.begin(), picked.end(), rng);
-  if (count && count < NF) picked.resize(count);
-  std::sort(picked.begin(), picked.end());
+  const std::vector<library_check::Case> picked = library_check::sample("glsl_check", types, fns, count, 1);
+  if (picked.empty()) return 1;
   size_t nin = 1, nout = 1;
-  for (size_t i : picked) {
-    const auto& f = fns[i];
-    nin = std::max(nin, size[std::string(f.a)] + (f.arity == 2 ? size[std::string(f.b)] : 0));
-    nout = std::max(nout, size[std::string(f.result)]);
-  }
-  std::uniform_int_distribution<int> d(-256, 256);
-  std::vector<float> in(picked.size() * nin, 0.0f), want(picked.size() * nout, 0.0f);
+  for (const auto& c : picked) nin = std::max(nin, c.na + c.nb), nout = std::max(nout, c.nr);
+  // One row per function: its operands in the input row, its result in the output row.
+  std::vector<float> in(picked.size() * nin, 0.0f);
   std::vector<std::string> cases;
   for (size_t row = 0; row < picked.size(); ++row) {
-    const auto& f = fns[picked[row]];
-    const std::string name(f.name), a(f.a), b(f.b), r(f.result);
-    const size_t na = size[a], nb = f.arity == 2 ? size[b] : 0, nr = size[r];
-    float* x = &in[row * nin];
-    float* y = &want[row * nout];
-    // Operands on which the C++ value is finite: inverse and normalize away from a zero norm, log near the
-    // identity (a scalar blade near 1, small other blades: its domain is rotors and motors).
-    bool finite = false;
-    for (int tries = 0; tries < 100 && !finite; ++tries) {
-      for (size_t k = 0; k < na + nb; ++k) x[k] = static_cast<float>(d(rng) / (name == "log" ? 1024.0 : 256.0));
-      if (name == "log")
-        for (size_t k = 0; k < na; ++k)
-          if (types_blade(types, a, k) == "1") x[k] += 1.0f;
-      if (name == "inverse" || name == "normalize") {
-        std::vector<float> n(1, 0.0f);
-        for (size_t j = 0; j < NF; ++j)  // the operand's norm_sqr, through the library itself
-          if (std::string(fns[j].name) == "norm_sqr" && std::string(fns[j].a) == a) fns[j].unary(x, n.data());
-        if (std::abs(n[0]) <= 0.25f) continue;
-      }
-      if (f.arity == 2) f.binary(x, x + na, y);
-      else f.unary(x, y);
-      finite = std::all_of(y, y + nr, [](float v) { return std::isfinite(v); });
-    }
-    if (!finite) {
-      std::fprintf(stderr, "glsl_check: %s %s: no operand with a finite C++ value in 100 draws\n", lib.c_str(), name.c_str());
-      return 1;
-    }
-    std::string c = "      " + lib + "_" + a + " a;\n";
-    for (size_t k = 0; k < na; ++k) c += "      a.v[" + std::to_string(k) + "] = X(" + std::to_string(k) + ");\n";
+    const library_check::Case& f = picked[row];
+    std::copy(f.x.begin(), f.x.end(), in.begin() + static_cast<long>(row * nin));
+    std::string c = "      " + lib + "_" + f.a + " a;\n";
+    for (size_t k = 0; k < f.na; ++k) c += "      a.v[" + std::to_string(k) + "] = X(" + std::to_string(k) + ");\n";
     if (f.arity == 2) {
-      c += "      " + lib + "_" + b + " b;\n";
-      for (size_t k = 0; k < nb; ++k) c += "      b.v[" + std::to_string(k) + "] = X(" + std::to_string(na + k) + ");\n";
+      c += "      " + lib + "_" + f.b + " b;\n";
+      for (size_t k = 0; k < f.nb; ++k) c += "      b.v[" + std::to_string(k) + "] = X(" + std::to_string(f.na + k) + ");\n";
     }
-    c += "      " + lib + "_" + r + " r = " + lib + "_" + name + (f.arity == 2 ? "(a, b);\n" : "(a);\n");
-    c += "      for (int k = 0; k < " + std::to_string(nr) + "; ++k) Y(k) = r.v[k];\n";
+    c += "      " + lib + "_" + f.result + " r = " + lib + "_" + f.name + (f.arity == 2 ? "(a, b);\n" : "(a);\n");
+    c += "      for (int k = 0; k < " + std::to_string(f.nr) + "; ++k) Y(k) = r.v[k];\n";
     cases.push_back(c);
   }
   // Shaders of at most kChunk rows each: one with more than about 75 cases over this library miscompiled on
@@ -131,23 +89,18 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
     std::ifstream fout(base + ".out");
     for (std::string t; fout >> t;) got.push_back(std::strtod(t.c_str(), nullptr));  // "inf" and "nan" too
   }
-  if (got.size() != want.size()) {
-    std::fprintf(stderr, "glsl_check: %zu values back, %zu expected\n", got.size(), want.size());
+  // The rows back as one result per case (outputs are padded to the widest result).
+  if (got.size() != picked.size() * nout) {
+    std::fprintf(stderr, "glsl_check: %zu values back, %zu expected\n", got.size(), picked.size() * nout);
     return 1;
   }
-  int bad = 0;
+  std::vector<std::vector<double>> per_case;
+  std::vector<std::vector<std::string>> forms;
   for (size_t row = 0; row < picked.size(); ++row) {
-    const auto& f = fns[picked[row]];
-    for (size_t k = 0; k < size[std::string(f.result)]; ++k) {
-      const double w = want[row * nout + k], g = got[row * nout + k];
-      if (!(std::abs(g - w) <= 1e-4 * (1 + std::abs(w)))) {
-        if (bad++ < 20)
-          std::fprintf(stderr, "glsl_check: %s %s(%.*s%s%.*s) coefficient %zu: GLSL %.9g, C++ %.9g\n", lib.c_str(),
-                       std::string(f.name).c_str(), int(f.a.size()), f.a.data(), f.arity == 2 ? ", " : "",
-                       int(f.b.size()), f.b.data(), k, g, w);
-      }
-    }
+    per_case.emplace_back(got.begin() + static_cast<long>(row * nout), got.begin() + static_cast<long>(row * nout + picked[row].nr));
+    forms.push_back({"GLSL"});
   }
+  const int bad = library_check::compare("glsl_check", lib, picked, per_case, forms, 1);
   std::printf("glsl_check: %s: %zu of %zu functions run in GLSL, %d coefficients off\n", lib.c_str(), picked.size(), NF,
               bad);
   return bad ? 1 : 0;
