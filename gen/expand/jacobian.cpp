@@ -56,7 +56,9 @@ void Expander::apply_jacobians() {
   const size_t value_count = kernel_.values.size();
   std::map<std::string, size_t> derivative_of;  // input coefficient name -> first derivative value index
   for (const Request& r : requests)
-    for (const auto& [name, loc] : r.wrt) {
+    for (const auto& w : r.wrt) {
+      const std::string& name = w.first;  // not a structured binding: lambdas below capture it (clang 15)
+      const front::SourceLoc loc = w.second;
       auto in = std::find_if(kernel_.inputs.begin(), kernel_.inputs.end(), [&](const KernelInput& k) { return k.name == name; });
       if (in == kernel_.inputs.end())
         throw CompileError(loc, "'jacobian' with respect to '" + name + "', which is not an input of the script");
