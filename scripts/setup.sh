@@ -14,6 +14,7 @@ packages=(
   clang libclang-rt-14-dev
   dpkg-dev
   python3-numpy                              # targets: python (Debian's /usr/bin/python3)
+  python3-pyflakes                           # targets/warnings: the Python output's lint
   nodejs                                     # targets: javascript (node)
   rustc                                      # targets: rust (no cargo, no crates)
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers   # targets: opencl on the CPU

@@ -45,6 +45,9 @@ struct Syntax {
   // if/else as a select (docs/language.md): ${x} when "${a} ${op} ${b}" holds, else ${y}; ${op} is <, <= or
   // == as spelled in compare_names.
   std::string select = "(${a} ${op} ${b} ? ${x} : ${y})";
+  // The same where the select is a whole expression (a right-hand side, an argument, a branch), for targets
+  // whose compiler warns about parentheses there (Rust's unused_parens); empty: select.
+  std::string select_bare;
   std::map<std::string, std::string> compare_names;  // "<=" -> "\\le" (LaTeX); others as written
   std::string mul = " * ", div = " / ";
   std::string negate = "-${x}";        // a negated operand ${x} (printed as an operand of *)

@@ -18,6 +18,7 @@ std::string Printer::print(const ex& e, int prec) {
     return it->second;
   }
   if (is_a<constant>(e)) return number(numeric(ex_to<numeric>(e.evalf()).to_double()));
+  if (prec == 0 && !sx_.select_bare.empty() && cgagen::symbolic::is_select(e)) return select(e, sx_.select_bare);
   if (is_a<add>(e)) {
     std::string s;
     bool first = true;
@@ -67,16 +68,7 @@ std::string Printer::atom(const ex& b) {
   if (is_a<add>(b) || is_a<mul>(b)) return print(b, 2);
   if (opt::is_sqrt(b)) return call("sqrt", print(b.op(0)));
   if (is_a<power>(b)) return call("pow", print(b.op(0)) + ", " + print(b.op(1)));
-  if (cgagen::symbolic::is_select(b)) {
-    const std::string op = cgagen::symbolic::select_operator(b);
-    auto it = sx_.compare_names.find(op);
-    return fill_pattern(sx_.select, {{"a", print(b.op(0), 1)},
-                                     {"b", print(b.op(1), 1)},
-                                     {"op", it == sx_.compare_names.end() ? op : it->second},
-                                     {"x", print(b.op(2))},
-                                     {"y", print(b.op(3))},
-                                     {"T", prec_.type}});
-  }
+  if (cgagen::symbolic::is_select(b)) return select(b, sx_.select);
   if (is_a<function>(b)) {
     std::string name = ex_to<function>(b).get_name();
     std::string s;
@@ -84,6 +76,17 @@ std::string Printer::atom(const ex& b) {
     return call(name, s);
   }
   throw std::logic_error("cgagen emitter: cannot print expression of this kind");
+}
+
+std::string Printer::select(const ex& b, const std::string& pattern) {
+  const std::string op = cgagen::symbolic::select_operator(b);
+  auto it = sx_.compare_names.find(op);
+  return fill_pattern(pattern, {{"a", print(b.op(0), 1)},
+                                {"b", print(b.op(1), 1)},
+                                {"op", it == sx_.compare_names.end() ? op : it->second},
+                                {"x", print(b.op(2))},
+                                {"y", print(b.op(3))},
+                                {"T", prec_.type}});
 }
 
 std::string Printer::number(const numeric& v) const {

@@ -24,6 +24,7 @@ class Printer {
  private:
   std::string print_product(const GiNaC::ex& e, int prec);
   std::string atom(const GiNaC::ex& b);
+  std::string select(const GiNaC::ex& b, const std::string& pattern);
   // A literal in the target's spelling (Syntax::constant), and a negated operand (Syntax::negate).
   std::string number(const GiNaC::numeric& v) const;
   std::string negated(const std::string& operand) const;

@@ -202,6 +202,8 @@ std::vector<Syntax> make_targets() {
   rust.math_prefix = "${T}::";
   rust.math_names = {{"pow", "powf"}, {"log", "ln"}};  // Rust's log takes a base; ln is the natural one
   rust.select = "(if ${a} ${op} ${b} { ${x} } else { ${y} })";
+  rust.select_bare = "if ${a} ${op} ${b} { ${x} } else { ${y} }";
+  rust.unused = "let _ = ${name};";  // an input no value reads (rustc's unused_variables)
   rust.scalar_param = "${name}: ${T}";
   rust.mv_param = "${name}: &[${T}; ${n}]";
   rust.out_param = "${name}: &mut [${T}; ${n}]";
