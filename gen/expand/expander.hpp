@@ -192,6 +192,9 @@ class Expander : private expand_pragmas::PragmaHost,
   // input's coefficient: OUT_d_IN_BLADE), each over OUT's blades, from derivative values built by the chain
   // rule through the kernel's values.
   void apply_jacobians();
+  void reverse_jacobian(const std::vector<size_t>& outputs, const std::vector<std::pair<GiNaC::ex, std::string>>& wrt);
+  const std::vector<std::pair<GiNaC::ex, GiNaC::ex>>& partials_of(size_t value, size_t blade);
+  std::map<std::pair<size_t, size_t>, std::vector<std::pair<GiNaC::ex, GiNaC::ex>>> partials_;
   std::vector<std::string> jacobian_wrt_;  // --jacobian: every output with respect to these inputs
 
   // ---- what pragmas ask of the expander (expand/pragmas.hpp) -----------------------------------------
