@@ -307,20 +307,21 @@ TEST_CASE("chain IK: a target on the effector needs no iteration, and a scaled c
 }
 
 TEST_CASE("chain IK converges on random reachable targets: 5, 10 and 20 hinges, and free joints", "[ik_chain]") {
-  // Success: the effector within 1e-4 of the chain length (the job's default tolerance), default settings
-  // (64 trials, damping 0.05). The thresholds sit below the rates measured (docs/runtime.md).
+  // Targets from every joint turned by up to pi (cga/testing/chain_ik_cases.hpp). Success: the effector
+  // within 1e-4 of the chain length (the job's default tolerance), default settings (64 trials, damping 0.05).
+  // The thresholds sit below the rates measured (docs/runtime.md).
   struct Row {
     int joints;
     bool free;
     double min_rate;
   };
-  for (const Row row : {Row{5, false, 0.0}, Row{10, false, 0.0}, Row{20, false, 0.0}, Row{10, true, 0.0}}) {
+  for (const Row row : {Row{5, false, 0.95}, Row{10, false, 0.99}, Row{20, false, 0.99}, Row{10, true, 0.99}}) {
     SeededRandom rng(1000u + static_cast<std::uint32_t>(row.joints) + (row.free ? 7u : 0u));
-    const int cases = 200;
+    const int cases = 500;
     int ok = 0, reached_flag = 0;
     long iterations = 0;
     for (int i = 0; i < cases; ++i) {
-      const ChainCase c = testing::random_chain_case(rng, row.joints, row.free);
+      const ChainCase c = testing::random_chain_case(rng, row.joints, row.free, float(M_PI));
       const ChainSolve s = testing::solve_chain_case(c, ChainIKJob{});
       REQUIRE(s.ok);
       for (const Motor& m : s.corrections) REQUIRE(finite(m));

@@ -2,9 +2,9 @@
 // from SeededRandom (the same numbers with every standard library). A chain of n joints: the root at a random
 // place and rotation, each child a bone of length 0.5..1.5 along a random direction with a random rotation,
 // hinge axes random unit vectors of each joint's frame (or all free), the end effector 0.5..1 from the tip.
-// The target is where the effector goes when every hinge turns by a random angle in [-1, 1] rad (free joints
-// by a random rotation of up to 1 rad), so it is reachable; the orientation target is the tip's rotation
-// there. Header-only.
+// The target is where the effector goes when every hinge turns by a random angle in [-max_turn, max_turn]
+// (free joints by a random rotation of up to max_turn), so it is reachable; the orientation target is the
+// tip's rotation there. Header-only.
 #pragma once
 
 #include <cmath>
@@ -52,8 +52,9 @@ inline glm::quat random_rotation(SeededRandom& rng) {
   }
 }
 
-// A chain of n joints; free: every joint free (3 DOF), else hinges.
-inline ChainCase random_chain_case(SeededRandom& rng, int n, bool free = false) {
+// A chain of n joints; free: every joint free (3 DOF), else hinges; the target pose turns each joint by up to
+// max_turn rad.
+inline ChainCase random_chain_case(SeededRandom& rng, int n, bool free = false, float max_turn = 1.0f) {
   ChainCase c;
   c.local.resize(n);
   c.axes.resize(n);
@@ -76,7 +77,7 @@ inline ChainCase random_chain_case(SeededRandom& rng, int n, bool free = false) 
     // The target pose: the joint turned about its axis (or a random one) by up to 1 rad.
     const glm::vec3 axis = free ? random_direction(rng) : c.axes[j];
     Transform turn;
-    turn.rotation = glm::angleAxis(rng.uniform(-1.0f, 1.0f), axis);
+    turn.rotation = glm::angleAxis(rng.uniform(-max_turn, max_turn), axis);
     moved[j] = motor_mul(c.local[j], motor_from_transform(turn));
   }
   const float l = rng.uniform(0.5f, 1.0f);
