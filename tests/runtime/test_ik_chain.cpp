@@ -2,7 +2,8 @@
 // planar two-hinge chain against its law-of-cosines solution), the generated Jacobian against central
 // differences of the forward kinematics (LocalToModelJob), hinge limits, weight, orientation targets,
 // unreachable and invalid input, and convergence on random reachable targets for 5-, 10- and 20-joint chains
-// (cga/testing/chain_ik_cases.hpp, fixed seeds). Corrections are applied to the local pose with
+// (cga/testing/chain_ik_cases.hpp, fixed seeds); ChainIKBatchJob (the SIMD batch kernel) on crowds against
+// ChainIKJob chain by chain. Corrections are applied to the local pose with
 // apply_ik_correction and the model pose recomputed, as an application does.
 #include <catch2/catch.hpp>
 
@@ -335,4 +336,76 @@ TEST_CASE("chain IK converges on random reachable targets: 5, 10 and 20 hinges, 
                 row.free ? "free " : "hinge", rate, double(reached_flag) / cases, double(iterations) / cases);
     CHECK(rate >= row.min_rate);
   }
+}
+
+TEST_CASE("chain IK batch: a crowd solves as ChainIKJob solves each chain", "[ik_chain]") {
+  SeededRandom rng(31u);
+  for (const bool oriented : {false, true}) {
+    const int chains = oriented ? 50 : 300, n = 10;
+    const testing::ChainCrowd crowd = testing::random_crowd(rng, chains, n);
+    std::vector<Motor> out(crowd.joints.size());
+    std::vector<std::uint8_t> reached(chains);
+    std::vector<int> iterations(chains);
+    ChainIKBatchJob batch;
+    batch.chain_joints = n, batch.joints = crowd.joints, batch.axes = crowd.axes;
+    batch.effector_offset = crowd.offset, batch.targets = crowd.targets;
+    if (oriented) batch.target_orientations = crowd.orientations;
+    batch.corrections = out, batch.reached = reached, batch.iterations = iterations;
+    REQUIRE(batch.Run());
+    int hits = 0, same = 0;
+    float worst = 0.0f;
+    for (int c = 0; c < chains; ++c) {
+      std::vector<Motor> single(n);
+      bool r = false;
+      int it = 0;
+      ChainIKJob job;
+      job.joints = std::span<const Motor>(crowd.joints).subspan(static_cast<std::size_t>(c * n), n);
+      job.axes = crowd.axes, job.effector_offset = crowd.offset, job.target = crowd.targets[c];
+      if (oriented) job.target_orientation = &crowd.orientations[c];
+      job.corrections = single, job.reached = &r, job.iterations = &it;
+      REQUIRE(job.Run());
+      hits += reached[c];
+      if (r == bool(reached[c]) && it == iterations[c]) {
+        ++same;
+        for (int j = 0; j < n; ++j)
+          for (int k = 0; k < 12; ++k) worst = std::max(worst, std::abs(single[j].c[k] - out[c * n + j].c[k]));
+      }
+      for (int j = 0; j < n; ++j) REQUIRE(finite(out[c * n + j]));
+    }
+    std::printf("chain IK batch, %d chains of %d hinges%s: reached %.3f, same flag and trials as ChainIKJob %.3f, "
+                "worst coefficient difference then %.2g\n",
+                chains, n, oriented ? " with orientation" : "", double(hits) / chains, double(same) / chains,
+                double(worst));
+    CHECK(double(hits) / chains >= (oriented ? 0.9 : 0.99));
+    CHECK(double(same) / chains >= 0.9);
+    CHECK(worst <= 1e-3f);
+  }
+}
+
+TEST_CASE("chain IK batch: invalid input is refused and leaves the outputs", "[ik_chain]") {
+  SeededRandom rng(8u);
+  const testing::ChainCrowd crowd = testing::random_crowd(rng, 3, 4);
+  Motor sentinel;
+  sentinel.c.fill(7.0f);
+  std::vector<Motor> out(12, sentinel);
+  ChainIKBatchJob good;
+  good.chain_joints = 4, good.joints = crowd.joints, good.axes = crowd.axes, good.targets = crowd.targets;
+  good.corrections = out;
+  REQUIRE(good.Validate());
+  std::vector<glm::vec3> nan_target = crowd.targets;
+  nan_target[1].z = std::numeric_limits<float>::quiet_NaN();
+  std::vector<std::uint8_t> two(2);
+  for (int k = 0; k < 6; ++k) {
+    ChainIKBatchJob job = good;
+    if (k == 0) job.chain_joints = 0;
+    if (k == 1) job.joints = {}, job.corrections = {};
+    if (k == 2) job.chain_joints = 5;  // 12 joints are not chains of 5
+    if (k == 3) job.targets = std::span<const glm::vec3>(crowd.targets).first(2);
+    if (k == 4) job.targets = nan_target;
+    if (k == 5) job.reached = two;
+    CHECK_FALSE(job.Validate());
+    CHECK_FALSE(job.Run());
+    for (const Motor& m : out) CHECK(m.c == sentinel.c);
+  }
+  REQUIRE(good.Run());
 }

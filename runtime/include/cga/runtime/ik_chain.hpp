@@ -6,8 +6,11 @@
 //   runtime/scripts/ik_chain_rotor.clu: the rotor of a turn about an axis (the corrections).
 // The forward kinematics of the iterations are motor_mul_rigid products; the C++ does the small solve
 // (J J^T + lambda^2 I) y = r, dq = J^T y, the limits and the step control.
+// ChainIKBatchJob solves many chains of one rig (a crowd) in lockstep, their Jacobian columns filled together
+// by ik_chain_joint's SIMD batch kernel (ik_chain_joint.simd.hpp, Highway run-time dispatch).
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include "cga/runtime/types.hpp"
@@ -44,6 +47,33 @@ struct ChainIKJob {
   int* iterations = nullptr;         // optional: the trials the solve took
 
   bool Validate() const;  // sizes, finite inputs, weight in [0, 1], limits around 0, positive parameters
+  bool Run() const;       // false when invalid (outputs untouched)
+};
+
+// ChainIKJob for many chains of the same rig at once: every iteration fills the columns of all chains still
+// iterating with one call of the SIMD batch kernel, then takes each chain's trial as ChainIKJob does (the
+// same solve; results agree with ChainIKJob's to float rounding, not bit for bit: the batch kernel's lanes
+// contract products into FMAs).
+struct ChainIKBatchJob {
+  int chain_joints = 0;                    // joints per chain (>= 1)
+  std::span<const Motor> joints;           // chain c's model motors at [c chain_joints, (c + 1) chain_joints)
+  std::span<const glm::vec3> axes;         // per joint of the rig, shared by every chain (empty: all free)
+  std::span<const float> min_angles;       // per joint of the rig, shared (both empty: no limits)
+  std::span<const float> max_angles;
+  glm::vec3 effector_offset{0.0f};         // in the tip joint's frame, shared
+  std::span<const glm::vec3> targets;      // one per chain
+  std::span<const Motor> target_orientations;  // empty, or one per chain
+  float orientation_weight = 1.0f;
+  float weight = 1.0f;
+  int max_iterations = 64;
+  float tolerance = 1e-4f;
+  float orientation_tolerance = 1e-3f;
+  float damping = 0.05f;
+  std::span<Motor> corrections;            // output: one per joint of every chain
+  std::span<std::uint8_t> reached;         // optional: empty, or one per chain (1: reached)
+  std::span<int> iterations;               // optional: empty, or one per chain
+
+  bool Validate() const;  // sizes as above, and every chain valid as a ChainIKJob
   bool Run() const;       // false when invalid (outputs untouched)
 };
 

@@ -90,6 +90,44 @@ inline ChainCase random_chain_case(SeededRandom& rng, int n, bool free = false, 
   return c;
 }
 
+// A crowd for ChainIKBatchJob: one rig (random_chain_case's, hinges), chains posed differently (each joint
+// turned by up to 0.5 rad about its hinge, the root moved by up to 1), each with a reachable target (its
+// joints turned further by up to max_turn) and that pose's tip rotation.
+struct ChainCrowd {
+  int chain_joints = 0;
+  std::vector<glm::vec3> axes;
+  glm::vec3 offset{0.0f};
+  std::vector<Motor> joints;  // chain c at [c chain_joints, (c + 1) chain_joints)
+  std::vector<glm::vec3> targets;
+  std::vector<Motor> orientations;
+  float length = 0.0f;
+};
+
+inline ChainCrowd random_crowd(SeededRandom& rng, int chains, int n, float max_turn = 3.14159265f) {
+  const ChainCase rig = random_chain_case(rng, n);
+  ChainCrowd crowd;
+  crowd.chain_joints = n, crowd.axes = rig.axes, crowd.offset = rig.offset, crowd.length = rig.length;
+  const auto turned = [&](std::vector<Motor> local, float by) {
+    for (int j = 0; j < n; ++j) {
+      Transform t;
+      t.rotation = glm::angleAxis(rng.uniform(-by, by), rig.axes[j]);
+      local[j] = motor_mul(local[j], motor_from_transform(t));
+    }
+    return local;
+  };
+  for (int c = 0; c < chains; ++c) {
+    std::vector<Motor> local = turned(rig.local, 0.5f);
+    Transform shift;
+    shift.translation = glm::vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    local[0] = motor_mul(motor_from_transform(shift), local[0]);
+    const std::vector<Motor> model = rig.model_of(local), target_model = rig.model_of(turned(local, max_turn));
+    crowd.joints.insert(crowd.joints.end(), model.begin(), model.end());
+    crowd.targets.push_back(rig.effector(target_model));
+    crowd.orientations.push_back(target_model.back());
+  }
+  return crowd;
+}
+
 // Runs ChainIKJob on the case and applies the corrections; returns the solved local pose.
 struct ChainSolve {
   bool ok = false, reached = false;
