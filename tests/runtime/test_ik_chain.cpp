@@ -174,6 +174,7 @@ TEST_CASE("chain IK: weight 0 leaves the pose, weight 1/2 goes part of the way",
   const ChainSolve s = testing::solve_chain_case(c, job);
   REQUIRE(s.ok);
   CHECK_FALSE(s.reached);
+  CHECK(s.iterations == 0);
   for (const Motor& m : s.corrections) CHECK(m.c == Motor::identity().c);
   job.weight = 0.5f;
   const ChainSolve half = testing::solve_chain_case(c, job);

@@ -106,7 +106,8 @@ class Solver {
   // Reads a valid job (Validate() true).
   explicit Solver(const ChainIKJob& job);
 
-  bool active() const { return !hit_ && it_ < job_.max_iterations && lambda_ <= lambda_max_; }
+  // Weight 0 leaves the pose: no trials.
+  bool active() const { return job_.weight > 0.0f && !hit_ && it_ < job_.max_iterations && lambda_ <= lambda_max_; }
   int columns() const { return cols_; }
   bool oriented() const { return oriented_; }
   // Column c's joint, its axis in the joint's frame, the posed joint's rigid model motor, the current effector
