@@ -1,6 +1,7 @@
 // ChainIKJob (see ik_chain.hpp): damped least squares with Levenberg-Marquardt step control. The geometry is
 // generated: each joint's Jacobian column comes from ik_chain_joint (the effector and the end frame's axes
-// turned about the joint's axis line, differentiated by the angle at 0), the corrections' rotors from
+// turned about the joint's axis line, differentiated by the angle at 0; without an orientation target its
+// effector derivative alone, ik_chain_joint_position), the corrections' rotors from
 // ik_chain_rotor, the forward kinematics from motor_mul_rigid and transform_point. This file does the plain
 // numerics: the m x m normal equations (m = 3, or 9 with an orientation target), the limits (an active set:
 // a hinge whose step would cross its limit is held there and the step solved again without it), the
@@ -102,10 +103,15 @@ void Solver::jacobian() {
   const glm::vec3 &e = cur_.e, &u = cur_.u, &w = cur_.w;
   for (int c = 0; c < cols_; ++c) {
     const glm::vec3 a = axis_of(c);
+    const float* m = cur_.model[col_joint_[c]].data();
     float P[4], U[3], W[3], dP[4], dU[3], dW[3];
-    kernels::ik_chain_joint(cur_.model[col_joint_[c]].data(), a.x, a.y, a.z, 0.0f, e.x, e.y, e.z, u.x, u.y, u.z, w.x,
-                            w.y, w.z, P, U, W, dP, dU, dW);
-    store_column(c, P, dP, dU, dW);
+    if (oriented_) {
+      kernels::ik_chain_joint(m, a.x, a.y, a.z, 0.0f, e.x, e.y, e.z, u.x, u.y, u.z, w.x, w.y, w.z, P, U, W, dP, dU, dW);
+      store_column(c, P, dP, dU, dW);
+    } else {
+      kernels::ik_chain_joint_position(m, a.x, a.y, a.z, 0.0f, e.x, e.y, e.z, u.x, u.y, u.z, w.x, w.y, w.z, dP);
+      store_position_column(c, dP);
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 // ChainIKBatchJob (see ik_chain.hpp): many chains of one rig solved in lockstep by ChainIKJob's solver
 // (detail/ik_chain_solver.hpp). Per iteration one call of ik_chain_joint's SIMD batch kernel
-// (ik_chain_joint.simd.hpp, the simd target; Highway picks the instruction set at run time) computes the
+// (ik_chain_joint.simd.hpp, the simd target; Highway picks the instruction set at run time; without
+// orientation targets ik_chain_joint_position's, the effector's derivative alone) computes the
 // Jacobian columns of every chain still iterating: element i is one column, its joint's posed motor
 // gathered through an index stream, its axis and the chain's effector and frame axes likewise.
 #define CGAGEN_SIMD_DISPATCH
@@ -8,10 +9,10 @@
 // RVV) cannot be elements of.
 #define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "ik_chain_joint.simd.hpp"
+#define HWY_TARGET_INCLUDE "ik_chain_batch_kernels.hpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
-#include <ik_chain_joint.simd.hpp>
+#include <ik_chain_batch_kernels.hpp>
 
 #include "cga/runtime/ik_chain.hpp"
 #include "detail/ik_chain_solver.hpp"
@@ -82,6 +83,7 @@ bool ChainIKBatchJob::Run() const {
     for (std::size_t c = 0; c < count; ++c) jobs.push_back(chain_job(*this, first + c));
     for (const ChainIKJob& job : jobs) solvers.emplace_back(job);
     const int cols = solvers[0].columns();
+    const bool oriented = solvers[0].oriented();  // every chain's or none
     for (;;) {
       active.clear();
       for (std::size_t c = 0; c < count; ++c)
@@ -119,14 +121,21 @@ bool ChainIKBatchJob::Run() const {
       for (int i = 0; i < 9; ++i) vec[i] = ks::In{chain_vecs.data() + i, 9, 1, chain_row.data(), 1, nullptr};
       const ks::Out p{out_p.data(), 4, 1}, dp{out_dp.data(), 4, 1}, uw{out_uw.data(), 3, 1};
       const ks::Out du{out_du.data(), 3, 1}, dw{out_dw.data(), 3, 1};
-      ks::ik_chain_joint_batch(elements, motor, sx, sy, sz, angle, vec[0], vec[1], vec[2], vec[3], vec[4], vec[5],
-                               vec[6], vec[7], vec[8], p, uw, uw, dp, du, dw);
+      if (oriented)
+        ks::ik_chain_joint_batch(elements, motor, sx, sy, sz, angle, vec[0], vec[1], vec[2], vec[3], vec[4], vec[5],
+                                 vec[6], vec[7], vec[8], p, uw, uw, dp, du, dw);
+      else
+        ks::ik_chain_joint_position_batch(elements, motor, sx, sy, sz, angle, vec[0], vec[1], vec[2], vec[3], vec[4],
+                                          vec[5], vec[6], vec[7], vec[8], dp);
       clear_upper_state();
       e = 0;
       for (const std::size_t c : active) {
         Solver& s = solvers[c];
         for (int k = 0; k < cols; ++k, ++e)
-          s.store_column(k, &out_p[e * 4], &out_dp[e * 4], &out_du[e * 3], &out_dw[e * 3]);
+          if (oriented)
+            s.store_column(k, &out_p[e * 4], &out_dp[e * 4], &out_du[e * 3], &out_dw[e * 3]);
+          else
+            s.store_position_column(k, &out_dp[e * 4]);
         s.step();
       }
     }

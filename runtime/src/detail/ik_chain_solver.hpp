@@ -1,7 +1,7 @@
 // ChainIKJob's solver (src/ik_chain.cpp), shared with ChainIKBatchJob (src/ik_chain_batch.cpp), which runs
 // many of them in lockstep and fills their Jacobians with the SIMD batch kernel. Internal to cga::runtime.
 // One Solver is one chain: init() reads the job, then while active() a Jacobian is filled (jacobian() with
-// the scalar kernel, or by the caller through column()/store_column()) and step() takes one
+// the scalar kernels, or by the caller through store_column()) and step() takes one
 // Levenberg-Marquardt trial; finish() writes the outputs.
 #pragma once
 
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <ik_chain_joint.hpp>
+#include <ik_chain_joint_position.hpp>
 #include <ik_chain_rotor.hpp>
 
 #include "cga/runtime/ik_chain.hpp"
@@ -118,8 +119,12 @@ class Solver {
   const glm::vec3& effector() const { return cur_.e; }
   const glm::vec3& frame_x() const { return cur_.u; }
   const glm::vec3& frame_y() const { return cur_.w; }
-  // Column c from ik_chain_joint's outputs P, P_d_a, U_d_a, W_d_a.
+  // Column c from ik_chain_joint's outputs P, P_d_a, U_d_a, W_d_a (with an orientation target), or from
+  // ik_chain_joint_position's P_d_a (without: the posed motors are rigid and unit, so P's weight is 1).
   void store_column(int c, const float* P, const float* dP, const float* dU, const float* dW);
+  void store_position_column(int c, const float* dP) {
+    for (int i = 0; i < 3; ++i) jac_[i * cols_ + c] = dP[i];
+  }
   void jacobian();  // every column by the scalar kernel
   void step();      // one trial on the stored Jacobian
   void finish() const;
