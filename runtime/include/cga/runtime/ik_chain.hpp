@@ -2,12 +2,14 @@
 // steps) on a Jacobian from generated kernels, in ozz-animation's form (Validate()/Run(), model-space motors
 // in, local-space corrections out, applied with apply_ik_correction as for TwoBoneIKJob).
 //   runtime/scripts/ik_chain_joint.clu: one joint's Jacobian column (the end effector's point and two frame
-//                                       directions turned about the joint's axis, derivatives by the angle);
+//                                       directions turned about the joint's axis, derivatives by the angle;
+//                                       without an orientation target the effector's derivative alone,
+//                                       generated as ik_chain_joint_position);
 //   runtime/scripts/ik_chain_rotor.clu: the rotor of a turn about an axis (the corrections).
 // The forward kinematics of the iterations are motor_mul_rigid products; the C++ does the small solve
 // (J J^T + lambda^2 I) y = r, dq = J^T y, the limits and the step control.
 // ChainIKBatchJob solves many chains of one rig (a crowd) in lockstep, their Jacobian columns filled together
-// by ik_chain_joint's SIMD batch kernel (ik_chain_joint.simd.hpp, Highway run-time dispatch).
+// by the same kernels as SIMD batch kernels (NAME.simd.hpp, Highway run-time dispatch).
 #pragma once
 
 #include <cstdint>
