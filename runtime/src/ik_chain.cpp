@@ -165,7 +165,30 @@ void Solver::step() {
     hit_ = done(cur_);
   } else {
     lambda_ *= 4.0;
+    if (lambda_ > lambda_max_ && !kicked_) kick();
   }
+}
+
+// Stalled: no damped step lowers the residual (a straight chain pulled along its own line, where no joint
+// moves the effector along the chain to first order, or a local minimum). Once per solve the chain is bent
+// by kKick rad at every joint, alternating in sign (within the limits; a free joint about its local z), and
+// the damping starts again.
+void Solver::kick() {
+  constexpr float kKick = 0.1f;
+  kicked_ = true;
+  for (int j = 0; j < n_; ++j) {
+    const float by = j % 2 == 0 ? kKick : -kKick;
+    if (hinge(j)) {
+      float t = cur_.angle[j] + by;
+      if (!job_.min_angles.empty()) t = std::clamp(t, job_.min_angles[j], job_.max_angles[j]);
+      cur_.angle[j] = t;
+    } else {
+      cur_.rot[j] = rigid_mul(cur_.rot[j], turn(glm::vec3(0, 0, 1), by));
+    }
+  }
+  pose(cur_);
+  hit_ = done(cur_);
+  lambda_ = lambda_min_;
 }
 
 void Solver::finish() const {

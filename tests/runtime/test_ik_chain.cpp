@@ -98,6 +98,20 @@ TEST_CASE("chain IK: a planar two-hinge chain takes the law-of-cosines solution"
   }
 }
 
+TEST_CASE("chain IK: a straight chain pulled along its own line bends and reaches", "[ik_chain]") {
+  // Singular: no joint moves the effector along the chain to first order, so no damped step helps until the
+  // job bends the stalled chain once.
+  for (const bool free : {false, true}) {
+    ChainCase c = planar_chain({1.0f, 1.0f, 1.0f}, {0.0f, 0.0f, 0.0f});
+    if (free) c.axes.assign(3, glm::vec3(0.0f));
+    c.target = glm::vec3(2.0f, 0.0f, 0.0f);
+    const ChainSolve s = testing::solve_chain_case(c, ChainIKJob{});
+    REQUIRE(s.ok);
+    CHECK(s.reached);
+    CHECK(s.error <= 1e-4f * 3.0f);
+  }
+}
+
 TEST_CASE("chain IK: the generated Jacobian column equals central differences of forward kinematics",
           "[ik_chain]") {
   SeededRandom rng(4242u);

@@ -139,11 +139,12 @@ class Solver {
   };
   bool hinge(int j) const { return axis_[j] != glm::vec3(0.0f); }
   void pose(State& s) const;
+  void kick();
   bool done(const State& s) const;
 
   const ChainIKJob& job_;
   int n_ = 0, m_ = 3, cols_ = 0, it_ = 0;
-  bool oriented_ = false, hit_ = false;
+  bool oriented_ = false, hit_ = false, kicked_ = false;
   float length_ = 0.0f, lambda_min_ = 0.0f, orient_scale_ = 0.0f;
   double lambda_ = 0.0, lambda_max_ = 0.0;
   std::vector<RigidMotor> rel_;  // ~G[j-1] G[j] of the input rigid motors (rel[0] = G[0])
