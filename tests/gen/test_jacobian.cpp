@@ -85,6 +85,14 @@ TEST_CASE("every bundled script's Jacobian agrees with central differences of it
     }
     REQUIRE(finite);
     ++scripts;
+    // A script's own derivative outputs (its #pragma jacobian: OUT_d_IN...) get no derivatives of their own;
+    // the expansion's OUT_d_IN for the same input, compared below, is the same value.
+    const auto derivative_output = [&](const std::string& name) {
+      for (const auto& o : plain.outputs)
+        for (const auto& in : plain.inputs)
+          if (name.rfind(o.name + "_d_" + in.name, 0) == 0) return true;
+      return false;
+    };
     for (const auto& in : plain.inputs)
       for (size_t k = 0; k < in.symbols.size() && std::find(wrt.begin(), wrt.end(), in.name) != wrt.end(); ++k) {
         const std::string x = in.is_multivector ? in.name + "_" + algebra::blade_ident(in.blades[k]) : in.name;
@@ -103,7 +111,7 @@ TEST_CASE("every bundled script's Jacobian agrees with central differences of it
         const Values d1 = differences(h), d2 = differences(h / 2);
         for (const auto& o : plain.outputs)
           for (const auto& [key, v] : d1) {
-            if (key.rfind(o.name + " ", 0) != 0) continue;
+            if (key.rfind(o.name + " ", 0) != 0 || derivative_output(o.name)) continue;
             const std::string blade = key.substr(o.name.size() + 1);
             const double central = (4 * d2.at(key) - v) / 3;
             const auto it = base.find(o.name + "_d_" + x + " " + blade);

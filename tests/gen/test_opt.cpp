@@ -112,6 +112,7 @@ const std::map<std::string, OpBudget> kRuntimeKernelBudget = {
     {"motor_split_mul", {52, 64, 0, 0}},  {"transform_point_split", {41, 64, 1, 0}},
     {"transform_point", {72, 49, 0, 0}},
     {"ik_aim", {10, 18, 0, 1}},           {"ik_two_bone", {30, 56, 1, 3}},
+    {"ik_chain_joint", {161, 198, 0, 2}}, {"ik_chain_rotor", {0, 5, 0, 2}},
 };
 
 TEST_CASE("every runtime kernel stays within its -O2 op-count budget", "[opt][budget]") {

@@ -33,6 +33,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <random>
 #include <regex>
 #include <set>
@@ -230,8 +231,27 @@ Case load(const std::string& arg, bool numeric) {
   return c;
 }
 
+// A derivative output of `#pragma jacobian` (OUT_d_IN, OUT_d_IN_BLADE, docs/generator.md "Derivatives"),
+// which the interpreter does not compute: OUT and the key of IN's coefficient in the interpreter's inputs.
+struct DerivativeOf {
+  std::string output, input;
+};
+std::optional<DerivativeOf> derivative_of(const Case& c, const std::string& name) {
+  for (const auto& o : c.prog.outputs)
+    for (const auto& in : c.prog.inputs) {
+      const std::string stem = o.name + "_d_" + in.name;
+      if (!in.is_multivector && name == stem) return DerivativeOf{o.name, in.name};
+      if (in.is_multivector)
+        for (size_t k = 0; k < in.blades.size(); ++k)
+          if (name == stem + "_" + algebra::blade_ident(in.blades[k]))
+            return DerivativeOf{o.name, in.name + "[" + std::to_string(k) + "]"};
+    }
+  return std::nullopt;
+}
+
 // The reference against the oracle (see the top): the largest disagreement over a case's samples, or
-// infinity when the interpreter refuses the script (said on stderr).
+// infinity when the interpreter refuses the script (said on stderr). Derivative outputs are compared with
+// Richardson-extrapolated central differences of the interpreter's values (steps 1e-3 and 5e-4).
 double oracle_disagreement(const Case& c) {
   static const std::map<std::string, unsigned> index = [] {
     std::map<std::string, unsigned> m;
@@ -253,11 +273,29 @@ double oracle_disagreement(const Case& c) {
     std::vector<double> got;
     try {
       const diff::Outputs out = diff::interpret(script, in);
+      // Blade `blade` of output `name` at the inputs `at`.
+      const auto coefficient = [&](const diff::Outputs& values, const std::string& name, algebra::BladeIndex blade) {
+        auto v = values.values.find(name);
+        if (v == values.values.end()) throw diff::Refused("no output " + name);
+        return static_cast<double>(oracle::to_null_basis(v->second).at(index.at(algebra::blade_name(blade))));
+      };
       for (const auto& o : c.prog.outputs) {
-        auto v = out.values.find(o.name);
-        if (v == out.values.end()) throw diff::Refused("no output " + o.name);
-        const auto coeffs = oracle::to_null_basis(v->second);
-        for (const auto& slot : o.slots) got.push_back(static_cast<double>(coeffs.at(index.at(algebra::blade_name(slot.blade)))));
+        const std::optional<DerivativeOf> d = out.values.count(o.name) ? std::nullopt : derivative_of(c, o.name);
+        if (!d) {
+          for (const auto& slot : o.slots) got.push_back(coefficient(out, o.name, slot.blade));
+          continue;
+        }
+        const auto central = [&](double h) {
+          std::map<std::string, double> lo = in, hi = in;
+          lo[d->input] -= h, hi[d->input] += h;
+          const diff::Outputs vl = diff::interpret(script, lo), vh = diff::interpret(script, hi);
+          std::vector<double> r;
+          for (const auto& slot : o.slots)
+            r.push_back((coefficient(vh, d->output, slot.blade) - coefficient(vl, d->output, slot.blade)) / (2 * h));
+          return r;
+        };
+        const std::vector<double> d1 = central(1e-3), d2 = central(5e-4);
+        for (size_t k = 0; k < d1.size(); ++k) got.push_back((4 * d2[k] - d1[k]) / 3);
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: the oracle interpreter refuses the script: %s\n", c.name.c_str(), e.what());
