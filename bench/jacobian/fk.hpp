@@ -76,9 +76,9 @@ Line<T> carry(const Frame<T>& f, const Line<T>& l) {
   return m;
 }
 
-// The sense of a joint's rotation about its line's direction (the dual line *(P ^ Q ^ einf) with Q - P = u
-// and the rotor c + s*L^ turn by -2*atan2(s, c) about u).
-constexpr double kSense = -1.0;
+// The sense of a joint's rotation about its line's direction: the rotor c + s*L^ of the dual line
+// L^ = *(P ^ Q ^ einf), Q - P = u, turns by +2*atan2(s, c) about u.
+constexpr double kSense = 1.0;
 
 // The joint's versor: the Taylor rotor of exp(ang/2 * L), as a rotation about the line and a weight.
 template <typename T>
