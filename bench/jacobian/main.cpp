@@ -9,8 +9,9 @@
 // the largest magnitude in its row (the coefficient's value and its n derivatives): Jet to 1e-9, the value
 // kernel's point to 1e-10, forward differences to 5e-4 and central to 1e-6 (the value kernels round to about
 // 1e-12 of a row's scale on the 20-joint chain, and a forward step of sqrt(eps) turns that into 1e-4); a failed
-// check exits with status 1 before anything is timed. Then each way runs over the same 1024 seeded random angle sets in rounds of at
-// least 0.2 s, the rounds of the ways alternating; the figure is the median round's ns per value+Jacobian.
+// check exits with status 1 before anything is timed. Then each way runs over the same 1024 seeded random
+// angle sets in rounds of at least 0.2 s, the rounds of the ways alternating; the figure is the median
+// round's ns per value + Jacobian.
 //
 // usage: cga-jacobian-bench [--quick] [--markdown FILE]
 //   --quick: one short round each (the smoke test); --markdown: also write the table to FILE.
@@ -20,7 +21,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <random>
 #include <sstream>
