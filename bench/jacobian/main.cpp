@@ -268,9 +268,11 @@ int main(int argc, char** argv) {
   std::vector<Chain> chains = {
       {"arm5 (Jg_f)", 5, Arm::value, ways(Arm::cgagen, jet<5, arm5_fk>, Arm::forward, Arm::central),
        stats_total(CGA_JB_STATS_DIR "/arm5_jac.stats"), stats_total(CGA_JB_STATS_DIR "/arm5_value.stats")},
-      {"chain10 (E)", 10, C10::value, ways(C10::cgagen, jet<10, chain_fk<ceres::Jet<double, 10>, 10>>, C10::forward, C10::central),
+      {"chain10 (E)", 10, C10::value,
+       ways(C10::cgagen, jet<10, chain_fk<ceres::Jet<double, 10>, 10>>, C10::forward, C10::central),
        stats_total(CGA_JB_STATS_DIR "/chain10_jac.stats"), stats_total(CGA_JB_STATS_DIR "/chain10_value.stats")},
-      {"chain20 (E)", 20, C20::value, ways(C20::cgagen, jet<20, chain_fk<ceres::Jet<double, 20>, 20>>, C20::forward, C20::central),
+      {"chain20 (E)", 20, C20::value,
+       ways(C20::cgagen, jet<20, chain_fk<ceres::Jet<double, 20>, 20>>, C20::forward, C20::central),
        stats_total(CGA_JB_STATS_DIR "/chain20_jac.stats"), stats_total(CGA_JB_STATS_DIR "/chain20_value.stats")},
   };
 
@@ -302,7 +304,8 @@ int main(int argc, char** argv) {
     }
     auto report = [&](const std::string& what, double diff, double limit) {
       const bool ok = diff <= limit;
-      std::fprintf(stderr, "check %-12s %-28s max relative difference to cgagen's derivative kernel %.2e (limit %.0e)%s\n",
+      std::fprintf(stderr,
+                   "check %-12s %-28s max relative difference to cgagen's derivative kernel %.2e (limit %.0e)%s\n",
                    c.name.c_str(), what.c_str(), diff, limit, ok ? "" : "  FAILED");
       if (!ok) ++failures;
     };
