@@ -440,8 +440,9 @@ int run(const demo::Options& opt) {
     for (const std::string& w : demo::write_cpu_pictures(pictures, opt.out_dir)) fmt::print(" {}", w);
     fmt::print("\n");
   }
-  // ---- IK: the right hand reaches a target (ik_demo.cpp)
+  // ---- IK: the right hand reaches a target, then the spine and the arm reach the left knee (ik_demo.cpp)
   demo::ik_hand_reach(ch, opt.pictures ? opt.out_dir : std::string());
+  demo::ik_chain_reach(ch, opt.pictures ? opt.out_dir : std::string());
   // ---- the web page (--web DIR): the runtime's palettes for every motor mode on a grid of clip times and
   // fade weights, skinned in the browser (web.cpp, docs/web.md)
   if (!opt.web_dir.empty() && ch.meshes.empty()) {

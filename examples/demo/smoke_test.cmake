@@ -33,7 +33,14 @@ endif()
 if(NOT CMAKE_MATCH_1 MATCHES "^(0|[0-9.]+e-(0[5-9]|[1-9][0-9]))$")
   message(FATAL_ERROR "the IK hand is ${CMAKE_MATCH_1} of the arm length from its target\n${out}")
 endif()
-foreach(png ik-hand-reach character-lbs character-dqs character-cga-points character-cga-motors twist-strip
+# Chain IK: the hand within 1e-4 of the chain's length of its target.
+if(NOT out MATCHES "IK chain: [^\n]*: distance ([0-9.e+-]+) of the chain length")
+  message(FATAL_ERROR "cga-demo printed no chain IK line\n${out}")
+endif()
+if(NOT CMAKE_MATCH_1 MATCHES "^(0|[0-9.]+e-(0[5-9]|[1-9][0-9]))$")
+  message(FATAL_ERROR "the chain IK hand is ${CMAKE_MATCH_1} of the chain length from its target\n${out}")
+endif()
+foreach(png ik-hand-reach ik-chain-reach character-lbs character-dqs character-cga-points character-cga-motors twist-strip
             gpu-character-lbs gpu-character-dqs gpu-character-cga-points gpu-character-cga-motors gpu-twist-strip)
   if(NOT EXISTS "${OUT}/${png}.png")
     message(FATAL_ERROR "cga-demo wrote no ${OUT}/${png}.png\n${out}")
