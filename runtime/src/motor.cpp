@@ -1,35 +1,29 @@
-// Motor decomposition (TRS from a motor's 12 coefficients) and the screw interpolation. The products go
-// through the generated kernels (motor.hpp), the screw's logarithm and exponential through the generated
-// library of runtime/scripts/cga_rigid.gal (cga_rigid.hpp).
+// Motor decomposition (TRS from a motor's 12 coefficients) and the screw interpolation. The decomposition
+// goes through the generated kernels motor_to_trs and motor_rigid_part, the products through those of
+// motor.hpp, the screw's logarithm and exponential through the generated library of
+// runtime/scripts/cga_rigid.gal (cga_rigid.hpp). Square roots and divisions are the C++ here.
 #include "cga/runtime/motor.hpp"
 
 #include <cmath>
 
 #include <cga_rigid.hpp>
+#include <motor_rigid_part.hpp>
+#include <motor_to_trs.hpp>
 
 namespace cga {
 
 Transform motor_to_transform(const Motor& m) {
-  const auto& c = m.c;
-  // g = a + b = (1+k) R and h = a - b = (1-k) R (coefficients 1, e12, e13, e23).
-  const double g[4] = {double(c[0]) + c[7], double(c[1]) + c[9], double(c[2]) + c[10], double(c[4]) + c[11]};
-  const double h[4] = {double(c[0]) - c[7], double(c[1]) - c[9], double(c[2]) - c[10], double(c[4]) - c[11]};
-  const double gg = g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + g[3] * g[3];
-  const double hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2] + h[3] * h[3];
+  // The split form G, |G|^2, |H|^2 and the least-squares translation times |G|^2 (motor_to_trs.clu), in double.
+  double c[12];
+  for (int k = 0; k < 12; ++k) c[k] = m.c[k];
+  double g[4], gg, hh, v[3];
+  kernels::motor_to_trs(c, g, &gg, &hh, v);
   if (!(gg > 1e-30)) throw std::domain_error("motor_to_transform: the motor has no rotor part");
   const double ng = std::sqrt(gg);
   Transform x;
   x.scale = static_cast<float>(std::sqrt(hh) / ng);
   x.rotation = quat_from_rotor(float(g[0] / ng), float(g[1] / ng), float(g[2] / ng), float(g[3] / ng));
-  // The einf blades are -1/2 L(g) t with the 4x3 matrix L(g) of t*g (vector times even element), whose
-  // columns are orthogonal with norm |g|: t = -2 L(g)^T e / |g|^2 (least squares for a blend).
-  const double e[4] = {c[3], c[5], c[6], c[8]};  // e1inf, e2inf, e3inf, e123inf
-  const double L[4][3] = {{g[0], -g[1], -g[2]}, {g[1], g[0], -g[3]}, {g[2], g[3], g[0]}, {g[3], -g[2], g[1]}};
-  for (int j = 0; j < 3; ++j) {
-    double s = 0.0;
-    for (int i = 0; i < 4; ++i) s += L[i][j] * e[i];
-    x.translation[j] = static_cast<float>(-2.0 * s / gg);
-  }
+  for (int j = 0; j < 3; ++j) x.translation[j] = static_cast<float>(v[j] / gg);
   return x;
 }
 
@@ -52,16 +46,23 @@ Motor screw_fraction(const Motor& m, double alpha) {
   return out;
 }
 
-// The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast: with
-// a' = R and b' = k R, 1 + k = 1 + a'.b', and the einf blades are (1 + k) times the rigid ones.
+// The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast: G + U einf
+// and the norms of G and H (motor_rigid_part.clu) give T*R = (G + U einf)/|G| and s = |H|/|G|.
 Motor rigid_part(const Motor& m, double& scale) {
-  Motor n = motor_normalize_fast(m);
-  const float k = n.c[0] * n.c[7] + n.c[1] * n.c[9] + n.c[2] * n.c[10] + n.c[4] * n.c[11];
-  scale = (1.0 - double(k)) / (1.0 + double(k));
-  const float inv = 1.0f / (1.0f + k);
-  for (int c : {3, 5, 6, 8}) n.c[c] *= inv;
-  for (int c : {7, 9, 10, 11}) n.c[c] = 0.0f;
-  return n;
+  const Motor n = motor_normalize_fast(m);
+  double c[12];
+  for (int k = 0; k < 12; ++k) c[k] = n.c[k];
+  double p[8], gg, hh;
+  kernels::motor_rigid_part(c, p, &gg, &hh);
+  const double ng = std::sqrt(gg);
+  scale = std::sqrt(hh) / ng;
+  const double inv = 1.0 / ng;
+  // P's blades (motor_mul_rigid.clu's order) in a Motor's coefficients; the b group stays 0.
+  constexpr int kBlades[8] = {0, 1, 2, 3, 4, 5, 6, 8};
+  Motor out;
+  out.c.fill(0.0f);
+  for (int k = 0; k < 8; ++k) out.c[kBlades[k]] = static_cast<float>(p[k] * inv);
+  return out;
 }
 
 }  // namespace
