@@ -2,23 +2,22 @@
 // GLSL 3.30 compatible; the includer supplies the #version line.
 // input N: 1 e1^e2 e1^e3 e1^einf e2^e3 e2^einf e3^einf einf^e0 e1^e2^e3^einf e1^e2^einf^e0 e1^e3^einf^e0 e2^e3^einf^e0
 // P: 1, e1^e2, e1^e3, e1^einf, e2^e3, e2^einf, e3^einf, e1^e2^e3^einf
-// gg: 1
-// hh: 1
+// k: 1
 
-void motor_rigid_part(in float N[12], out float P[8], out float gg[1], out float hh[1]) {
-  float t0 = N[7] + N[0];
-  float t1 = N[1] + N[9];
-  float t2 = N[2] + N[10];
-  float t3 = N[4] + N[11];
-  P[0] = t0;  // 1
-  P[1] = t1;  // e1^e2
-  P[2] = t2;  // e1^e3
-  P[3] = N[3];  // e1^einf
-  P[4] = t3;  // e2^e3
-  P[5] = N[5];  // e2^einf
-  P[6] = N[6];  // e3^einf
-  P[7] = N[8];  // e1^e2^e3^einf
-  gg[0] = t0 * t0 + t1 * t1 + t2 * t2 + t3 * t3;  // 1
-  hh[0] = (N[1] - N[9]) * (N[1] - N[9]) + (N[2] - N[10]) * (N[2] - N[10]) + (N[4] - N[11]) * (N[4] - N[11]) + (N[7] - N[0]) * (N[7] - N[0]);  // 1
+void motor_rigid_part(in float N[12], out float P[8], out float k[1]) {
+  float t0 = N[1] * N[9];
+  float t1 = N[2] * N[10];
+  float t2 = N[4] * N[11];
+  float t3 = N[7] * N[0];
+  float t4 = 1.0 / (1.0 + t0 + t1 + t2 + t3);
+  P[0] = N[0];  // 1
+  P[1] = N[1];  // e1^e2
+  P[2] = N[2];  // e1^e3
+  P[3] = N[3] * t4;  // e1^einf
+  P[4] = N[4];  // e2^e3
+  P[5] = N[5] * t4;  // e2^einf
+  P[6] = N[6] * t4;  // e3^einf
+  P[7] = N[8] * t4;  // e1^e2^e3^einf
+  k[0] = t0 + t1 + t2 + t3;  // 1
 }
 

@@ -10,10 +10,9 @@
 namespace cga::kernels {
 
 inline constexpr std::array<std::string_view, 8> motor_rigid_part_P_blades = {"1", "e1^e2", "e1^e3", "e1^einf", "e2^e3", "e2^einf", "e3^einf", "e1^e2^e3^einf"};
-inline constexpr std::array<std::string_view, 1> motor_rigid_part_gg_blades = {"1"};
-inline constexpr std::array<std::string_view, 1> motor_rigid_part_hh_blades = {"1"};
+inline constexpr std::array<std::string_view, 1> motor_rigid_part_k_blades = {"1"};
 
-inline void motor_rigid_part(const float N[12], float P[8], float gg[1], float hh[1]) {
+inline void motor_rigid_part(const float N[12], float P[8], float k[1]) {
   const float N_s = N[0];
   const float N_e12 = N[1];
   const float N_e13 = N[2];
@@ -26,23 +25,23 @@ inline void motor_rigid_part(const float N[12], float P[8], float gg[1], float h
   const float N_e12inf0 = N[9];
   const float N_e13inf0 = N[10];
   const float N_e23inf0 = N[11];
-  const float t0 = N_einf0 + N_s;
-  const float t1 = N_e12 + N_e12inf0;
-  const float t2 = N_e13 + N_e13inf0;
-  const float t3 = N_e23 + N_e23inf0;
-  P[0] = t0;  // 1
-  P[1] = t1;  // e1^e2
-  P[2] = t2;  // e1^e3
-  P[3] = N_e1inf;  // e1^einf
-  P[4] = t3;  // e2^e3
-  P[5] = N_e2inf;  // e2^einf
-  P[6] = N_e3inf;  // e3^einf
-  P[7] = N_e123inf;  // e1^e2^e3^einf
-  gg[0] = t0 * t0 + t1 * t1 + t2 * t2 + t3 * t3;  // 1
-  hh[0] = (N_e12 - N_e12inf0) * (N_e12 - N_e12inf0) + (N_e13 - N_e13inf0) * (N_e13 - N_e13inf0) + (N_e23 - N_e23inf0) * (N_e23 - N_e23inf0) + (N_einf0 - N_s) * (N_einf0 - N_s);  // 1
+  const float t0 = N_e12 * N_e12inf0;
+  const float t1 = N_e13 * N_e13inf0;
+  const float t2 = N_e23 * N_e23inf0;
+  const float t3 = N_einf0 * N_s;
+  const float t4 = 1.0f / (1.0f + t0 + t1 + t2 + t3);
+  P[0] = N_s;  // 1
+  P[1] = N_e12;  // e1^e2
+  P[2] = N_e13;  // e1^e3
+  P[3] = N_e1inf * t4;  // e1^einf
+  P[4] = N_e23;  // e2^e3
+  P[5] = N_e2inf * t4;  // e2^einf
+  P[6] = N_e3inf * t4;  // e3^einf
+  P[7] = N_e123inf * t4;  // e1^e2^e3^einf
+  k[0] = t0 + t1 + t2 + t3;  // 1
 }
 
-inline void motor_rigid_part(const double N[12], double P[8], double gg[1], double hh[1]) {
+inline void motor_rigid_part(const double N[12], double P[8], double k[1]) {
   const double N_s = N[0];
   const double N_e12 = N[1];
   const double N_e13 = N[2];
@@ -55,20 +54,20 @@ inline void motor_rigid_part(const double N[12], double P[8], double gg[1], doub
   const double N_e12inf0 = N[9];
   const double N_e13inf0 = N[10];
   const double N_e23inf0 = N[11];
-  const double t0 = N_einf0 + N_s;
-  const double t1 = N_e12 + N_e12inf0;
-  const double t2 = N_e13 + N_e13inf0;
-  const double t3 = N_e23 + N_e23inf0;
-  P[0] = t0;  // 1
-  P[1] = t1;  // e1^e2
-  P[2] = t2;  // e1^e3
-  P[3] = N_e1inf;  // e1^einf
-  P[4] = t3;  // e2^e3
-  P[5] = N_e2inf;  // e2^einf
-  P[6] = N_e3inf;  // e3^einf
-  P[7] = N_e123inf;  // e1^e2^e3^einf
-  gg[0] = t0 * t0 + t1 * t1 + t2 * t2 + t3 * t3;  // 1
-  hh[0] = (N_e12 - N_e12inf0) * (N_e12 - N_e12inf0) + (N_e13 - N_e13inf0) * (N_e13 - N_e13inf0) + (N_e23 - N_e23inf0) * (N_e23 - N_e23inf0) + (N_einf0 - N_s) * (N_einf0 - N_s);  // 1
+  const double t0 = N_e12 * N_e12inf0;
+  const double t1 = N_e13 * N_e13inf0;
+  const double t2 = N_e23 * N_e23inf0;
+  const double t3 = N_einf0 * N_s;
+  const double t4 = 1.0 / (1.0 + t0 + t1 + t2 + t3);
+  P[0] = N_s;  // 1
+  P[1] = N_e12;  // e1^e2
+  P[2] = N_e13;  // e1^e3
+  P[3] = N_e1inf * t4;  // e1^einf
+  P[4] = N_e23;  // e2^e3
+  P[5] = N_e2inf * t4;  // e2^einf
+  P[6] = N_e3inf * t4;  // e3^einf
+  P[7] = N_e123inf * t4;  // e1^e2^e3^einf
+  k[0] = t0 + t1 + t2 + t3;  // 1
 }
 
 }  // namespace cga::kernels

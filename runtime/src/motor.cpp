@@ -46,22 +46,17 @@ Motor screw_fraction(const Motor& m, double alpha) {
   return out;
 }
 
-// The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast: G + U einf
-// and the norms of G and H (motor_rigid_part.clu) give T*R = (G + U einf)/|G| and s = |H|/|G|.
+// The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast (a unit
+// rotor part): T*R and k from motor_rigid_part.clu, s = (1 - k)/(1 + k). A rigid motor has k = 0, hence
+// a scale of exactly 1.
 Motor rigid_part(const Motor& m, double& scale) {
   const Motor n = motor_normalize_fast(m);
-  double c[12];
-  for (int k = 0; k < 12; ++k) c[k] = n.c[k];
-  double p[8], gg, hh;
-  kernels::motor_rigid_part(c, p, &gg, &hh);
-  const double ng = std::sqrt(gg);
-  scale = std::sqrt(hh) / ng;
-  const double inv = 1.0 / ng;
-  // P's blades (motor_mul_rigid.clu's order) in a Motor's coefficients; the b group stays 0.
-  constexpr int kBlades[8] = {0, 1, 2, 3, 4, 5, 6, 8};
+  float p[8], k;
+  kernels::motor_rigid_part(n.c.data(), p, &k);
+  scale = (1.0 - double(k)) / (1.0 + double(k));
+  // P's blades (motor_mul_rigid.clu's order) in a Motor's coefficients; the b group is 0.
   Motor out;
-  out.c.fill(0.0f);
-  for (int k = 0; k < 8; ++k) out.c[kBlades[k]] = static_cast<float>(p[k] * inv);
+  out.c = {p[0], p[1], p[2], p[3], p[4], p[5], p[6], 0.0f, p[7], 0.0f, 0.0f, 0.0f};
   return out;
 }
 
