@@ -186,3 +186,15 @@ TEST_CASE("motor_screw equals the screw on the former hand-derived rigid part", 
     check_same_transform(got, ref, 16.0f);
   }
 }
+
+TEST_CASE("motor_screw of rigid motors stays rigid (scale exactly 1)", "[motor]") {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<float> alpha(0.0f, 1.0f);
+  for (int n = 0; n < 1000; ++n) {
+    Transform x = random_transform(rng), y = random_transform(rng);
+    x.scale = y.scale = 1.0f;
+    const Motor m = motor_screw(motor_from_transform(x), motor_from_transform(y), alpha(rng));
+    INFO("pair " << n);
+    CHECK(motor_is_rigid(m));
+  }
+}
