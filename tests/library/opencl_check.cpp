@@ -32,8 +32,9 @@ std::string wrapper(const std::string& lib, const library_check::Case& c, const 
   const std::string fn = lib + "_" + c.name + "_" + c.a + (c.arity == 2 ? "_" + c.b : "") + suffix;
   const size_t n = c.na + c.nb;
   std::ostringstream s;
-  s << "__kernel void run_" << name << suffix << "(__global const " << real << "* in, __global " << real
-    << "* out) {\n  const size_t i = get_global_id(0);\n  " << lib << "_" << c.a << suffix << " a;\n";
+  s << "__kernel void run_" << name << (suffix.empty() ? "_f32" : suffix) << "(__global const " << real
+    << "* in, __global " << real << "* out) {\n  const size_t i = get_global_id(0);\n";
+  s << "  " << lib << "_" << c.a << suffix << " a;\n";
   s << "  for (int k = 0; k < " << c.na << "; ++k) a.v[k] = in[i * " << n << " + k];\n";
   if (c.arity == 2) {
     s << "  " << lib << "_" << c.b << suffix << " b;\n";
