@@ -1,5 +1,6 @@
-// glsl_check LIBRARY GLSL GL_RUNNER WORK_DIR [COUNT]: a generated library's GLSL (cgagen --library --target
-// glsl) run on the headless GL context (gl_compute_runner: Mesa llvmpipe in CI) against the same library's
+// glsl_check LIBRARY GLSL GL_RUNNER WORK_DIR [COUNT [es]]: a generated library's GLSL (cgagen --library
+// --target glsl; with `es`, the GLSL ES of --target glsl-es, in GLSL ES 3.10 compute shaders) run on the
+// headless GL context (gl_compute_runner: Mesa llvmpipe in CI) against the same library's
 // C++ (which tests/library checks against the oracle). COUNT functions (default 150; 0: every function) are
 // drawn with a fixed seed; each becomes one row of a compute shader that builds its operands from the input
 // row, calls LIBRARY_OP(a, b) and writes the result's coefficients. The sample, the operands and the
@@ -33,7 +34,7 @@ std::string read(const std::string& path) {
 
 template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
 int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& glsl,
-          const std::string& runner, const std::string& work, size_t count) {
+          const std::string& runner, const std::string& work, size_t count, const std::string& version) {
   const std::vector<library_check::Case> picked = library_check::sample("glsl_check", types, fns, count, 1);
   if (picked.empty()) return 1;
   size_t nin = 1, nout = 1;
@@ -63,14 +64,15 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
     const size_t rows = std::min(kChunk, picked.size() - first);
     std::string body;
     for (size_t i = 0; i < rows; ++i) body += "    case " + std::to_string(i) + "u: {\n" + cases[first + i] + "    } break;\n";
-    const std::string shader = "#version 450\n" + library +
+    const std::string shader = version + "\n" + library +
                                "layout(local_size_x = 1) in;\n"
                                "layout(std430, binding = 0) readonly buffer In { float xin[]; };\n"
                                "layout(std430, binding = 1) writeonly buffer Out { float xout[]; };\n"
                                "#define X(k) xin[row * " + std::to_string(nin) + "u + uint(k)]\n"
                                "#define Y(k) xout[row * " + std::to_string(nout) + "u + uint(k)]\n"
                                "void main() {\n  uint row = gl_WorkGroupID.x;\n  switch (row) {\n" + body + "  }\n}\n";
-    const std::string base = work + "/" + lib + "_" + std::to_string(first / kChunk);
+    const std::string base =
+        work + "/" + lib + (version == "#version 450" ? "_" : "_es_") + std::to_string(first / kChunk);
     std::ofstream(base + ".comp") << shader;
     {
       std::ofstream fin(base + ".in");
@@ -101,8 +103,8 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
     forms.push_back({"GLSL"});
   }
   const int bad = library_check::compare("glsl_check", lib, picked, per_case, forms, 1);
-  std::printf("glsl_check: %s: %zu of %zu functions run in GLSL, %d coefficients off\n", lib.c_str(), picked.size(), NF,
-              bad);
+  std::printf("glsl_check: %s: %zu of %zu functions run in %s, %d coefficients off\n", lib.c_str(), picked.size(), NF,
+              version == "#version 450" ? "GLSL" : "GLSL ES", bad);
   return bad ? 1 : 0;
 }
 
@@ -110,15 +112,17 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
 
 int main(int argc, char** argv) {
   if (argc < 5) {
-    std::fprintf(stderr, "usage: glsl_check LIBRARY GLSL GL_RUNNER WORK_DIR [COUNT]\n");
+    std::fprintf(stderr, "usage: glsl_check LIBRARY GLSL GL_RUNNER WORK_DIR [COUNT [es]]\n");
     return 2;
   }
   const std::string lib = argv[1];
   const size_t count = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 150;
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "cga_rigid") return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], count);
+  const std::string version = argc > 6 && std::string(argv[6]) == "es" ? "#version 310 es" : "#version 450";
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], count, version);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], count, version);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], count, version);
+  if (lib == "cga_rigid")
+    return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], count, version);
   std::fprintf(stderr, "glsl_check: unknown library %s\n", lib.c_str());
   return 2;
 }
