@@ -107,7 +107,7 @@ TEST_CASE("library sandwich: a b ~a for a normalized versor, -a b ~a where its n
   CHECK(point.find("normalized") == std::string::npos);
 }
 
-TEST_CASE("cli: --library --target opencl, javascript and glsl-es write the same bytes every run") {
+TEST_CASE("cli: --library writes OpenCL C and JavaScript and GLSL ES the same every run") {
   const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
   const std::vector<std::pair<std::string, std::string>> targets = {
       {"opencl", "e3_rotor e3_gp_vector_vector(e3_vector a, e3_vector b) {"},
