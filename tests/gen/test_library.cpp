@@ -107,13 +107,14 @@ TEST_CASE("library sandwich: a b ~a for a normalized versor, -a b ~a where its n
   CHECK(point.find("normalized") == std::string::npos);
 }
 
-TEST_CASE("cli: --library writes OpenCL C and JavaScript and GLSL ES the same every run") {
+TEST_CASE("cli: --library writes OpenCL C and JavaScript and GLSL ES and HLSL the same every run") {
   const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
   const std::vector<std::pair<std::string, std::string>> targets = {
       {"opencl", "e3_rotor e3_gp_vector_vector(e3_vector a, e3_vector b) {"},
       {"opencl", "e3_rotor_f64 e3_gp_vector_vector_f64(e3_vector_f64 a, e3_vector_f64 b) {"},
       {"javascript", "define(\"gp\", gp_vector_vector, Rotor, Vector, Vector);"},
-      {"glsl-es", "e3_rotor e3_gp(e3_vector a, e3_vector b) {"}};
+      {"glsl-es", "e3_rotor e3_gp(e3_vector a, e3_vector b) {"},
+      {"hlsl", "e3_rotor e3_gp(e3_vector a, e3_vector b) {"}};
   for (const auto& [target, signature] : targets) {
     INFO(target);
     const auto a = cga_test::run("--library --target " + target + " " + spec);
