@@ -114,7 +114,7 @@ TEST_CASE("cli: --library writes OpenCL C and JavaScript and GLSL ES and HLSL th
       {"opencl", "e3_rotor_f64 e3_gp_vector_vector_f64(e3_vector_f64 a, e3_vector_f64 b) {"},
       {"javascript", "define(\"gp\", gp_vector_vector, Rotor, Vector, Vector);"},
       {"glsl-es", "e3_rotor e3_gp(e3_vector a, e3_vector b) {"},
-      {"hlsl", "e3_rotor e3_gp(e3_vector a, e3_vector b) {"}};
+      {"hlsl", "e3_rotor e3_gp(e3_vector_ a, e3_vector_ b) {"}};  // HLSL reserves vector
   for (const auto& [target, signature] : targets) {
     INFO(target);
     const auto a = cga_test::run("--library --target " + target + " " + spec);
