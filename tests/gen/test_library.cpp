@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_run.hpp"
 #include "library/build.hpp"
@@ -103,6 +105,24 @@ TEST_CASE("library sandwich: a b ~a for a normalized versor, -a b ~a where its n
   CHECK(plane.find("#pragma normalized a\nm = a * b * ~a;\n?r = grade(m, 2);") != std::string::npos);
   CHECK(point.find("m = -(a * b * ~a);\n?r = grade(m, 1);") != std::string::npos);
   CHECK(point.find("normalized") == std::string::npos);
+}
+
+TEST_CASE("cli: --library writes OpenCL C and JavaScript and GLSL ES and HLSL the same every run") {
+  const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
+  const std::vector<std::pair<std::string, std::string>> targets = {
+      {"opencl", "e3_rotor e3_gp_vector_vector(e3_vector a, e3_vector b) {"},
+      {"opencl", "e3_rotor_f64 e3_gp_vector_vector_f64(e3_vector_f64 a, e3_vector_f64 b) {"},
+      {"javascript", "define(\"gp\", gp_vector_vector, Rotor, Vector, Vector);"},
+      {"glsl-es", "e3_rotor e3_gp(e3_vector a, e3_vector b) {"},
+      {"hlsl", "e3_rotor e3_gp(e3_vector_ a, e3_vector_ b) {"}};  // HLSL reserves vector
+  for (const auto& [target, signature] : targets) {
+    INFO(target);
+    const auto a = cga_test::run("--library --target " + target + " " + spec);
+    const auto b = cga_test::run("--library --target " + target + " " + spec);
+    REQUIRE(a.code == 0);
+    CHECK(a.out == b.out);
+    CHECK(a.out.find(signature) != std::string::npos);
+  }
 }
 
 TEST_CASE("cli: --library writes the library, the same bytes every run, and refuses script options") {
