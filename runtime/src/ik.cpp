@@ -11,6 +11,7 @@
 #include <ik_two_bone.hpp>
 
 #include "cga/runtime/motor.hpp"
+#include "detail/ik_weight.hpp"
 
 namespace cga {
 
@@ -81,20 +82,8 @@ glm::quat turn_about(const glm::vec3& x, const glm::vec3& y, const glm::vec3& ax
   return glm::angleAxis(std::atan2(glm::dot(glm::cross(x, y), axis), glm::dot(x, y)), axis);
 }
 
-// nlerp from the identity toward q by w (q's sign chosen for the short way).
-glm::quat weighted(glm::quat q, float w) {
-  if (w >= 1.0f) return q;
-  if (q.w < 0.0f) q = -q;
-  const glm::quat r = glm::quat(1.0f, 0.0f, 0.0f, 0.0f) * (1.0f - w) + q * w;
-  return glm::normalize(r);
-}
-
-Motor rotation_motor(const glm::quat& q) {
-  const auto r = rotor_from_quat(q);
-  Motor m;
-  m.c[0] = r[0], m.c[1] = r[1], m.c[2] = r[2], m.c[4] = r[3];
-  return m;
-}
+using ik_detail::rotation_motor;
+using ik_detail::weighted;
 
 }  // namespace
 

@@ -46,28 +46,27 @@ Motor screw_fraction(const Motor& m, double alpha) {
   return out;
 }
 
-// The unit rigid part T*R and the scale of a motor, after the projection of motor_normalize_fast (a unit
-// rotor part): T*R and k from motor_rigid_part.clu, s = (1 - k)/(1 + k). A rigid motor has a scale of
+}  // namespace
+
+// motor_rigid: T*R and k from motor_rigid_part.clu, s = (1 - k)/(1 + k). A rigid motor has a scale of
 // exactly 1: the test does not rely on motor_normalize_fast's b group staying 0, which the reassociation
 // this file is built with (CMakeLists.txt) may break by an ulp; s != 1 would take motor_screw off the rigid
 // products.
-Motor rigid_part(const Motor& m, double& scale) {
+Motor motor_rigid(const Motor& m, double* scale) {
   const Motor n = motor_normalize_fast(m);
   float p[8], k;
   kernels::motor_rigid_part(n.c.data(), p, &k);
-  scale = motor_is_rigid(m) ? 1.0 : (1.0 - double(k)) / (1.0 + double(k));
+  if (scale) *scale = motor_is_rigid(m) ? 1.0 : (1.0 - double(k)) / (1.0 + double(k));
   // P's blades (motor_mul_rigid.clu's order) in a Motor's coefficients; the b group is 0.
   Motor out;
   out.c = {p[0], p[1], p[2], p[3], p[4], p[5], p[6], 0.0f, p[7], 0.0f, 0.0f, 0.0f};
   return out;
 }
 
-}  // namespace
-
 Motor motor_screw(const Motor& m1, const Motor& m2, float alpha) {
   double s1, s2;
-  const Motor r1 = rigid_part(m1, s1);
-  const Motor r2 = rigid_part(m2, s2);
+  const Motor r1 = motor_rigid(m1, &s1);
+  const Motor r2 = motor_rigid(m2, &s2);
   // The relative rigid motion ~R1 * R2 (R1 is unit, so ~R1 is its inverse), a fraction of it along its screw,
   // then the dilator: a motor T*R*D has D rightmost.
   Motor rel;

@@ -15,6 +15,7 @@
 
 #include "cga/runtime/ik_chain.hpp"
 #include "cga/runtime/motor.hpp"
+#include "ik_weight.hpp"
 
 namespace cga::ik_chain_detail {
 
@@ -30,12 +31,7 @@ inline bool finite(const Motor& m) {
 
 // The rigid part T*R of a model-space motor (a scaled joint's scale dropped: the rotations the job turns
 // about the joint's origin commute with a uniform scale).
-inline RigidMotor rigid_part(const Motor& m) {
-  if (motor_is_rigid(m)) return rigid_blades(m);
-  Transform t = motor_to_transform(m);
-  t.scale = 1.0f;
-  return rigid_blades(motor_from_transform(t));
-}
+inline RigidMotor rigid_part(const Motor& m) { return rigid_blades(motor_is_rigid(m) ? m : motor_rigid(m)); }
 
 inline RigidMotor rigid_mul(const RigidMotor& a, const RigidMotor& b) {
   RigidMotor c;
@@ -61,22 +57,9 @@ inline RigidMotor turn(const glm::vec3& axis, float angle) {
   return {r[0], r[1], r[2], 0.0f, r[3], 0.0f, 0.0f, 0.0f};
 }
 
-// nlerp of a rotation motor's rotor from the identity by w (the short way), as TwoBoneIKJob weighs.
+// The weighted correction of a rotation motor's rotor (normalized first), as the other IK jobs weigh theirs.
 inline Motor weighted(const RigidMotor& c, float w) {
-  float q[4] = {c[0], c[1], c[2], c[4]};
-  const float n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (float& x : q) x /= n;
-  if (w < 1.0f) {
-    if (q[0] < 0.0f)
-      for (float& x : q) x = -x;
-    q[0] = 1.0f - w + w * q[0];
-    for (int i = 1; i < 4; ++i) q[i] *= w;
-    const float m = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    for (float& x : q) x /= m;
-  }
-  Motor out;
-  out.c[0] = q[0], out.c[1] = q[1], out.c[2] = q[2], out.c[4] = q[3];
-  return out;
+  return ik_detail::rotation_motor(ik_detail::weighted(glm::normalize(quat_from_rotor(c[0], c[1], c[2], c[4])), w));
 }
 
 // Solves (A + mu I) y = r for the symmetric positive semi-definite m x m A by Cholesky (mu > 0).

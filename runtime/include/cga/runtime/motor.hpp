@@ -277,6 +277,10 @@ inline void motor_mul_rigid(const Motor& a, const Motor& b, Motor& out) {
   out.c = {z[0], z[1], z[2], z[3], z[4], z[5], z[6], 0.0f, z[7], 0.0f, 0.0f, 0.0f};
 }
 
+// The unit rigid part T*R of a motor T*R*D after motor_normalize_fast's projection (generated
+// motor_rigid_part), and its scale s when `scale` is given (exactly 1 for a rigid motor).
+Motor motor_rigid(const Motor& m, double* scale = nullptr);
+
 // Screw-linear interpolation between two similarities: the rigid parts by the motor logarithm/exponential
 // (constant-speed helix about the screw axis of the relative motion ~M1*M2, shortest way), the scale
 // geometrically (s1^(1-alpha) s2^alpha). alpha = 0 and 1 give the inputs exactly.
