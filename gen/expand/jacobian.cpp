@@ -85,7 +85,7 @@ void Expander::reverse_jacobian(const std::vector<size_t>& outputs, const std::v
     for (size_t ob = 0; ob < ov.blades.size(); ++ob) {
       ExMap adjoint{{ov.symbols[ob], GiNaC::ex(1)}};
       for (size_t i = last + 1; i-- > 0;) {
-        const KernelValue v = kernel_.values[i];
+        const KernelValue& v = kernel_.values[i];  // read before `bound` is appended below
         KernelValue bound;  // the adjoints of v's coefficients, as one value
         bound.name = "adj_" + out.name + "_" + algebra::blade_ident(ov.blades[ob]) + "_" + v.name;
         bound.loc = v.loc;

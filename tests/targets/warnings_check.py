@@ -65,23 +65,17 @@ def need(tools, *names):
     return None
 
 
-def one_unit(work, files, head, tail, ext):
+def one_unit(work, files, head, tail, ext, include=True):
+    """All files of a level in one source: #include lines (C++), else their text (shaders, OpenCL C)."""
     src = os.path.join(work, "all" + ext)
     with open(src, "w") as f:
         f.write(head)
         for _, path in files:
-            f.write('#include "%s"\n' % path)
-        f.write(tail)
-    return src
-
-
-def concat(work, files, head, tail, ext):
-    src = os.path.join(work, "all" + ext)
-    with open(src, "w") as f:
-        f.write(head)
-        for _, path in files:
-            with open(path) as g:
-                f.write(g.read() + "\n")
+            if include:
+                f.write('#include "%s"\n' % path)
+            else:
+                with open(path) as g:
+                    f.write(g.read() + "\n")
         f.write(tail)
     return src
 
@@ -112,22 +106,22 @@ def glslang(tools, src, args):
 
 
 def check_glsl(tools, work, files):
-    return glslang(tools, concat(work, files, "#version 330\n", "void main() {}\n", ".vert"), [])
+    return glslang(tools, one_unit(work, files, "#version 330\n", "void main() {}\n", ".vert", include=False), [])
 
 
 def check_glsl_es(tools, work, files):
-    src = concat(work, files, "#version 300 es\nprecision highp float;\nprecision highp int;\n", "void main() {}\n",
-                 ".vert")
+    src = one_unit(work, files, "#version 300 es\nprecision highp float;\nprecision highp int;\n", "void main() {}\n",
+                   ".vert", include=False)
     return glslang(tools, src, [])
 
 
 def check_hlsl(tools, work, files):
-    src = concat(work, files, "", "[numthreads(1, 1, 1)] void main() {}\n", ".hlsl")
+    src = one_unit(work, files, "", "[numthreads(1, 1, 1)] void main() {}\n", ".hlsl", include=False)
     return glslang(tools, src, ["-D", "-S", "comp", "-e", "main", "-V", "-o", os.path.join(work, "all.spv")])
 
 
 def check_opencl(tools, work, files):
-    src = concat(work, files, "", "", ".cl")
+    src = one_unit(work, files, "", "", ".cl", include=False)
     return run([tools["clang"], "-x", "cl", "-cl-std=CL1.2", "-Xclang", "-finclude-default-header", "-fsyntax-only",
                 "-Wall", "-Wextra", "-Wpedantic", "-Werror", src])
 
