@@ -12,6 +12,7 @@
 #                   [PACK NAME=KIND ...]        # glsl only: --pack NAME=KIND (mat3x4, vec4, vec3, float)
 #                   [RETURN OUT]                # glsl only: --return OUT
 #                   [UNIFORM NAME ...]          # --uniform: stage the kernels (NAME_prepare + NAME)
+#                   [STAGE_AT VALUE ...]        # --stage-at: stage them at these named values of the scripts
 #                   [OUTPUTS NAME ...]          # --outputs: only these outputs of the scripts
 #                   [NAME name]                 # --name: the kernel's (and the files') name instead of the
 #                                               # script's stem; one script only (e.g. a staged second copy)
@@ -38,7 +39,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/CgagenTargets.cmake)
 set(CGAGEN_DEFAULT_TEMPLATES "${CMAKE_CURRENT_LIST_DIR}/../templates" CACHE PATH "Templates of cgagen_generate()")
 
 function(cgagen_generate target)
-  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM;OUTPUTS;LIBRARIES"
+  cmake_parse_arguments(CG "NO_WERROR" "OUTPUT_DIR;OPT;RETURN;TEMPLATES;ALGEBRA;NAME;GPC_TYPE" "SCRIPTS;TARGETS;PACK;UNIFORM;STAGE_AT;OUTPUTS;LIBRARIES"
                         ${ARGN})
   if(CG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "cgagen_generate(${target}): unknown arguments ${CG_UNPARSED_ARGUMENTS}")
@@ -82,7 +83,8 @@ function(cgagen_generate target)
   foreach(_p ${CG_PACK})
     list(APPEND _glsl_args --pack ${_p})
   endforeach()
-  if(CG_RETURN)
+  # Not if(CG_RETURN): an output named N, Y, NO or OFF reads as false there.
+  if(NOT "${CG_RETURN}" STREQUAL "")
     list(APPEND _glsl_args --return ${CG_RETURN})
   endif()
 
@@ -116,7 +118,7 @@ function(cgagen_generate target)
     endif()
     if(_gpc_out)
       list(GET CG_TARGETS 0 _t)
-      if(NOT _t MATCHES "^(cpp|cuda|opencl)$" OR CG_UNIFORM OR CG_OUTPUTS OR CG_NAME OR CG_PACK OR CG_RETURN)
+      if(NOT _t MATCHES "^(cpp|cuda|opencl)$" OR CG_UNIFORM OR CG_STAGE_AT OR CG_OUTPUTS OR CG_NAME OR CG_PACK OR CG_RETURN)
         message(FATAL_ERROR "cgagen_generate(${target}): the GPC source ${_file} takes TARGETS cpp, cuda or opencl, "
                             "OPT, ALGEBRA, GPC_TYPE and NO_WERROR only")
       endif()
@@ -154,6 +156,10 @@ function(cgagen_generate target)
       if(CG_UNIFORM)
         list(JOIN CG_UNIFORM "," _uniform)
         list(APPEND _args --uniform ${_uniform})
+      endif()
+      if(CG_STAGE_AT)
+        list(JOIN CG_STAGE_AT "," _stage_at)
+        list(APPEND _args --stage-at ${_stage_at})
       endif()
       if(CG_OUTPUTS)
         list(JOIN CG_OUTPUTS "," _kept)

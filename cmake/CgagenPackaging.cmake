@@ -72,6 +72,9 @@ install(TARGETS cga_runtime EXPORT cgagenTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/runtime/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.hpp")
+# The method table's header, generated from runtime/skinning_methods.txt (runtime/CMakeLists.txt).
+install(DIRECTORY ${CGA_RUNTIME_GENERATED_INCLUDE_DIR}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.hpp")
 # cga::io: the Assimp importer (cga/io/loader.hpp), the only installed library that links Assimp.
 set_target_properties(cga_io PROPERTIES EXPORT_NAME io)
 install(TARGETS cga_io EXPORT cgagenTargets

@@ -74,6 +74,9 @@ options:
   --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
                           `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values
                           and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
+  --stage-at A,B,...      stage the kernel at the named values of the script: NAME_prepare computes
+                          them from the inputs they read, NAME the outputs from them and the other
+                          inputs (a two-pass batch loop: the prepare once per element)
   --gpc                   SOURCE is a C/C++/CUDA source with GPC blocks: write it with each block compiled
                           (with --algebra, -O, -o, --Werror, --target cpp|cuda|opencl, --type)
   --library               SCRIPT is a library spec: write the library (with -O, -o, --target, --templates;
@@ -116,6 +119,7 @@ struct Options {
   std::string algebra = "cga";
   bool algebra_given = false;  // --algebra on the command line (a script's #pragma algebra must agree)
   std::vector<std::string> uniforms;  // --uniform
+  std::vector<std::string> stage_at;  // --stage-at
   std::vector<std::string> outputs;   // --outputs (empty: all)
   std::vector<std::string> jacobian;  // --jacobian
   bool gpc = false;                   // --gpc
@@ -235,6 +239,11 @@ Options parse_args(int argc, char** argv) {
         std::string item;
         while (std::getline(ss, item, ','))
           if (!item.empty()) o.uniforms.push_back(item);
+      } else if (a == "--stage-at") {
+        std::stringstream ss(value(i, a));
+        for (std::string item; std::getline(ss, item, ',');)
+          if (!item.empty()) o.stage_at.push_back(item);
+        if (o.stage_at.empty()) throw UsageError("--stage-at names no value");
       } else if (a == "--gpc") {
         o.gpc = true;
       } else if (a == "--library") {
@@ -276,11 +285,13 @@ Options parse_args(int argc, char** argv) {
     }
   }
   if (o.script.empty()) throw UsageError("no script given");
+  if (!o.stage_at.empty() && (!o.uniforms.empty() || !o.jacobian.empty()))
+    throw UsageError("--stage-at excludes --uniform and --jacobian");
   int modes = o.stats + o.diff.has_value() + o.dump_ast + o.eval;
   if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
   if (o.gpc && o.library) throw UsageError("--gpc and --library exclude each other");
   if (o.gpc) {
-    if (modes || !o.uniforms.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
+    if (modes || !o.uniforms.empty() || !o.stage_at.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
         !o.emit.return_output.empty())
       throw UsageError("--gpc takes --algebra, -O, -o, --Werror, --target, --type and --templates only");
     bool known = !o.target_given;
@@ -289,7 +300,7 @@ Options parse_args(int argc, char** argv) {
       throw UsageError(std::string("--gpc prints C, C++, CUDA or OpenCL statements: --target cpp, cuda or opencl, not ") +
                        o.emit.target.name);
   } else if (o.library) {
-    if (o.diff || o.dump_ast || o.eval || !o.uniforms.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() ||
+    if (o.diff || o.dump_ast || o.eval || !o.uniforms.empty() || !o.stage_at.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() ||
         !o.stats_out.empty() || !o.emit.pack.empty() || !o.emit.return_output.empty() || o.algebra_given || !o.type.empty())
       throw UsageError("--library takes -O, -o, --target, --templates and --stats only (the spec names the algebra)");
   } else if (!o.type.empty()) {
@@ -396,10 +407,17 @@ front::SourceFile load_script(const std::string& path) {
   return file;
 }
 
-// A kernel with uniform inputs: the staged form (opt/stage.hpp) in every mode.
+// A kernel with uniform inputs, or split at named values: the staged form (opt/stage.hpp) in every mode.
 int run_staged(const Options& o, const Kernel& kernel, const emit::EmitOptions& eo,
                const std::vector<std::string>& uniforms, const std::string& name) {
-  auto staged_of = [&](opt::Level level) { return opt::stage(opt::optimize(kernel, level), uniforms); };
+  auto staged_of = [&](opt::Level level) {
+    try {
+      return o.stage_at.empty() ? opt::stage(opt::optimize(kernel, level), uniforms)
+                                : opt::stage_at(kernel, o.stage_at, level);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  };
   auto code_of = [&](const opt::StagedProgram& s) { return emit::emit({&s.prepare, &s.body}, eo); };
   if (o.diff) {
     opt::Program a = opt::optimize(kernel, o.diff->first);
@@ -412,7 +430,7 @@ int run_staged(const Options& o, const Kernel& kernel, const emit::EmitOptions& 
     return 0;
   }
   opt::Program program = opt::optimize(kernel, o.level);
-  opt::StagedProgram staged = opt::stage(program, uniforms);
+  opt::StagedProgram staged = staged_of(o.level);
   if (o.eval) {
     std::vector<opt::EvalLine> plain, split;
     try {
@@ -547,7 +565,7 @@ int run(const Options& o) {
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }
-    if (!uniforms.empty()) return run_staged(o, kernel, eo, uniforms, name);
+    if (!uniforms.empty() || !o.stage_at.empty()) return run_staged(o, kernel, eo, uniforms, name);
     if (o.diff) {
       opt::Program a = opt::optimize(kernel, o.diff->first);
       opt::Program b = opt::optimize(kernel, o.diff->second);

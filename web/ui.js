@@ -14,23 +14,19 @@ function setStatus(state, text) {
 // An error before main() runs (bad data, a syntax error) must not leave "Loading" on the screen.
 window.addEventListener("error", (e) => setStatus("error", "The page failed: " + e.message));
 
-// The words of each panel's caption, by the method's name: the methods themselves (which, in what order, their
-// colours) come from CGA_DATA.methods, the runtime's table; a method with no words here gets its name only.
+// Each panel's caption: the method's name and its caption from CGA_DATA.methods (the runtime's table, which
+// also gives which methods, in what order, their colours), then what the method does and what to look for,
+// by the method's name; a method with no notes here gets its table caption only.
 const METHOD_NOTES = {
-  "lbs": ["linear blend skinning",
-          "each bone's matrix moves the vertex and the moved points are averaged (the games-industry default)",
+  "lbs": ["each bone's matrix moves the vertex and the moved points are averaged (the games-industry default)",
           "the twist strip pinches to a point at 180\u00b0 (the candy wrapper); elbows and shoulders thin out"],
-  "dqs": ["dual-quaternion skinning",
-          "the bones' dual quaternions (rotation + translation) are blended, then applied once",
+  "dqs": ["the bones' dual quaternions (rotation + translation) are blended, then applied once",
           "the twist strip keeps its radius; a bone's scale is dropped"],
-  "cga-points": ["CGA, blended points",
-                 "each bone's CGA motor moves the vertex and the points are averaged: lbs computed with motors",
+  "cga-points": ["each bone's CGA motor moves the vertex and the points are averaged: lbs computed with motors",
                  "the same picture as lbs (with lbs as the heat map's reference its panel is blue: rounding only)"],
-  "cga-motors": ["CGA, blended motors (the paper's method)",
-                 "the bones' motors (rotation + translation + uniform scale in one versor) are blended, then applied once",
+  "cga-motors": ["the bones' motors (rotation + translation + uniform scale in one versor) are blended, then applied once",
                  "no candy wrapper, like dqs, and scaled bones keep their scale"],
-  "cga-log": ["CGA, blended motor logarithms",
-              "the bones' motor logarithms are blended, and the sum's closed-form exponential moves the vertex once",
+  "cga-log": ["the bones' motor logarithms are blended, and the sum's closed-form exponential moves the vertex once",
               "no candy wrapper: the blend is a screw about its own axis; scales blend geometrically"],
 };
 
@@ -43,11 +39,12 @@ function labelPanels() {
     d.style.left = (100 * i / count + 1) + "%";
     d.textContent = m;
     stage.appendChild(d);
-    const [title, what, look] = METHOD_NOTES[m] || [m, "", ""];
     const c = document.createElement("div");
     c.className = "caption";
-    c.append(Object.assign(document.createElement("b"), {textContent: m + ": " + title + ". "}), what + ". ",
-             Object.assign(document.createElement("i"), {textContent: "Look for: " + look + "."}));
+    c.append(Object.assign(document.createElement("b"), {textContent: m + ": " + CGA_DATA.methods[i].caption + ". "}));
+    const notes = METHOD_NOTES[m];
+    if (notes)
+      c.append(notes[0] + ". ", Object.assign(document.createElement("i"), {textContent: "Look for: " + notes[1] + "."}));
     captions.appendChild(c);
   });
 }

@@ -85,7 +85,8 @@ std::vector<std::string> write_cpu_pictures(PictureSet& set, const std::string& 
     for (std::size_t m = 0; m < meshes.size(); ++m)
       draw_triangles(img, view, meshes[m].px, meshes[m].py, meshes[m].pz, set.character->meshes[m].indices,
                      gpu::method_colour(method), meshes[m].nx, meshes[m].ny, meshes[m].nz);
-    const std::string lines[] = {std::string(to_string(method)), path_line, set.pose};
+    const std::string lines[] = {std::string(to_string(method)), std::string(skinning_method_info(method).caption),
+                                 path_line, set.pose};
     const gpu::Image& kept = set.cpu_drawn[fmt::format("character-{}", to_string(method))] = to_rgba(img);
     out.push_back(written(gpu::with_caption(kept, lines, kCaptionRows),
                           fmt::format("{}/character-{}.png", out_dir, to_string(method))));
@@ -129,7 +130,8 @@ std::vector<std::string> write_gpu_pictures(const gpu::Context& context, const P
                        gpu::method_colour(method)});
     const gpu::Image img = gpu::render_meshes(context, draws, camera, kCharacterWidth, kCharacterHeight);
     compared.push_back(differing(set, fmt::format("character-{}", to_string(method)), img));
-    const std::string lines[] = {std::string(to_string(method)), path_line, set.pose};
+    const std::string lines[] = {std::string(to_string(method)), std::string(skinning_method_info(method).caption),
+                                 path_line, set.pose};
     out.push_back(written(gpu::with_caption(img, lines, kCaptionRows),
                           fmt::format("{}/gpu-character-{}.png", out_dir, to_string(method))));
   }

@@ -2,7 +2,16 @@
 # unless it exits 0, prints every table, skins on the GL path within 1e-4 of the character's size for every
 # method and path, and writes every picture, each CPU picture the same size as its GPU twin (they share pose,
 # camera and caption band) and differing from it in at most 1 % of its pixels. Variables: DEMO (the
-# executable), OUT (a scratch folder).
+# executable), OUT (a scratch folder), METHODS (the method table's names, comma-separated: the demo runs
+# every method by default, so each has its GL row and its pictures).
+string(REPLACE "," ";" methods "${METHODS}")
+if(NOT methods)
+  message(FATAL_ERROR "smoke_test.cmake needs -DMETHODS=NAME,... (the method table's names)")
+endif()
+set(method_pngs)
+foreach(method ${methods})
+  list(APPEND method_pngs character-${method})
+endforeach()
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${DEMO}" --frames 4 --out "${OUT}" RESULT_VARIABLE rc OUTPUT_VARIABLE out
                 ERROR_VARIABLE err)
@@ -16,7 +25,7 @@ foreach(want "us/pose" "Mvertices/s" "cga-points vs lbs" "middle ring radius" "G
   endif()
 endforeach()
 # The GL table: one row per method, two cells "DEVIATION (T ms)"; a deviation of 1e-4 or more fails.
-foreach(method lbs dqs cga-points cga-motors)
+foreach(method ${methods})
   if(NOT out MATCHES "\n  ${method} +([0-9.e+-]+) \\([0-9.]+ ms\\) +([0-9.e+-]+) \\([0-9.]+ ms\\)\n")
     message(FATAL_ERROR "no GPU row for ${method}\n${out}")
   endif()
@@ -40,14 +49,18 @@ endif()
 if(NOT CMAKE_MATCH_1 MATCHES "^(0|[0-9.]+e-(0[5-9]|[1-9][0-9]))$")
   message(FATAL_ERROR "the chain IK hand is ${CMAKE_MATCH_1} of the chain length from its target\n${out}")
 endif()
-foreach(png ik-hand-reach ik-chain-reach character-lbs character-dqs character-cga-points character-cga-motors twist-strip
-            gpu-character-lbs gpu-character-dqs gpu-character-cga-points gpu-character-cga-motors gpu-twist-strip)
+# Every picture: the IK ones (CPU only), and each method's character and the twist strip, CPU and GPU.
+set(pngs ik-hand-reach ik-chain-reach)
+foreach(png ${method_pngs} twist-strip)
+  list(APPEND pngs ${png} gpu-${png})
+endforeach()
+foreach(png ${pngs})
   if(NOT EXISTS "${OUT}/${png}.png")
     message(FATAL_ERROR "cga-demo wrote no ${OUT}/${png}.png\n${out}")
   endif()
 endforeach()
 # A PNG's width and height are the 8 bytes after its signature and IHDR header (offset 16).
-foreach(png character-lbs character-dqs character-cga-points character-cga-motors twist-strip)
+foreach(png ${method_pngs} twist-strip)
   file(READ "${OUT}/${png}.png" cpu_size OFFSET 16 LIMIT 8 HEX)
   file(READ "${OUT}/gpu-${png}.png" gpu_size OFFSET 16 LIMIT 8 HEX)
   if(NOT cpu_size STREQUAL gpu_size)
@@ -60,7 +73,7 @@ if(NOT out MATCHES "pictures, GPU against CPU: pixels that differ by more than 1
   message(FATAL_ERROR "cga-demo printed no GPU-against-CPU picture comparison\n${out}")
 endif()
 set(compared "${CMAKE_MATCH_1}")
-foreach(png character-lbs character-dqs character-cga-points character-cga-motors twist-strip)
+foreach(png ${method_pngs} twist-strip)
   if(NOT compared MATCHES "${png} ([0-9]+) of ([0-9]+)")
     message(FATAL_ERROR "no comparison for ${png}: ${compared}")
   endif()

@@ -144,13 +144,14 @@ std::string json_string(const std::string& s) {  // a JSON string (names of clip
   return q + "\"";
 }
 
-// The method table for the page (CGA_DATA.methods): name, colour and vec4s per prepared entry, in table order
-// (a method's index is its code in the page's shaders).
+// The method table for the page (CGA_DATA.methods): name, caption, colour and vec4s per prepared entry, in
+// table order (a method's index is its code in the page's shaders).
 std::string methods_json() {
   std::vector<std::string> rows;
   for (SkinningMethod method : kAllSkinningMethods) {
     const SkinningMethodInfo& info = skinning_method_info(method);
-    rows.push_back(fmt::format("{{name: {}, colour: [{:g}, {:g}, {:g}], vec4s: {}}}", json_string(std::string(info.name)),
+    rows.push_back(fmt::format("{{name: {}, caption: {}, colour: [{:g}, {:g}, {:g}], vec4s: {}}}",
+                               json_string(std::string(info.name)), json_string(std::string(info.caption)),
                                info.colour[0], info.colour[1], info.colour[2], info.entry_vec4s));
   }
   return fmt::format("[{}]", fmt::join(rows, ", "));

@@ -424,8 +424,10 @@ std::string format_staged_stats(const StagedProgram& s) {
   const ProgramStats pre = program_stats(s.prepare), body = program_stats(s.body);
   std::string u;
   for (const auto& n : s.uniforms) u += (u.empty() ? "" : ", ") + n;
+  std::string at;
+  for (const auto& n : s.at) at += (at.empty() ? "" : ", ") + n;
   std::string out = "kernel " + s.body.name + " at -O" + std::to_string(static_cast<int>(s.body.level)) +
-                    ", staged (uniform: " + u + ")\n";
+                    (at.empty() ? ", staged (uniform: " + u + ")\n" : ", staged at " + at + " (prepare reads: " + u + ")\n");
   out += "prepare: " + format_counts(pre.total) + "\n";
   out += "per element: " + format_counts(body.total) + "\n";
   out += "prepared values: " + std::to_string(s.prepare.outputs.at(0).slots.size()) + "\n";

@@ -21,6 +21,7 @@ struct StagedProgram {
   Program prepare;  // inputs: the uniform inputs; one output "prepared" of K values (labelled, see labels)
   Program body;     // inputs: "prepared" (K values) then the per-element inputs; the kernel's outputs
   std::vector<std::string> uniforms;  // the uniform inputs' names, in input order
+  std::vector<std::string> at;        // stage_at: the named values of the cut (empty: staged by rate)
 };
 
 // The uniform inputs of the kernel: those of its `#pragma uniform` lines and those named on the command line
@@ -31,6 +32,12 @@ std::vector<std::string> uniform_inputs(const Kernel& kernel, const std::vector<
 // The staged form of an optimized program (any level; at -O2 the pass pipeline runs on each stage).
 // Deterministic. Minimizes the per-element cost first, then K, then the prepare cost.
 StagedProgram stage(const Program& program, const std::vector<std::string>& uniforms);
+
+// The kernel split at the named values (--stage-at A,B; stage_at.cpp): NAME_prepare computes their
+// coefficients (one prepared value each, in the order of the names) from every input the rest does not read,
+// NAME the outputs from them and the inputs the rest reads. `uniforms` are then the prepare's inputs. A name the script does not
+// assign, an output, or an input read on both sides of the cut throws std::invalid_argument.
+StagedProgram stage_at(const Kernel& kernel, const std::vector<std::string>& names, Level level);
 
 // "kernel NAME at -O2, staged (uniform: M)\nprepare: ...\nper element: ...\nprepared values: K\n..."
 std::string format_staged_stats(const StagedProgram& staged);

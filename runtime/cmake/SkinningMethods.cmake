@@ -1,50 +1,123 @@
-# The skinning method table (runtime/include/cga/runtime/skinning_methods.hpp) for CMake, and the packing of
-# the skinning scripts' inputs for the shading languages. Included by generated/, runtime/gpu/, runtime/cuda/
-# and web/: they iterate the table; none of them names a method.
+# The skinning method table (runtime/skinning_methods.txt, which documents its columns) for CMake, the C++
+# header generated from it, and the packing of the skinning scripts' inputs for the shading languages.
+# Included by runtime/, generated/, runtime/gpu/, runtime/cuda/, web/ and examples/demo/: they iterate the
+# table; none of them names a method.
 #
 # cga_read_skinning_methods() sets in the caller's scope:
 #   CGA_SKINNING_METHOD_IDS    the ids in table order (a method's GPU code is its index)
+#   CGA_SKINNING_METHOD_NAMES  the names in table order
 #   CGA_SKIN_<id>_NAME         the CLI name (cga-motors)
 #   CGA_SKIN_<id>_PALETTE      matrices, dual_quats or motors
 #   CGA_SKIN_<id>_BONE         the per-bone script's stem, or none
 #   CGA_SKIN_<id>_BLEND        the per-vertex blend script's stem
 #   CGA_SKIN_<id>_VEC4S        vec4s per prepared entry
 #   CGA_SKIN_<id>_COLOUR       r;g;b
+#   CGA_SKIN_<id>_CAPTION      the short caption (pictures, the page)
+#   CGA_SKIN_SPLIT_<blend>     the blend script's batch split: its named values (a list), or empty
+# cga_write_skinning_methods_header(<include_dir>) writes <include_dir>/cga/runtime/skinning_methods.hpp.
+# The C++ header and the shader glue below (GLSL, GLSL ES, WGSL, the CUDA includes) are the templates of
+# runtime/cmake/templates filled from the table (cga_skinning_fill_template): the text lives there, the
+# functions here compute only what varies per method (argument lists, offsets, the dispatch's cases).
 # cga_skinning_script_inputs(<script> <out>) sets <out> to the script's multivector inputs (#pragma input), each
 # as NAME:BLADES (the blade count), in declaration order: a skinning script declares them in the order of its
 # #pragma in2out line (the generated function's parameter order).
-get_filename_component(CGA_SKINNING_METHODS_HPP ${CMAKE_CURRENT_LIST_DIR}/../include/cga/runtime/skinning_methods.hpp ABSOLUTE)
+get_filename_component(CGA_SKINNING_METHODS_TABLE ${CMAKE_CURRENT_LIST_DIR}/../skinning_methods.txt ABSOLUTE)
 get_filename_component(CGA_SKINNING_SCRIPT_DIR ${CMAKE_CURRENT_LIST_DIR}/../scripts/skin ABSOLUTE)
+get_filename_component(CGA_SKINNING_TEMPLATE_DIR ${CMAKE_CURRENT_LIST_DIR}/templates ABSOLUTE)
 
 function(cga_read_skinning_methods)
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CGA_SKINNING_METHODS_HPP})
-  # The rows end in the macro's line continuation: drop it before splitting (a trailing \ escapes CMake's ;).
-  file(READ ${CGA_SKINNING_METHODS_HPP} _text)
-  string(REPLACE "\\\n" "\n" _text "${_text}")
-  string(REGEX MATCHALL "\n  X\\([^\n]*" _rows "${_text}")
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CGA_SKINNING_METHODS_TABLE})
+  file(STRINGS ${CGA_SKINNING_METHODS_TABLE} _lines ENCODING UTF-8)
   set(_ids)
-  foreach(_row ${_rows})
-    if(NOT _row MATCHES "^\n  X\\(([a-z0-9_]+), \"([a-z0-9-]+)\", (matrices|dual_quats|motors), ([a-z0-9_]+), ([a-z0-9_]+), ([1-4]), ([0-9.]+)f, ([0-9.]+)f, ([0-9.]+)f\\)")
-      message(FATAL_ERROR "${CGA_SKINNING_METHODS_HPP}: cannot read the row '${_row}' (ID, \"NAME\", PALETTE, BONE, BLEND, VEC4S, Rf, Gf, Bf)")
+  set(_names)
+  set(_number 0)
+  set(_b "[ \t]+")  # the column separator
+  set(_f "[0-9]*\\.?[0-9]+")  # a colour component (CMake's regexes take 9 groups: R G B are one)
+  foreach(_line IN LISTS _lines)
+    math(EXPR _number "${_number} + 1")
+    if(_line MATCHES "^[ \t]*(#|$)")
+      continue()
+    endif()
+    if(NOT _line MATCHES "^([a-z][a-z0-9_]*)${_b}([a-z][a-z0-9-]*)${_b}(matrices|dual_quats|motors)${_b}([a-z0-9_]+)${_b}([a-z0-9_]+)${_b}([1-4])${_b}([A-Za-z_][A-Za-z0-9_,]*|-)${_b}(${_f}${_b}${_f}${_b}${_f})${_b}([^\"\\]*[^\"\\ \t])[ \t]*$")
+      message(FATAL_ERROR "${CGA_SKINNING_METHODS_TABLE}:${_number}: cannot read the row '${_line}' "
+                          "(ID NAME PALETTE BONE BLEND VEC4S SPLIT R G B CAPTION; the caption without quotes or backslashes)")
     endif()
     set(_id ${CMAKE_MATCH_1})
+    if(_id IN_LIST _ids OR CMAKE_MATCH_2 IN_LIST _names)
+      message(FATAL_ERROR "${CGA_SKINNING_METHODS_TABLE}:${_number}: the id ${_id} or the name ${CMAKE_MATCH_2} is taken")
+    endif()
     list(APPEND _ids ${_id})
+    list(APPEND _names ${CMAKE_MATCH_2})
     set(CGA_SKIN_${_id}_NAME ${CMAKE_MATCH_2} PARENT_SCOPE)
     set(CGA_SKIN_${_id}_PALETTE ${CMAKE_MATCH_3} PARENT_SCOPE)
     set(CGA_SKIN_${_id}_BONE ${CMAKE_MATCH_4} PARENT_SCOPE)
     set(CGA_SKIN_${_id}_BLEND ${CMAKE_MATCH_5} PARENT_SCOPE)
     set(CGA_SKIN_${_id}_VEC4S ${CMAKE_MATCH_6} PARENT_SCOPE)
-    set(CGA_SKIN_${_id}_COLOUR "${CMAKE_MATCH_7};${CMAKE_MATCH_8};${CMAKE_MATCH_9}" PARENT_SCOPE)
-    foreach(_script ${CMAKE_MATCH_4} ${CMAKE_MATCH_5})
+    set(CGA_SKIN_${_id}_CAPTION "${CMAKE_MATCH_9}" PARENT_SCOPE)
+    set(_bone ${CMAKE_MATCH_4})
+    set(_blend ${CMAKE_MATCH_5})
+    # The blend's batch split (its named values, or none): one per blend script, whichever rows share it.
+    set(_split)
+    if(NOT CMAKE_MATCH_7 STREQUAL "-")
+      string(REPLACE "," ";" _split "${CMAKE_MATCH_7}")
+    endif()
+    if(DEFINED _split_of_${_blend} AND NOT "${_split_of_${_blend}}" STREQUAL "${_split}")
+      message(FATAL_ERROR "${CGA_SKINNING_METHODS_TABLE}:${_number}: method ${_id} splits ${_blend} at '${CMAKE_MATCH_7}', "
+                          "another row at '${_split_of_${_blend}}'")
+    endif()
+    set(_split_of_${_blend} "${_split}")
+    set(CGA_SKIN_SPLIT_${_blend} "${_split}" PARENT_SCOPE)
+    # (last: a regex command resets CMAKE_MATCH_<n>)
+    string(REGEX REPLACE "[ \t]+" ";" _rgb "${CMAKE_MATCH_8}")
+    set(CGA_SKIN_${_id}_COLOUR "${_rgb}" PARENT_SCOPE)
+    foreach(_script ${_bone} ${_blend})
       if(NOT _script STREQUAL "none" AND NOT EXISTS ${CGA_SKINNING_SCRIPT_DIR}/${_script}.clu)
-        message(FATAL_ERROR "${CGA_SKINNING_METHODS_HPP}: method ${_id} names ${_script}, which is not a script in ${CGA_SKINNING_SCRIPT_DIR}")
+        message(FATAL_ERROR "${CGA_SKINNING_METHODS_TABLE}:${_number}: method ${_id} names ${_script}, which is not a script in ${CGA_SKINNING_SCRIPT_DIR}")
       endif()
     endforeach()
   endforeach()
   if(NOT _ids)
-    message(FATAL_ERROR "${CGA_SKINNING_METHODS_HPP}: no method rows")
+    message(FATAL_ERROR "${CGA_SKINNING_METHODS_TABLE}: no method rows")
   endif()
   set(CGA_SKINNING_METHOD_IDS ${_ids} PARENT_SCOPE)
+  set(CGA_SKINNING_METHOD_NAMES ${_names} PARENT_SCOPE)
+endfunction()
+
+# The C++ table (templates/skinning_methods.hpp.in) at <include_dir>/cga/runtime/skinning_methods.hpp. Call
+# cga_read_skinning_methods() first. configure_file rewrites it only on a change (no rebuild on re-configure).
+function(cga_write_skinning_methods_header include_dir)
+  set(CGA_SKINNING_HPP_ROWS)
+  set(CGA_SKINNING_HPP_CAPTIONS)
+  foreach(_id ${CGA_SKINNING_METHOD_IDS})
+    set(_rgb)
+    foreach(_c ${CGA_SKIN_${_id}_COLOUR})
+      if(NOT _c MATCHES "\\.")
+        set(_c "${_c}.0")  # a float literal needs its point: 1f is not C++
+      endif()
+      list(APPEND _rgb "${_c}f")
+    endforeach()
+    list(JOIN _rgb ", " _rgb)
+    string(APPEND CGA_SKINNING_HPP_ROWS "  X(${_id}, \"${CGA_SKIN_${_id}_NAME}\", ${CGA_SKIN_${_id}_PALETTE}, "
+           "${CGA_SKIN_${_id}_BONE}, ${CGA_SKIN_${_id}_BLEND}, ${CGA_SKIN_${_id}_VEC4S}, ${_rgb}) \\\n")
+    string(APPEND CGA_SKINNING_HPP_CAPTIONS "  X(${_id}, \"${CGA_SKIN_${_id}_CAPTION}\") \\\n")
+  endforeach()
+  # The last row ends the macro: no line continuation (and no trailing newline: the template has it).
+  string(REGEX REPLACE " \\\\\n$" "" CGA_SKINNING_HPP_ROWS "${CGA_SKINNING_HPP_ROWS}")
+  string(REGEX REPLACE " \\\\\n$" "" CGA_SKINNING_HPP_CAPTIONS "${CGA_SKINNING_HPP_CAPTIONS}")
+  configure_file(${CGA_SKINNING_TEMPLATE_DIR}/skinning_methods.hpp.in
+                 ${include_dir}/cga/runtime/skinning_methods.hpp @ONLY)
+endfunction()
+
+# <out> = templates/<name> filled with @VAR@ from the caller's variables (a function sees them); the
+# template's own comment lines, those starting with ##, are dropped.
+function(cga_skinning_fill_template name out)
+  set(_path ${CGA_SKINNING_TEMPLATE_DIR}/${name})
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_path})
+  file(READ ${_path} _template)
+  string(REGEX REPLACE "(^|\n)##[^\n]*" "" _template "${_template}")
+  string(REGEX REPLACE "^\n" "" _template "${_template}")
+  string(CONFIGURE "${_template}" _text @ONLY)
+  set(${out} "${_text}" PARENT_SCOPE)
 endfunction()
 
 # The multivectors a script declares with `//#pragma KIND NAME BLADE...` (KIND a regex: input, output or
@@ -106,16 +179,11 @@ endfunction()
 #   skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on)
 # Data movement only: the blend itself is the generated function.
 function(cga_skinning_glsl_skin id out)
-  cga_skinning_glsl_method_skin(${id} _method)
-  set(${out} "${_method}
-const int PALETTE_STRIDE = ${CGA_SKIN_${id}_VEC4S};
-
-void skin(int base, ivec4 j, vec4 w, vec3 p, vec3 n, bool normals, out vec3 op, out vec3 on) {
-  vec3 tn;
-  skin_${id}(PALETTE_STRIDE * base, j, w, p, n, op, tn);
-  on = normals ? normalize(tn) : vec3(0.0);
-}
-" PARENT_SCOPE)
+  cga_skinning_glsl_method_skin(${id} METHOD_SKIN)
+  set(ID ${id})
+  set(VEC4S ${CGA_SKIN_${id}_VEC4S})
+  cga_skinning_fill_template(skin_program.glsl.in _text)
+  set(${out} "${_text}" PARENT_SCOPE)
 endfunction()
 
 # ---- One shader for every method (the web page's WebGL 2 and WebGPU shaders): a skin_<id>() per method
@@ -181,17 +249,13 @@ function(cga_skinning_glsl_method_skin id out)
     endif()
     list(APPEND _args "${_arg}")
   endforeach()
-  list(JOIN _args ",\n      " _args)
-  set(${out} "// ${CGA_SKIN_${id}_NAME} (from the method table): the generated ${_blend} on four entries of ${_k} vec4s.
-void skin_${id}(int first, ivec4 j, vec4 w, vec3 p, vec3 n, out vec3 op, out vec3 on) {
-  int e0 = first + ${_k} * j[0];
-  int e1 = first + ${_k} * j[1];
-  int e2 = first + ${_k} * j[2];
-  int e3 = first + ${_k} * j[3];
-  ${_blend}(${_args},
-      w[0], w[1], w[2], w[3], p.x, p.y, p.z, n.x, n.y, n.z, op, on);
-}
-" PARENT_SCOPE)
+  list(JOIN _args ",\n      " ARGS)
+  set(ID ${id})
+  set(NAME ${CGA_SKIN_${id}_NAME})
+  set(BLEND ${_blend})
+  set(VEC4S ${_k})
+  cga_skinning_fill_template(skin_method.glsl.in _text)
+  set(${out} "${_text}" PARENT_SCOPE)
 endfunction()
 
 function(cga_skinning_wgsl_method_skin id out)
@@ -215,31 +279,22 @@ function(cga_skinning_wgsl_method_skin id out)
     endif()
     math(EXPR _i "${_i} + 1")
   endforeach()
-  list(JOIN _args ",\n      " _args)
-  set(${out} "// ${CGA_SKIN_${id}_NAME} (from the method table): the generated ${_blend} on four entries of ${_k} vec4s.
-fn skin_${id}(first: i32, j: vec4<i32>, w: vec4<f32>, p: vec3<f32>, n: vec3<f32>,
-              op: ptr<function, vec3<f32>>, on: ptr<function, vec3<f32>>) {
-  let e0 = first + ${_k} * j[0];
-  let e1 = first + ${_k} * j[1];
-  let e2 = first + ${_k} * j[2];
-  let e3 = first + ${_k} * j[3];
-${_reads}  var tp: array<f32, 3>;
-  var tn: array<f32, 3>;
-  ${_blend}(${_args},
-      w[0], w[1], w[2], w[3], p.x, p.y, p.z, n.x, n.y, n.z, &tp, &tn);
-  *op = vec3<f32>(tp[0], tp[1], tp[2]);
-  *on = vec3<f32>(tn[0], tn[1], tn[2]);
-}
-" PARENT_SCOPE)
+  list(JOIN _args ",\n      " ARGS)
+  set(ID ${id})
+  set(NAME ${CGA_SKIN_${id}_NAME})
+  set(BLEND ${_blend})
+  set(VEC4S ${_k})
+  set(READS "${_reads}")
+  cga_skinning_fill_template(skin_method.wgsl.in _text)
+  set(${out} "${_text}" PARENT_SCOPE)
 endfunction()
 
-# The dispatch of either language (lang glsl or wgsl).
+# The dispatch of either language (lang glsl or wgsl): templates/skin_dispatch.<lang>.in.
 function(_cga_skinning_dispatch lang out)
-  set(_text "// Every method of runtime/include/cga/runtime/skinning_methods.hpp, its code its row; generated by\n")
-  string(APPEND _text "// runtime/cmake/SkinningMethods.cmake.\n")
-  set(_cases "")
-  set(_code 0)
-  set(_vec4s_before 0)
+  set(SKINS "")
+  set(CASES "")
+  set(COUNT 0)
+  set(VEC4S_ALL 0)
   foreach(_id ${CGA_SKINNING_METHOD_IDS})
     if(lang STREQUAL "glsl")
       cga_skinning_glsl_method_skin(${_id} _skin)
@@ -247,36 +302,13 @@ function(_cga_skinning_dispatch lang out)
       cga_skinning_wgsl_method_skin(${_id} _skin)
     endif()
     # (string(APPEND), not a list: the text holds semicolons)
-    string(APPEND _cases "  if (method == ${_code}) {\n"
-                         "    skin_${_id}(${_vec4s_before} * entries, j, w, p, n, op, on);\n    return;\n  }\n")
-    string(APPEND _text "\n${_skin}")
-    math(EXPR _code "${_code} + 1")
-    math(EXPR _vec4s_before "${_vec4s_before} + ${CGA_SKIN_${_id}_VEC4S}")
+    string(APPEND CASES "  if (method == ${COUNT}) {\n"
+                        "    skin_${_id}(${VEC4S_ALL} * entries, j, w, p, n, op, on);\n    return;\n  }\n")
+    string(APPEND SKINS "\n${_skin}")
+    math(EXPR COUNT "${COUNT} + 1")
+    math(EXPR VEC4S_ALL "${VEC4S_ALL} + ${CGA_SKIN_${_id}_VEC4S}")
   endforeach()
-  if(lang STREQUAL "glsl")
-    string(APPEND _text "
-// Method `method` (its row in the table) on a palette of every method's `entries` entries in table order
-// (${_vec4s_before} vec4s per entry in all).
-const int SKINNING_METHOD_COUNT = ${_code};
-
-void skin(int method, int entries, ivec4 j, vec4 w, vec3 p, vec3 n, out vec3 op, out vec3 on) {
-${_cases}  op = p;
-  on = n;
-}
-")
-  else()
-    string(APPEND _text "
-// Method `method` (its row in the table) on a palette of every method's `entries` entries in table order
-// (${_vec4s_before} vec4s per entry in all).
-const SKINNING_METHOD_COUNT: i32 = ${_code};
-
-fn skin(method: i32, entries: i32, j: vec4<i32>, w: vec4<f32>, p: vec3<f32>, n: vec3<f32>,
-        op: ptr<function, vec3<f32>>, on: ptr<function, vec3<f32>>) {
-${_cases}  *op = p;
-  *on = n;
-}
-")
-  endif()
+  cga_skinning_fill_template(skin_dispatch.${lang}.in _text)
   set(${out} "${_text}" PARENT_SCOPE)
 endfunction()
 

@@ -1,6 +1,6 @@
 // Motor decomposition (TRS from a motor's 12 coefficients) and the screw interpolation. The decomposition
 // goes through the generated kernels motor_to_trs and motor_rigid_part, the products through those of
-// motor.hpp, the screw's logarithm and exponential through the generated library of
+// motor.hpp (the two rigid ones of motor_screw through detail/rigid_mul_simd.hpp), the screw's logarithm and exponential through the generated library of
 // runtime/scripts/cga_rigid.gal (cga_rigid.hpp). Square roots and divisions are the C++ here.
 #include "cga/runtime/motor.hpp"
 
@@ -9,6 +9,8 @@
 #include <cga_rigid.hpp>
 #include <motor_rigid_part.hpp>
 #include <motor_to_trs.hpp>
+
+#include "detail/rigid_mul_simd.hpp"
 
 namespace cga {
 
@@ -70,7 +72,7 @@ Motor motor_screw(const Motor& m1, const Motor& m2, float alpha) {
   // The relative rigid motion ~R1 * R2 (R1 is unit, so ~R1 is its inverse), a fraction of it along its screw,
   // then the dilator: a motor T*R*D has D rightmost.
   Motor rel;
-  motor_mul_rigid_simd(motor_reverse(r1), r2, rel);
+  detail::motor_mul_rigid_simd(motor_reverse(r1), r2, rel);
   Motor m = screw_fraction(rel, alpha);
   const double s = s1 == s2 ? s1 : std::pow(s1, 1.0 - alpha) * std::pow(s2, double(alpha));
   if (s != 1.0) {
@@ -80,7 +82,7 @@ Motor motor_screw(const Motor& m1, const Motor& m2, float alpha) {
   }
   if (!motor_is_rigid(m)) return motor_mul(r1, m);
   Motor out;
-  motor_mul_rigid_simd(r1, m, out);
+  detail::motor_mul_rigid_simd(r1, m, out);
   return out;
 }
 

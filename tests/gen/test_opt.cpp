@@ -109,7 +109,7 @@ const std::map<std::string, OpBudget> kRuntimeKernelBudget = {
     {"motor_from_trs", {10, 21, 1, 0}},   {"motor_lerp_paper", {16, 27, 2, 0}},
     {"motor_mul", {92, 96, 0, 0}},        {"motor_mul_rigid", {40, 48, 0, 0}},
     {"motor_reverse", {0, 0, 0, 0}},      {"motor_rigid_part", {7, 8, 1, 0}},
-    {"motor_to_trs", {27, 23, 0, 0}},
+    {"motor_to_trs", {27, 23, 0, 0}},     {"motor_normalize", {23, 35, 2, 2}},
     {"motor_split_mul", {52, 64, 0, 0}},  {"transform_point_split", {41, 64, 1, 0}},
     {"transform_point", {72, 49, 0, 0}},
     {"ik_aim", {10, 18, 0, 1}},           {"ik_two_bone", {30, 56, 1, 3}},

@@ -162,7 +162,8 @@ inline std::vector<DoubleSimilarity> double_palette(const Character& ch, const S
 // Vertex v skinned in double by `method`: lbs / cga-points blend the moved points; cga-motors blends the
 // motors (sign fix on the rotor parts) and moves the point once, dividing by its weight; dqs blends the
 // rigid parts as dual quaternions (it has no scale: it moves by the rotation and translation of each
-// similarity and drops the scale); cga-log exponentiates the blend of the similarities' logarithms.
+// similarity and drops the scale); cga-log exponentiates the blend of the similarities' logarithms;
+// cga-tlerp takes the linear part of cga-motors' blend and the weighted mean of the translations.
 inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSimilarity>& pal,
                               const SkinnedMesh& mesh, std::size_t v) {
   const glm::dvec3 p(mesh.px[v], mesh.py[v], mesh.pz[v]);
@@ -175,7 +176,8 @@ inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSim
       for (int k = 0; k < 4; ++k) out += double(ws[k]) * pal[js[k]](p);
       return out;
     }
-    case SkinningMethod::cga_motors: {
+    case SkinningMethod::cga_motors:
+    case SkinningMethod::cga_tlerp: {
       auto motor = [&](int k, double m[12]) {
         const DoubleSimilarity& x = pal[js[k]];
         kernels::motor_from_trs(x.translation.x, x.translation.y, x.translation.z, x.rotation.w, -x.rotation.z,
@@ -196,7 +198,14 @@ inline glm::dvec3 double_skin(SkinningMethod method, const std::vector<DoubleSim
       double prepared[13], P[4];
       kernels::transform_point_staged_prepare(sum, prepared);
       kernels::transform_point_staged(prepared, p.x, p.y, p.z, P);
-      return glm::dvec3(P[0], P[1], P[2]) / P[3];
+      if (method == SkinningMethod::cga_motors) return glm::dvec3(P[0], P[1], P[2]) / P[3];
+      // cga-tlerp: the blended motor's linear part (its move of p less its move of the origin) plus the mean
+      // of the bones' translations (a similarity moves the origin by its translation).
+      double O[4];
+      kernels::transform_point_staged(prepared, 0.0, 0.0, 0.0, O);
+      glm::dvec3 t(0.0);
+      for (int k = 0; k < 4; ++k) t += double(ws[k]) * pal[js[k]].translation;
+      return glm::dvec3(P[0] / P[3] - O[0] / O[3], P[1] / P[3] - O[1] / O[3], P[2] / P[3] - O[2] / O[3]) + t;
     }
     case SkinningMethod::dqs: {
       const glm::dquat r0 = pal[js[0]].rotation;

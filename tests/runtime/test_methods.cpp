@@ -1,4 +1,5 @@
-// The skinning method table (skinning_methods.hpp) and its promise: every blend is written once, as a script.
+// The skinning method table (skinning_methods.hpp, generated from runtime/skinning_methods.txt) and its
+// promise: every blend is written once, as a script.
 // The shader and CUDA sources of the repository (everything but the generated outputs) are scanned for a
 // hand-written blend: an expression that multiplies by a skin weight.
 #include <catch2/catch.hpp>

@@ -8,7 +8,8 @@
 // in a channel. Exit status 1 when a picture differs, 2 on an error.
 //
 //   cga-draw-bench [--vertices N] [--characters C] [--bones B] [--frames K] [--width W] [--height H]
-//                  [--method lbs|dqs|cga-points|cga-motors|all] [--timing auto|query|wall] [--pictures DIR]
+//                  [--method METHOD|all] [--timing auto|query|wall] [--pictures DIR]
+// (METHOD: a name of the method table, runtime/skinning_methods.txt; --help lists them.)
 #include <fmt/core.h>
 
 #include <chrono>
@@ -68,9 +69,12 @@ Options parse(int argc, char** argv) {
     else if (a == "--timing") o.timing = value();
     else if (a == "--pictures") o.pictures = value();
     else if (a == "--help" || a == "-h") {
+      // The methods from the table, so that the help lists every one there is.
+      std::string methods;
+      for (const SkinningMethodInfo& m : kSkinningMethods) methods += std::string(m.name) + "|";
       fmt::print("usage: cga-draw-bench [--vertices N] [--characters C] [--bones B] [--frames K] [--width W] "
-                 "[--height H]\n                      [--method lbs|dqs|cga-points|cga-motors|all] "
-                 "[--timing auto|query|wall] [--pictures DIR]\n");
+                 "[--height H]\n                      [--method {}all] "
+                 "[--timing auto|query|wall] [--pictures DIR]\n", methods);
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option " + std::string(a) + " (see --help)");

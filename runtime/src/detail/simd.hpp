@@ -23,6 +23,12 @@ CGA_SIMD_INLINE v8f load8(const float* p) {
   return v;
 }
 CGA_SIMD_INLINE void store8(float* p, v8f v) { __builtin_memcpy(p, &v, sizeof v); }
+CGA_SIMD_INLINE v4f load4(const float* p) {
+  v4f v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+CGA_SIMD_INLINE void store4(float* p, v4f v) { __builtin_memcpy(p, &v, sizeof v); }
 CGA_SIMD_INLINE v4f low(v8f v) { return __builtin_shufflevector(v, v, 0, 1, 2, 3); }
 CGA_SIMD_INLINE v4f high(v8f v) { return __builtin_shufflevector(v, v, 4, 5, 6, 7); }
 

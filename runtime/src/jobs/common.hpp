@@ -49,8 +49,9 @@ using Block = float[kM][kB];
 
 #if defined(__GNUC__)
 // The 8-float vectors and the 8x8 transpose of the shared SIMD header (detail/simd.hpp).
+using simd::load4;
 using simd::load8;
-using simd::sqrt8;
+using simd::store4;
 using simd::store8;
 using simd::transpose8;
 using simd::v8f;
@@ -63,7 +64,7 @@ inline void gather_rows(Get m, v8f rows[kM]) {
   // Coefficients 8-11: motors l and l + 4 in the halves of one vector, then 4x4 transposes within the halves.
   v8f g[4];
   for (int k = 0; k < 4; ++k)
-    g[k] = __builtin_shufflevector(detail::load4(&m(k).c[8]), detail::load4(&m(k + 4).c[8]), 0, 1, 2, 3, 4, 5, 6, 7);
+    g[k] = __builtin_shufflevector(load4(&m(k).c[8]), load4(&m(k + 4).c[8]), 0, 1, 2, 3, 4, 5, 6, 7);
   const v8f a01 = __builtin_shufflevector(g[0], g[1], 0, 8, 1, 9, 4, 12, 5, 13);
   const v8f b01 = __builtin_shufflevector(g[0], g[1], 2, 10, 3, 11, 6, 14, 7, 15);
   const v8f a23 = __builtin_shufflevector(g[2], g[3], 0, 8, 1, 9, 4, 12, 5, 13);
@@ -86,14 +87,24 @@ inline void scatter_rows(v8f rows[kM], Motor* __restrict m) {
   transpose8(rows);
   for (int l = 0; l < 8; ++l) store8(&m[l].c[0], rows[l]);
   for (int k = 0; k < 4; ++k) {
-    detail::store4(&m[k].c[8], __builtin_shufflevector(h[k], h[k], 0, 1, 2, 3));
-    detail::store4(&m[k + 4].c[8], __builtin_shufflevector(h[k], h[k], 4, 5, 6, 7));
+    store4(&m[k].c[8], __builtin_shufflevector(h[k], h[k], 0, 1, 2, 3));
+    store4(&m[k + 4].c[8], __builtin_shufflevector(h[k], h[k], 4, 5, 6, 7));
   }
 }
 
-// motor_normalize_fast on 8 motors' coefficient rows, in place.
+// motor_normalize_fast (the generated motor_normalize) on 8 motors' coefficient rows, in place: the kernel
+// once per lane, a loop GCC vectorizes across the lanes (the kernel is inlined, flatten). The script's SIMD
+// batch kernel over the Motor arrays (12-float stride) was more than twice as slow (docs/runtime.md).
 inline void normalize_rows(v8f m[kM]) {
-  detail::motor_normalize_fast_t(m, m, [](v8f v) { return sqrt8(v); });
+  float in[kM][kB], out[kM][kB];
+  for (std::size_t c = 0; c < kM; ++c) store8(in[c], m[c]);
+  for (std::size_t l = 0; l < kB; ++l) {
+    float x[kM], y[kM];
+    for (std::size_t c = 0; c < kM; ++c) x[c] = in[c][l];
+    kernels::motor_normalize(x, y);
+    for (std::size_t c = 0; c < kM; ++c) out[c][l] = y[c];
+  }
+  for (std::size_t c = 0; c < kM; ++c) m[c] = load8(out[c]);
 }
 // 8 rows into out[0..count): straight for a whole block, else through a local block.
 inline void scatter_rows(v8f rows[kM], std::size_t count, Motor* __restrict out) {

@@ -4,6 +4,7 @@
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include "common.hpp"
+#include "../detail/rigid_mul_simd.hpp"
 
 namespace cga {
 
@@ -18,7 +19,7 @@ CGA_JOBS_CLONES void local_to_model_rigid(std::size_t n, const int* __restrict p
     if (parents[j] < 0)
       model[j] = local[j];
     else
-      motor_mul_rigid_simd(model[parents[j]], local[j], model[j]);
+      detail::motor_mul_rigid_simd(model[parents[j]], local[j], model[j]);
   }
 }
 

@@ -46,13 +46,13 @@ CGA_JOBS_CLONES void palette(std::size_t n, const int* __restrict remap, const M
       scatter_rows(z, out + k);
     }
 #endif
-    for (; k < n; ++k) motor_mul_rigid_simd(model[remap[k]], ib[k], out[k]);
+    for (; k < n; ++k) motor_mul_rigid(model[remap[k]], ib[k], out[k]);
     return;
   }
   for (std::size_t k = 0; k < n; ++k) {
     const Motor& m = model[remap[k]];
     if (motor_is_rigid(m) && motor_is_rigid(ib[k]))
-      motor_mul_rigid_simd(m, ib[k], out[k]);
+      motor_mul_rigid(m, ib[k], out[k]);
     else
       palette_general(m, ib[k], out[k]);
   }

@@ -1,8 +1,8 @@
 // Motor operations of the runtime: thin wrappers over the kernels generated from runtime/scripts/*.clu
 // (namespace cga::kernels), plus the few operations the script language cannot express because they need
-// single coefficients, square roots of grade parts or trigonometry of them (decomposition back to TRS,
-// normalization, the screw logarithm/exponential). Those work on the 12 coefficients of types.hpp's Motor
-// and call the generated kernels for every geometric product.
+// single coefficients, square roots of grade parts or trigonometry of them (decomposition back to TRS, the
+// screw logarithm/exponential). Those work on the 12 coefficients of types.hpp's Motor and call the
+// generated kernels for every geometric product.
 //
 // Coefficient groups of a motor M = T*R*D (D = 1 + k E, k = (1-s)/(1+s), E = einf^e0):
 //   a = R        in c[0], c[1] (e12), c[2] (e13), c[4] (e23)
@@ -22,9 +22,10 @@
 #include "cga/runtime/types.hpp"
 
 #include <motor_from_trs.hpp>
-#include <motor_mul_rigid.hpp>
 #include <motor_lerp_paper.hpp>
 #include <motor_mul.hpp>
+#include <motor_mul_rigid.hpp>
+#include <motor_normalize.hpp>
 #include <motor_reverse.hpp>
 #include <transform_point.hpp>
 #include <transform_point_staged.hpp>
@@ -147,67 +148,6 @@ inline float motor_rotor_dot(const Motor& x, const Motor& y) {
   return rotor_sign::dot(gx, gy);
 }
 
-// The same product as motor_mul_rigid in 4-wide SIMD (GCC/Clang vector extensions: SSE on x86-64, NEON on
-// ARM). Read off the generated kernel: with a = (c0, c1, c2, c4) (1 e12 e13 e23) and e = (c3, c5, c6, c8)
-// (e1inf e2inf e3inf e123inf) of each factor,
-//   C.a = a0 b + a1 P1(b) + a2 P2(b) + a3 P3(b)                      (b = B.a, f = B.e)
-//   C.e = e0 b + e1 P1(b) + e2 P2(b) + e3 P3(b) + a0 f - a1 P1(f) - a2 P2(f) + a3 P3(f)
-// with the signed permutations P1(v) = (-v1, v0, v3, -v2), P2(v) = (-v2, -v3, v0, v1), P3(v) = (-v3, v2,
-// -v1, v0). Same 48 products, but the sums are 4 lanes wide and 2 deep, so one product's latency is about
-// half the scalar kernel's (the hierarchy is a chain of dependent products); tests compare it with the
-// generated kernel.
-#if defined(__GNUC__)
-namespace detail {
-using v4f = float __attribute__((vector_size(16)));
-using v4i = int __attribute__((vector_size(16)));
-inline v4f load4(const float* p) {
-  v4f v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store4(float* p, v4f v) { __builtin_memcpy(p, &v, sizeof v); }
-template <int L0, int L1, int L2, int L3>
-inline v4f flip(v4f v) {  // negate the lanes whose L is 1
-  constexpr int m = static_cast<int>(0x80000000u);
-  const v4i mask = {L0 ? m : 0, L1 ? m : 0, L2 ? m : 0, L3 ? m : 0};
-  return reinterpret_cast<v4f>(reinterpret_cast<v4i>(v) ^ mask);
-}
-inline v4f p1(v4f v) { return flip<1, 0, 0, 1>(__builtin_shufflevector(v, v, 1, 0, 3, 2)); }
-inline v4f p2(v4f v) { return flip<1, 1, 0, 0>(__builtin_shufflevector(v, v, 2, 3, 0, 1)); }
-inline v4f p3(v4f v) { return flip<1, 0, 1, 0>(__builtin_shufflevector(v, v, 3, 2, 1, 0)); }
-template <int L>
-inline v4f splat(v4f v) { return __builtin_shufflevector(v, v, L, L, L, L); }
-}  // namespace detail
-
-inline void motor_mul_rigid_simd(const Motor& x, const Motor& y, Motor& out) {
-  using namespace detail;
-  // The left factor's coefficients are only ever splatted: broadcast them straight from memory (load-port
-  // work, no shuffles), and permute only the right factor. In the hierarchy and the palette the left factor
-  // is the parent / model motor (the dependency chain), the right one the local / inverse bind motor, whose
-  // permutations are then off the chain. The shuffle pipes were the bottleneck of the register splats.
-  const auto s = [&](int c) {
-    const float v = x.c[c];
-    return v4f{v, v, v, v};
-  };
-  const v4f yl = load4(&y.c[0]), ym = load4(&y.c[4]), yh = load4(&y.c[8]);
-  const v4f b = __builtin_shufflevector(yl, ym, 0, 1, 2, 4);
-  const v4f f = __builtin_shufflevector(__builtin_shufflevector(yl, ym, 3, 5, 6, 7), yh, 0, 1, 2, 4);
-  const v4f b1 = p1(b), b2 = p2(b), b3 = p3(b);
-  // a = (c0, c1, c2, c4), e = (c3, c5, c6, c8) of x.
-  const v4f ca = (s(0) * b + s(1) * b1) + (s(2) * b2 + s(4) * b3);
-  const v4f ce = ((s(3) * b + s(5) * b1) + (s(6) * b2 + s(8) * b3)) +
-                 ((s(0) * f - s(1) * p1(f)) + (s(4) * p3(f) - s(2) * p2(f)));
-  const v4f zero = {0.0f, 0.0f, 0.0f, 0.0f};
-  store4(&out.c[0], __builtin_shufflevector(ca, ce, 0, 1, 2, 4));   // 1 e12 e13 e1inf
-  // Whole 16-byte stores only: the next product of the hierarchy loads them back (store forwarding).
-  store4(&out.c[4], __builtin_shufflevector(__builtin_shufflevector(ca, ce, 3, 5, 6, 7), zero, 0, 1, 2, 4));
-                                                                     // e23 e2inf e3inf einf^e0 = 0
-  store4(&out.c[8], __builtin_shufflevector(ce, zero, 3, 4, 4, 4));  // e123inf, b group 0
-}
-#else
-inline void motor_mul_rigid_simd(const Motor& x, const Motor& y, Motor& out) { motor_mul_rigid(x, y, out); }
-#endif
-
 // The similarity (t, R, s) nearest to a motor, read from its coefficients (see the header comment): exact for
 // M = T*R*D; for a blend of motors it is the projection that nlerp's normalization uses (rotation from
 // a + b normalized, scale |a - b| / |a + b|, translation by least squares on the einf blades).
@@ -217,46 +157,18 @@ Transform motor_to_transform(const Motor& m);
 // nlerp's normalization: the exact motor of motor_to_transform(m).
 inline Motor motor_normalize(const Motor& m) { return motor_from_transform(motor_to_transform(m)); }
 
-// The same projection straight on the coefficients, in float and without branches, so that loops over
-// joints vectorize (the jobs use it). With g = a + b, h = a - b and e the einf blades (header comment),
-// motor_from_transform(motor_to_transform(m)) works out to
-//   a' = g/|g|,  b' = k' a' with k' = (|g| - |h|)/(|g| + |h|),  c' = 2 P e / (|g| + |h|),
+// The same projection straight on the coefficients, in float and without branches (generated
+// motor_normalize, runtime/scripts/motor_normalize.clu): with g = a + b, h = a - b and e the einf blades
+// (header comment), a' = g/|g|, b' = k' a' with k' = (|g| - |h|)/(|g| + |h|), and c' = 2 P e / (|g| + |h|),
 // where P removes from e its component along n = (-g3, g2, -g1, g0)/|g|, the normal of the 3-space that
-// the einf blades of an exact motor T*R*D span (the columns of L(g) in motor_to_transform). For b = 0
-// (no scale) g = h bit for bit, so b' = 0 exactly. No rotor part gives non-finite coefficients.
-// in and out may alias.
-namespace detail {
-// motor_normalize_fast's formula on any arithmetic type T (float, or a SIMD vector holding one coefficient of
-// several motors, as the jobs use it), with the square root given.
-template <class T, class Sqrt>
-inline void motor_normalize_fast_t(const T* in, T* out, Sqrt sqrt) {
-  const T g0 = in[0] + in[7], g1 = in[1] + in[9], g2 = in[2] + in[10], g3 = in[4] + in[11];
-  const T h0 = in[0] - in[7], h1 = in[1] - in[9], h2 = in[2] - in[10], h3 = in[4] - in[11];
-  const T gg = g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3;
-  const T hh = h0 * h0 + h1 * h1 + h2 * h2 + h3 * h3;
-  const T ng = sqrt(gg), nh = sqrt(hh);
-  const T inv_g = 1.0f / ng, inv_sum = 1.0f / (ng + nh);
-  const T k = (ng - nh) * inv_sum;
-  const T e0 = in[3], e1 = in[5], e2 = in[6], e3 = in[8];
-  // (n . e) n with n unnormalized: divide by |g|^2 once.
-  const T ne = (-g3 * e0 + g2 * e1 - g1 * e2 + g0 * e3) * (inv_g * inv_g);
-  const T ce = 2.0f * inv_sum;
-  const T a0 = g0 * inv_g, a1 = g1 * inv_g, a2 = g2 * inv_g, a3 = g3 * inv_g;
-  out[0] = a0, out[1] = a1, out[2] = a2, out[4] = a3;
-  out[7] = k * a0, out[9] = k * a1, out[10] = k * a2, out[11] = k * a3;
-  out[3] = ce * (e0 + ne * g3);
-  out[5] = ce * (e1 - ne * g2);
-  out[6] = ce * (e2 + ne * g1);
-  out[8] = ce * (e3 - ne * g0);
-}
-}  // namespace detail
-
-inline void motor_normalize_fast(const float* in, float* out) {
-  detail::motor_normalize_fast_t(in, out, [](float x) { return std::sqrt(x); });
-}
+// the einf blades of an exact motor T*R*D span. For b = 0 (no scale) g = h bit for bit, so b' = 0 exactly.
+// No rotor part gives non-finite coefficients. The jobs call the kernel per lane of blocks of 8 motors
+// (jobs/common.hpp), a loop GCC vectorizes. in and out may alias: the kernel reads every input before it
+// writes.
+inline void motor_normalize_fast(const float* in, float* out) { kernels::motor_normalize(in, out); }
 inline Motor motor_normalize_fast(const Motor& m) {
   Motor out;
-  motor_normalize_fast(m.c.data(), out.c.data());
+  kernels::motor_normalize(m.c.data(), out.c.data());
   return out;
 }
 

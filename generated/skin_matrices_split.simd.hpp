@@ -25,14 +25,15 @@
 // input w1
 // input w2
 // input w3
+// input prepared: A.e1 A.e2 A.e3 A.einf B.e1 B.e2 B.e3 B.einf C.e1 C.e2 C.e3 C.einf
 // input x
 // input y
 // input z
 // input nx
 // input ny
 // input nz
-#ifndef CGAGEN_SIMD_skin_matrices_SHARED
-#define CGAGEN_SIMD_skin_matrices_SHARED
+#ifndef CGAGEN_SIMD_skin_matrices_split_SHARED
+#define CGAGEN_SIMD_skin_matrices_split_SHARED
 
 #include <array>
 #include <cmath>
@@ -75,19 +76,145 @@ struct Out {
 
 namespace cga::kernels::simd {
 
-inline constexpr std::array<std::string_view, 3> skin_matrices_p_blades = {"e1", "e2", "e3"};
-inline constexpr std::array<std::string_view, 3> skin_matrices_n__blades = {"e1", "e2", "e3"};
+inline constexpr std::array<std::string_view, 12> skin_matrices_split_prepare_prepared_blades = {"A.e1", "A.e2", "A.e3", "A.einf", "B.e1", "B.e2", "B.e3", "B.einf", "C.e1", "C.e2", "C.e3", "C.einf"};
+inline constexpr std::array<std::string_view, 3> skin_matrices_split_p_blades = {"e1", "e2", "e3"};
+inline constexpr std::array<std::string_view, 3> skin_matrices_split_n__blades = {"e1", "e2", "e3"};
+inline void skin_matrices_split_prepare(const float A0[4], const float B0[4], const float C0[4], const float A1[4], const float B1[4], const float C1[4], const float A2[4], const float B2[4], const float C2[4], const float A3[4], const float B3[4], const float C3[4], float w0, float w1, float w2, float w3, float prepared[12]) {
+  const float A0_e1 = A0[0];
+  const float A0_e2 = A0[1];
+  const float A0_e3 = A0[2];
+  const float A0_einf = A0[3];
+  const float B0_e1 = B0[0];
+  const float B0_e2 = B0[1];
+  const float B0_e3 = B0[2];
+  const float B0_einf = B0[3];
+  const float C0_e1 = C0[0];
+  const float C0_e2 = C0[1];
+  const float C0_e3 = C0[2];
+  const float C0_einf = C0[3];
+  const float A1_e1 = A1[0];
+  const float A1_e2 = A1[1];
+  const float A1_e3 = A1[2];
+  const float A1_einf = A1[3];
+  const float B1_e1 = B1[0];
+  const float B1_e2 = B1[1];
+  const float B1_e3 = B1[2];
+  const float B1_einf = B1[3];
+  const float C1_e1 = C1[0];
+  const float C1_e2 = C1[1];
+  const float C1_e3 = C1[2];
+  const float C1_einf = C1[3];
+  const float A2_e1 = A2[0];
+  const float A2_e2 = A2[1];
+  const float A2_e3 = A2[2];
+  const float A2_einf = A2[3];
+  const float B2_e1 = B2[0];
+  const float B2_e2 = B2[1];
+  const float B2_e3 = B2[2];
+  const float B2_einf = B2[3];
+  const float C2_e1 = C2[0];
+  const float C2_e2 = C2[1];
+  const float C2_e3 = C2[2];
+  const float C2_einf = C2[3];
+  const float A3_e1 = A3[0];
+  const float A3_e2 = A3[1];
+  const float A3_e3 = A3[2];
+  const float A3_einf = A3[3];
+  const float B3_e1 = B3[0];
+  const float B3_e2 = B3[1];
+  const float B3_e3 = B3[2];
+  const float B3_einf = B3[3];
+  const float C3_e1 = C3[0];
+  const float C3_e2 = C3[1];
+  const float C3_e3 = C3[2];
+  const float C3_einf = C3[3];
+  prepared[0] = A0_e1 * w0 + A1_e1 * w1 + A2_e1 * w2 + A3_e1 * w3;  // A.e1
+  prepared[1] = A0_e2 * w0 + A1_e2 * w1 + A2_e2 * w2 + A3_e2 * w3;  // A.e2
+  prepared[2] = A0_e3 * w0 + A1_e3 * w1 + A2_e3 * w2 + A3_e3 * w3;  // A.e3
+  prepared[3] = A0_einf * w0 + A1_einf * w1 + A2_einf * w2 + A3_einf * w3;  // A.einf
+  prepared[4] = B0_e1 * w0 + B1_e1 * w1 + B2_e1 * w2 + B3_e1 * w3;  // B.e1
+  prepared[5] = B0_e2 * w0 + B1_e2 * w1 + B2_e2 * w2 + B3_e2 * w3;  // B.e2
+  prepared[6] = B0_e3 * w0 + B1_e3 * w1 + B2_e3 * w2 + B3_e3 * w3;  // B.e3
+  prepared[7] = B0_einf * w0 + B1_einf * w1 + B2_einf * w2 + B3_einf * w3;  // B.einf
+  prepared[8] = C0_e1 * w0 + C1_e1 * w1 + C2_e1 * w2 + C3_e1 * w3;  // C.e1
+  prepared[9] = C0_e2 * w0 + C1_e2 * w1 + C2_e2 * w2 + C3_e2 * w3;  // C.e2
+  prepared[10] = C0_e3 * w0 + C1_e3 * w1 + C2_e3 * w2 + C3_e3 * w3;  // C.e3
+  prepared[11] = C0_einf * w0 + C1_einf * w1 + C2_einf * w2 + C3_einf * w3;  // C.einf
+}
+
+inline void skin_matrices_split_prepare(const double A0[4], const double B0[4], const double C0[4], const double A1[4], const double B1[4], const double C1[4], const double A2[4], const double B2[4], const double C2[4], const double A3[4], const double B3[4], const double C3[4], double w0, double w1, double w2, double w3, double prepared[12]) {
+  const double A0_e1 = A0[0];
+  const double A0_e2 = A0[1];
+  const double A0_e3 = A0[2];
+  const double A0_einf = A0[3];
+  const double B0_e1 = B0[0];
+  const double B0_e2 = B0[1];
+  const double B0_e3 = B0[2];
+  const double B0_einf = B0[3];
+  const double C0_e1 = C0[0];
+  const double C0_e2 = C0[1];
+  const double C0_e3 = C0[2];
+  const double C0_einf = C0[3];
+  const double A1_e1 = A1[0];
+  const double A1_e2 = A1[1];
+  const double A1_e3 = A1[2];
+  const double A1_einf = A1[3];
+  const double B1_e1 = B1[0];
+  const double B1_e2 = B1[1];
+  const double B1_e3 = B1[2];
+  const double B1_einf = B1[3];
+  const double C1_e1 = C1[0];
+  const double C1_e2 = C1[1];
+  const double C1_e3 = C1[2];
+  const double C1_einf = C1[3];
+  const double A2_e1 = A2[0];
+  const double A2_e2 = A2[1];
+  const double A2_e3 = A2[2];
+  const double A2_einf = A2[3];
+  const double B2_e1 = B2[0];
+  const double B2_e2 = B2[1];
+  const double B2_e3 = B2[2];
+  const double B2_einf = B2[3];
+  const double C2_e1 = C2[0];
+  const double C2_e2 = C2[1];
+  const double C2_e3 = C2[2];
+  const double C2_einf = C2[3];
+  const double A3_e1 = A3[0];
+  const double A3_e2 = A3[1];
+  const double A3_e3 = A3[2];
+  const double A3_einf = A3[3];
+  const double B3_e1 = B3[0];
+  const double B3_e2 = B3[1];
+  const double B3_e3 = B3[2];
+  const double B3_einf = B3[3];
+  const double C3_e1 = C3[0];
+  const double C3_e2 = C3[1];
+  const double C3_e3 = C3[2];
+  const double C3_einf = C3[3];
+  prepared[0] = A0_e1 * w0 + A1_e1 * w1 + A2_e1 * w2 + A3_e1 * w3;  // A.e1
+  prepared[1] = A0_e2 * w0 + A1_e2 * w1 + A2_e2 * w2 + A3_e2 * w3;  // A.e2
+  prepared[2] = A0_e3 * w0 + A1_e3 * w1 + A2_e3 * w2 + A3_e3 * w3;  // A.e3
+  prepared[3] = A0_einf * w0 + A1_einf * w1 + A2_einf * w2 + A3_einf * w3;  // A.einf
+  prepared[4] = B0_e1 * w0 + B1_e1 * w1 + B2_e1 * w2 + B3_e1 * w3;  // B.e1
+  prepared[5] = B0_e2 * w0 + B1_e2 * w1 + B2_e2 * w2 + B3_e2 * w3;  // B.e2
+  prepared[6] = B0_e3 * w0 + B1_e3 * w1 + B2_e3 * w2 + B3_e3 * w3;  // B.e3
+  prepared[7] = B0_einf * w0 + B1_einf * w1 + B2_einf * w2 + B3_einf * w3;  // B.einf
+  prepared[8] = C0_e1 * w0 + C1_e1 * w1 + C2_e1 * w2 + C3_e1 * w3;  // C.e1
+  prepared[9] = C0_e2 * w0 + C1_e2 * w1 + C2_e2 * w2 + C3_e2 * w3;  // C.e2
+  prepared[10] = C0_e3 * w0 + C1_e3 * w1 + C2_e3 * w2 + C3_e3 * w3;  // C.e3
+  prepared[11] = C0_einf * w0 + C1_einf * w1 + C2_einf * w2 + C3_einf * w3;  // C.einf
+}
 
 }  // namespace cga::kernels::simd
 
 #endif
 
 // The lane-wise part, once per instruction set (Highway's per-target inclusion).
-#if defined(CGAGEN_SIMD_skin_matrices_TOGGLE) == defined(HWY_TARGET_TOGGLE)
-#ifdef CGAGEN_SIMD_skin_matrices_TOGGLE
-#undef CGAGEN_SIMD_skin_matrices_TOGGLE
+#if defined(CGAGEN_SIMD_skin_matrices_split_TOGGLE) == defined(HWY_TARGET_TOGGLE)
+#ifdef CGAGEN_SIMD_skin_matrices_split_TOGGLE
+#undef CGAGEN_SIMD_skin_matrices_split_TOGGLE
 #else
-#define CGAGEN_SIMD_skin_matrices_TOGGLE
+#define CGAGEN_SIMD_skin_matrices_split_TOGGLE
 #endif
 
 #include <hwy/highway.h>
@@ -260,58 +387,23 @@ namespace cga::kernels::simd::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 template <class D, class V>
-HWY_INLINE void skin_matrices(D d, const V A0[4], const V B0[4], const V C0[4], const V A1[4], const V B1[4], const V C1[4], const V A2[4], const V B2[4], const V C2[4], const V A3[4], const V B3[4], const V C3[4], V w0, V w1, V w2, V w3, V x, V y, V z, V nx, V ny, V nz, V p[3], V n_[3]) {
+HWY_INLINE void skin_matrices_split(D d, const V prepared[12], V x, V y, V z, V nx, V ny, V nz, V p[3], V n_[3]) {
   (void)d;
-  const V t0 = A0[0] * w0 + A1[0] * w1 + A2[0] * w2 + A3[0] * w3;
-  const V t1 = A0[1] * w0 + A1[1] * w1 + A2[1] * w2 + A3[1] * w3;
-  const V t2 = A0[2] * w0 + A1[2] * w1 + A2[2] * w2 + A3[2] * w3;
-  const V t3 = B0[0] * w0 + B1[0] * w1 + B2[0] * w2 + B3[0] * w3;
-  const V t4 = B0[1] * w0 + B1[1] * w1 + B2[1] * w2 + B3[1] * w3;
-  const V t5 = B0[2] * w0 + B1[2] * w1 + B2[2] * w2 + B3[2] * w3;
-  const V t6 = C0[0] * w0 + C1[0] * w1 + C2[0] * w2 + C3[0] * w3;
-  const V t7 = C0[1] * w0 + C1[1] * w1 + C2[1] * w2 + C3[1] * w3;
-  const V t8 = C0[2] * w0 + C1[2] * w1 + C2[2] * w2 + C3[2] * w3;
-  p[0] = A0[3] * w0 + A1[3] * w1 + A2[3] * w2 + A3[3] * w3 + t0 * x + t1 * y + t2 * z;  // e1
-  p[1] = B0[3] * w0 + B1[3] * w1 + B2[3] * w2 + B3[3] * w3 + t3 * x + t4 * y + t5 * z;  // e2
-  p[2] = C0[3] * w0 + C1[3] * w1 + C2[3] * w2 + C3[3] * w3 + t6 * x + t7 * y + t8 * z;  // e3
-  n_[0] = nx * t0 + ny * t1 + nz * t2;  // e1
-  n_[1] = nx * t3 + ny * t4 + nz * t5;  // e2
-  n_[2] = nx * t6 + ny * t7 + nz * t8;  // e3
+  p[0] = prepared[0] * x + prepared[1] * y + prepared[2] * z + prepared[3];  // e1
+  p[1] = prepared[4] * x + prepared[5] * y + prepared[6] * z + prepared[7];  // e2
+  p[2] = prepared[10] * z + prepared[8] * x + prepared[9] * y + prepared[11];  // e3
+  n_[0] = nx * prepared[0] + ny * prepared[1] + nz * prepared[2];  // e1
+  n_[1] = nx * prepared[4] + ny * prepared[5] + nz * prepared[6];  // e2
+  n_[2] = nx * prepared[8] + ny * prepared[9] + nz * prepared[10];  // e3
 }
 
 // Elements i .. i + Lanes(d) - 1: the streams' lanes in, NAME, the lanes out.
 template <class D>
-HWY_INLINE void skin_matrices_lanes(D d, const In& A0, const In& B0, const In& C0, const In& A1, const In& B1, const In& C1, const In& A2, const In& B2, const In& C2, const In& A3, const In& B3, const In& C3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_, std::size_t i) {
+HWY_INLINE void skin_matrices_split_lanes(D d, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_, std::size_t i) {
   using V = hn::Vec<D>;
   cgagen_rows<D> cgagen_rows_cache;
-  V lanes_A0[4];
-  cgagen_load(d, A0, i, lanes_A0, cgagen_rows_cache);
-  V lanes_B0[4];
-  cgagen_load(d, B0, i, lanes_B0, cgagen_rows_cache);
-  V lanes_C0[4];
-  cgagen_load(d, C0, i, lanes_C0, cgagen_rows_cache);
-  V lanes_A1[4];
-  cgagen_load(d, A1, i, lanes_A1, cgagen_rows_cache);
-  V lanes_B1[4];
-  cgagen_load(d, B1, i, lanes_B1, cgagen_rows_cache);
-  V lanes_C1[4];
-  cgagen_load(d, C1, i, lanes_C1, cgagen_rows_cache);
-  V lanes_A2[4];
-  cgagen_load(d, A2, i, lanes_A2, cgagen_rows_cache);
-  V lanes_B2[4];
-  cgagen_load(d, B2, i, lanes_B2, cgagen_rows_cache);
-  V lanes_C2[4];
-  cgagen_load(d, C2, i, lanes_C2, cgagen_rows_cache);
-  V lanes_A3[4];
-  cgagen_load(d, A3, i, lanes_A3, cgagen_rows_cache);
-  V lanes_B3[4];
-  cgagen_load(d, B3, i, lanes_B3, cgagen_rows_cache);
-  V lanes_C3[4];
-  cgagen_load(d, C3, i, lanes_C3, cgagen_rows_cache);
-  const V lanes_w0 = cgagen_load(d, w0, i, cgagen_rows_cache);
-  const V lanes_w1 = cgagen_load(d, w1, i, cgagen_rows_cache);
-  const V lanes_w2 = cgagen_load(d, w2, i, cgagen_rows_cache);
-  const V lanes_w3 = cgagen_load(d, w3, i, cgagen_rows_cache);
+  V lanes_prepared[12];
+  cgagen_load(d, prepared, i, lanes_prepared, cgagen_rows_cache);
   const V lanes_x = cgagen_load(d, x, i, cgagen_rows_cache);
   const V lanes_y = cgagen_load(d, y, i, cgagen_rows_cache);
   const V lanes_z = cgagen_load(d, z, i, cgagen_rows_cache);
@@ -320,18 +412,18 @@ HWY_INLINE void skin_matrices_lanes(D d, const In& A0, const In& B0, const In& C
   const V lanes_nz = cgagen_load(d, nz, i, cgagen_rows_cache);
   V lanes_p[3];
   V lanes_n_[3];
-  skin_matrices(d, lanes_A0, lanes_B0, lanes_C0, lanes_A1, lanes_B1, lanes_C1, lanes_A2, lanes_B2, lanes_C2, lanes_A3, lanes_B3, lanes_C3, lanes_w0, lanes_w1, lanes_w2, lanes_w3, lanes_x, lanes_y, lanes_z, lanes_nx, lanes_ny, lanes_nz, lanes_p, lanes_n_);
+  skin_matrices_split(d, lanes_prepared, lanes_x, lanes_y, lanes_z, lanes_nx, lanes_ny, lanes_nz, lanes_p, lanes_n_);
   cgagen_store(d, p, i, lanes_p);
   cgagen_store(d, n_, i, lanes_n_);
 }
 
 // Elements 0 .. n - 1: whole vectors, then the tail one lane at a time (the same code on one lane).
-inline HWY_NOINLINE void skin_matrices_batch(std::size_t n, const In& A0, const In& B0, const In& C0, const In& A1, const In& B1, const In& C1, const In& A2, const In& B2, const In& C2, const In& A3, const In& B3, const In& C3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
+inline HWY_NOINLINE void skin_matrices_split_batch(std::size_t n, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
   const hn::ScalableTag<float> d;
   const std::size_t N = hn::Lanes(d);
   std::size_t i = 0;
-  for (; i + N <= n; i += N) skin_matrices_lanes(d, A0, B0, C0, A1, B1, C1, A2, B2, C2, A3, B3, C3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p, n_, i);
-  for (; i < n; ++i) skin_matrices_lanes(hn::CappedTag<float, 1>(), A0, B0, C0, A1, B1, C1, A2, B2, C2, A3, B3, C3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p, n_, i);
+  for (; i + N <= n; i += N) skin_matrices_split_lanes(d, prepared, x, y, z, nx, ny, nz, p, n_, i);
+  for (; i < n; ++i) skin_matrices_split_lanes(hn::CappedTag<float, 1>(), prepared, x, y, z, nx, ny, nz, p, n_, i);
 }
 
 }  // namespace cga::kernels::simd::HWY_NAMESPACE
@@ -340,17 +432,17 @@ HWY_AFTER_NAMESPACE();
 #endif
 
 // The entry a caller uses: dispatched to the best instruction set, or the static one.
-#if HWY_ONCE && !defined(CGAGEN_SIMD_skin_matrices_ENTRY)
-#define CGAGEN_SIMD_skin_matrices_ENTRY
+#if HWY_ONCE && !defined(CGAGEN_SIMD_skin_matrices_split_ENTRY)
+#define CGAGEN_SIMD_skin_matrices_split_ENTRY
 namespace cga::kernels::simd {
 #ifdef CGAGEN_SIMD_DISPATCH
-HWY_EXPORT(skin_matrices_batch);
-inline void skin_matrices_batch(std::size_t n, const In& A0, const In& B0, const In& C0, const In& A1, const In& B1, const In& C1, const In& A2, const In& B2, const In& C2, const In& A3, const In& B3, const In& C3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
-  HWY_DYNAMIC_DISPATCH(skin_matrices_batch)(n, A0, B0, C0, A1, B1, C1, A2, B2, C2, A3, B3, C3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p, n_);
+HWY_EXPORT(skin_matrices_split_batch);
+inline void skin_matrices_split_batch(std::size_t n, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
+  HWY_DYNAMIC_DISPATCH(skin_matrices_split_batch)(n, prepared, x, y, z, nx, ny, nz, p, n_);
 }
 #else
-inline void skin_matrices_batch(std::size_t n, const In& A0, const In& B0, const In& C0, const In& A1, const In& B1, const In& C1, const In& A2, const In& B2, const In& C2, const In& A3, const In& B3, const In& C3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
-  HWY_STATIC_DISPATCH(skin_matrices_batch)(n, A0, B0, C0, A1, B1, C1, A2, B2, C2, A3, B3, C3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p, n_);
+inline void skin_matrices_split_batch(std::size_t n, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
+  HWY_STATIC_DISPATCH(skin_matrices_split_batch)(n, prepared, x, y, z, nx, ny, nz, p, n_);
 }
 #endif
 }  // namespace cga::kernels::simd
