@@ -187,24 +187,34 @@ function(cgagen_generate target)
     endforeach()
   endforeach()
 
-  # Library specs: one file per target, named after the spec's stem (the spec names its namespace).
+  # Library specs: one file per target, named after the spec's stem (the spec names its namespace). One cgagen
+  # run per spec writes every target (--also): the functions are built and optimized once.
   foreach(_spec ${CG_LIBRARIES})
     get_filename_component(_spec ${_spec} ABSOLUTE)
     get_filename_component(_name ${_spec} NAME_WE)
     string(MAKE_C_IDENTIFIER "${_name}" _name)
+    set(_lib_outs "")
+    set(_lib_args "")
     foreach(_t ${CG_TARGETS})
       if(NOT DEFINED CGAGEN_EXT_${_t})
         message(FATAL_ERROR "cgagen_generate(${target}): unknown target '${_t}' (${CGAGEN_TARGETS})")
       endif()
       set(_out ${CG_OUTPUT_DIR}/${_name}${CGAGEN_EXT_${_t}})
-      add_custom_command(
-        OUTPUT ${_out}
-        COMMAND ${_tool} --library --target ${_t} ${CG_OPT} ${_templates_arg} -o ${_out} ${_spec}
-        DEPENDS ${_spec} ${_templates} ${_tool_dep}
-        COMMENT "cgagen --library ${_name}${CGAGEN_EXT_${_t}}"
-        VERBATIM)
-      list(APPEND _outputs ${_out})
+      if(_lib_outs)
+        list(APPEND _lib_args --also ${_t}=${_out})
+      else()
+        list(APPEND _lib_args --target ${_t} -o ${_out})
+      endif()
+      list(APPEND _lib_outs ${_out})
     endforeach()
+    list(JOIN CG_TARGETS "," _lib_targets)
+    add_custom_command(
+      OUTPUT ${_lib_outs}
+      COMMAND ${_tool} --library ${CG_OPT} ${_templates_arg} ${_lib_args} ${_spec}
+      DEPENDS ${_spec} ${_templates} ${_tool_dep}
+      COMMENT "cgagen --library ${_name} (${_lib_targets})"
+      VERBATIM)
+    list(APPEND _outputs ${_lib_outs})
   endforeach()
 
   get_property(_calls GLOBAL PROPERTY CGAGEN_CALLS_${target})

@@ -30,74 +30,12 @@
 #include "opt/report.hpp"
 #include "opt/stage.hpp"
 #include "symbolic/node_cache.hpp"
+#include "usage.hpp"
 
 namespace {
 
 using namespace cgagen;
 
-const char* kUsage = R"(usage: cgagen [options] SCRIPT
-       cgagen --gpc [options] SOURCE
-       cgagen --library [options] SPEC
-
-Compiles a CluScript (Gaalop/CLUCalc) file into straight-line code. SCRIPT - reads the script from
-standard input (diagnostics then name <stdin>, the function is named kernel unless --name is given).
-
-With --gpc, SOURCE is a C, C++ or CUDA file whose `#pragma gpc begin` ... `#pragma gpc end` blocks are
-compiled in place (mv_from_array inputs, a `#pragma clucalc` script, to_array / mv_to_array /
-mv_get_bladecoeff of its outputs after it; see docs/gpc.md); the rest of the text is copied unchanged.
-
-With --library, SPEC is a library spec (an algebra and named types, see docs/library.md): the output is
-a typed library with every operation between the types, each one optimized kernel.
-
-options:
-  --algebra NAME|FILE     the geometric algebra (default cga): 2d 3d 2dpga 3dpga cra sta cga gac qga
-                          dcga ccga, or a Gaalop definition.csv file
-  --target NAME           output language (default cpp); --target list prints the targets,
-                          --target list -v one line each with extension, toolchain and summary
-  --target-extension NAME print the file extension of target NAME
-  -O0 | -O1 | -O2         optimization level (default -O2)
-  -o FILE                 write the output to FILE (default: standard output)
-  --name NAME             function name: letters, digits and _, not starting with a digit (default:
-                          the script's file stem, other bytes as _, a leading digit after a _); a
-                          target's reserved word gets a trailing _ in that target
-  --templates DIR         emitter templates (default: ../share/cgagen/templates next to the cgagen
-                          executable when installed, else the source tree's templates/)
-  --pack NAME=KIND        glsl: pass input/output NAME as mat3x4, vec4, vec3 or float; a staged
-                          kernel's prepared values also as block (a uniform block) or buffer (a
-                          storage buffer of many sets, selected by an int prepared_index)
-  --return OUT            glsl: return output OUT instead of an out parameter
-  --outputs A,B,...       keep only these outputs of the script (in the script's order); the work
-                          only the others need is not emitted
-  --jacobian A,B,...      also emit every output's partial derivatives with respect to inputs A, B, ...
-                          (a multivector input: each coefficient), as outputs OUT_d_A (also
-                          `#pragma jacobian [OUT...] wrt A B`)
-  --uniform A,B,...       stage the kernel: inputs A, B, ... are fixed across a batch (also
-                          `#pragma uniform A B`); emits NAME_prepare(uniforms) -> prepared values
-                          and NAME(prepared, per-element inputs); --stats, --diff, --eval show it
-  --stage-at A,B,...      stage the kernel at the named values of the script: NAME_prepare computes
-                          them from the inputs they read, NAME the outputs from them and the other
-                          inputs (a two-pass batch loop: the prepare once per element)
-  --gpc                   SOURCE is a C/C++/CUDA source with GPC blocks: write it with each block compiled
-                          (with --algebra, -O, -o, --Werror, --target cpp|cuda|opencl, --type)
-  --library               SCRIPT is a library spec: write the library (with -O, -o, --target, --templates;
-                          --stats prints each function's op counts instead)
-  --type T                --gpc: the number type of the blocks' outputs and temporaries (default float;
-                          double or another C type name: literals then have no f suffix)
-  --stats                 print op counts instead of code
-  --stats-out FILE        write op counts to FILE besides the code
-  --diff A B              diff the code of two levels (e.g. --diff -O1 -O2), with the op-count change;
-                          with uniforms: unstaged at A against staged at B
-  --dump-ast              print the parsed script
-  --Werror                treat warnings (a misspelt name that became an input) as errors
-  --eval NAME=VALUE ...   evaluate the optimized kernel (values before or after SCRIPT); a multivector input as NAME=v1,v2,...
-                          (one value per declared blade); prints OUTPUT BLADE VALUE lines
-  --passes                print the -O2 optimizer's passes in run order (name and description)
-  --version               print the version (cgagen X.Y.Z)
-  --help                  this text
-
-exit status: 0 success; 1 error in the script (FILE:LINE:COL: error: ...) or other failure
-(cgagen: error: ...); 2 bad usage.
-)";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -124,6 +62,7 @@ struct Options {
   std::vector<std::string> jacobian;  // --jacobian
   bool gpc = false;                   // --gpc
   bool library = false;               // --library
+  std::vector<std::pair<emit::Target, std::string>> also;  // --also TARGET=FILE (--library)
   std::string type;                   // --type (--gpc)
   bool target_given = false;
 };
@@ -248,6 +187,12 @@ Options parse_args(int argc, char** argv) {
         o.gpc = true;
       } else if (a == "--library") {
         o.library = true;
+      } else if (a == "--also") {
+        const std::string v = value(i, a);
+        const auto eq = v.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+          throw UsageError("--also expects TARGET=FILE, got '" + v + "'");
+        o.also.emplace_back(emit::parse_target(v.substr(0, eq)), v.substr(eq + 1));
       } else if (a == "--type") {
         o.type = value(i, a);
         bool ok = !o.type.empty();
@@ -290,6 +235,7 @@ Options parse_args(int argc, char** argv) {
   int modes = o.stats + o.diff.has_value() + o.dump_ast + o.eval;
   if (modes > 1) throw UsageError("--stats, --diff, --dump-ast and --eval exclude each other");
   if (o.gpc && o.library) throw UsageError("--gpc and --library exclude each other");
+  if (!o.also.empty() && !o.library) throw UsageError("--also applies to --library");
   if (o.gpc) {
     if (modes || !o.uniforms.empty() || !o.stage_at.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() || !o.stats_out.empty() || !o.emit.pack.empty() ||
         !o.emit.return_output.empty())
@@ -302,7 +248,8 @@ Options parse_args(int argc, char** argv) {
   } else if (o.library) {
     if (o.diff || o.dump_ast || o.eval || !o.uniforms.empty() || !o.stage_at.empty() || !o.outputs.empty() || !o.jacobian.empty() || !o.name.empty() ||
         !o.stats_out.empty() || !o.emit.pack.empty() || !o.emit.return_output.empty() || o.algebra_given || !o.type.empty())
-      throw UsageError("--library takes -O, -o, --target, --templates and --stats only (the spec names the algebra)");
+      throw UsageError("--library takes -O, -o, --target, --templates, --also and --stats only (the spec names the algebra)");
+    if (o.stats && !o.also.empty()) throw UsageError("--also writes code: not with --stats");
   } else if (!o.type.empty()) {
     throw UsageError("--type applies to --gpc");
   }
@@ -507,6 +454,10 @@ int run_library(const Options& o) {
     emit::EmitOptions eo = o.emit;
     eo.script_name = std::filesystem::path(o.script).filename().string();
     write_text(o.output, library::emit_library(lib, eo, eo.script_name));
+    for (const auto& [target, file] : o.also) {
+      eo.target = target;
+      write_text(file, library::emit_library(lib, eo, eo.script_name));
+    }
     return 0;
   } catch (const front::CompileError& e) {
     std::cerr << front::format_diagnostic(file, e.loc(), e.what());

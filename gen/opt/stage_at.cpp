@@ -13,18 +13,16 @@
 #include <set>
 #include <stdexcept>
 
+#include "opt/internal.hpp"
 #include "opt/stage.hpp"
 
 namespace cgagen::opt {
 
 using namespace GiNaC;
+using detail::collect_symbols;
+using detail::ExSet;
 
 namespace {
-
-void collect(const ex& e, std::set<ex, ex_is_less>& out) {
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
-    if (is_a<symbol>(*it)) out.insert(*it);
-}
 
 std::string join(const std::vector<std::string>& names) {
   std::string s;
@@ -33,7 +31,7 @@ std::string join(const std::vector<std::string>& names) {
 }
 
 // The values of k that `roots` need (directly or through other values), as a mask over k.values.
-std::vector<bool> needed_values(const Kernel& k, std::set<ex, ex_is_less> wanted) {
+std::vector<bool> needed_values(const Kernel& k, ExSet wanted) {
   std::vector<bool> need(k.values.size(), false);
   // Values refer only to earlier values: one backward sweep closes the set.
   for (size_t v = k.values.size(); v-- > 0;) {
@@ -41,13 +39,13 @@ std::vector<bool> needed_values(const Kernel& k, std::set<ex, ex_is_less> wanted
     for (const auto& s : k.values[v].symbols) used = used || wanted.count(s) > 0;
     if (!used) continue;
     need[v] = true;
-    for (const auto& c : k.values[v].coeffs) collect(c, wanted);
+    for (const auto& c : k.values[v].coeffs) collect_symbols(c, wanted);
   }
   return need;
 }
 
 // The inputs of k whose symbols occur in `used`, in input order.
-std::vector<KernelInput> inputs_used(const Kernel& k, const std::set<ex, ex_is_less>& used) {
+std::vector<KernelInput> inputs_used(const Kernel& k, const ExSet& used) {
   std::vector<KernelInput> out;
   for (const auto& in : k.inputs)
     if (std::any_of(in.symbols.begin(), in.symbols.end(), [&](const realsymbol& s) { return used.count(s) > 0; }))
@@ -116,19 +114,19 @@ StagedProgram stage_at(const Kernel& kernel, const std::vector<std::string>& nam
       for (auto& c : v.coeffs) c = c.subs(to_prepared, subs_options::no_pattern);
     Kernel probe = kernel;
     probe.values = values;
-    std::set<ex, ex_is_less> wanted;
+    ExSet wanted;
     for (const auto& o : kernel.outputs)
       wanted.insert(kernel.values[o.value].symbols.begin(), kernel.values[o.value].symbols.end());
     std::vector<bool> need = needed_values(probe, wanted);
     for (size_t c : cut) need[c] = false;
-    std::set<ex, ex_is_less> used;
+    ExSet used;
     std::map<size_t, int> index;
     second.values.clear();
     for (size_t v = 0; v < values.size(); ++v) {
       if (!need[v]) continue;
       index[v] = static_cast<int>(second.values.size());
       second.values.push_back(values[v]);
-      for (const auto& c : values[v].coeffs) collect(c, used);
+      for (const auto& c : values[v].coeffs) collect_symbols(c, used);
     }
     for (auto& o : second.outputs) o.value = index.at(static_cast<size_t>(o.value));
     second.inputs = {prepared};
@@ -140,17 +138,17 @@ StagedProgram stage_at(const Kernel& kernel, const std::vector<std::string>& nam
   first.uniforms.clear();
   first.outputs.clear();
   {
-    std::set<ex, ex_is_less> wanted;
+    ExSet wanted;
     for (size_t c : cut) wanted.insert(kernel.values[c].symbols.begin(), kernel.values[c].symbols.end());
     const std::vector<bool> need = needed_values(kernel, wanted);
-    std::set<ex, ex_is_less> used;
+    ExSet used;
     std::vector<KernelValue> values;
     std::map<size_t, int> index;
     for (size_t v = 0; v < kernel.values.size(); ++v) {
       if (!need[v]) continue;
       index[v] = static_cast<int>(values.size());
       values.push_back(kernel.values[v]);
-      for (const auto& c : kernel.values[v].coeffs) collect(c, used);
+      for (const auto& c : kernel.values[v].coeffs) collect_symbols(c, used);
     }
     first.values = values;
     // Every input the body does not read, in input order (unread ones too): the prepare's parameters are then

@@ -402,3 +402,36 @@ TEST_CASE("cli: --outputs keeps the named outputs and drops the work only the ot
   CHECK(r.out.find("--outputs names 'q', which is not an output of the script (its outputs: a, b, c)") !=
         std::string::npos);
 }
+
+TEST_CASE("cli: --library --also writes each target from one build, the same bytes as a run per target", "[cli]") {
+  const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
+  const std::string dir = std::string(CGA_BINARY_DIR) + "/";
+  auto slurp = [](const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  auto r = run("--library --target cpp -o " + dir + "also_e3.hpp --also glsl=" + dir + "also_e3.glsl --also rust=" + dir +
+               "also_e3.rs " + spec);
+  REQUIRE(r.code == 0);
+  for (const char* t : {"glsl", "rust"}) {
+    const std::string ext = t == std::string("glsl") ? ".glsl" : ".rs";
+    r = run(std::string("--library --target ") + t + " -o " + dir + "alone_e3" + ext + " " + spec);
+    REQUIRE(r.code == 0);
+    const std::string together = slurp(dir + "also_e3" + ext), alone = slurp(dir + "alone_e3" + ext);
+    CHECK(!together.empty());
+    CHECK(together == alone);
+  }
+  r = run("--also glsl=x.glsl " + script("motor_mul.clu"));
+  CHECK(r.code == 2);
+  CHECK(r.out.find("--also applies to --library") != std::string::npos);
+  r = run("--library --also glsl " + spec);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("--also expects TARGET=FILE, got 'glsl'") != std::string::npos);
+  r = run("--library --also fortran=x.f " + spec);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("unknown target 'fortran'") != std::string::npos);
+  r = run("--library --stats --also glsl=x.glsl " + spec);
+  CHECK(r.code == 2);
+}

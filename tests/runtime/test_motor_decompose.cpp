@@ -12,8 +12,11 @@
 #include <cga_rigid.hpp>
 
 #include "cga/runtime/motor.hpp"
+#include "random_motors.hpp"
 
 using namespace cga;
+using cga::test::random_blend;
+using cga::test::random_transform;
 
 namespace {
 
@@ -76,46 +79,6 @@ Motor reference_motor_screw(const Motor& m1, const Motor& m2, float alpha) {
     m = motor_mul(m, motor_from_transform(dilation));
   }
   return motor_mul(r1, m);
-}
-
-Transform random_transform(std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  Transform x;
-  x.translation = glm::vec3(u(rng), u(rng), u(rng)) * 5.0f;
-  x.rotation = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
-  x.scale = std::exp(1.5f * u(rng));
-  return x;
-}
-
-// A weighted sum of n random motors (weights summing to 1, each motor on the first one's side), times w.
-Motor random_blend(std::mt19937& rng, int n, float w) {
-  std::uniform_real_distribution<float> u(0.05f, 1.0f);
-  std::vector<Motor> m;
-  std::vector<float> weight;
-  float sum = 0.0f;
-  std::uniform_real_distribution<float> d(-1.0f, 1.0f);
-  const Transform first = random_transform(rng);
-  for (int i = 0; i < n; ++i) {
-    // Nearby poses, as the layers of a blend have: the first one's, moved, turned and scaled a little.
-    Transform x = first;
-    if (i > 0) {
-      x.translation += glm::vec3(d(rng), d(rng), d(rng));
-      x.rotation = glm::normalize(x.rotation + 0.4f * glm::quat(d(rng), d(rng), d(rng), d(rng)));
-      x.scale *= std::exp(0.3f * d(rng));
-    }
-    m.push_back(motor_from_transform(x));
-    weight.push_back(u(rng));
-    sum += weight.back();
-  }
-  Motor out;
-  out.c.fill(0.0f);
-  for (int i = 0; i < n; ++i) {
-    float dot = 0.0f;
-    for (int c : {0, 1, 2, 4}) dot += m[i].c[c] * m[0].c[c];
-    const float sign = dot < 0.0f ? -1.0f : 1.0f;
-    for (int c = 0; c < 12; ++c) out.c[c] += w * sign * weight[i] / sum * m[i].c[c];
-  }
-  return out;
 }
 
 float ulps_apart_scaled(float a, float b, float magnitude) { return std::abs(a - b) / (magnitude * 1.1920929e-7f); }

@@ -11,8 +11,11 @@
 
 #include "cga/runtime/jobs.hpp"
 #include "cga/runtime/motor.hpp"
+#include "random_motors.hpp"
 
 using namespace cga;
+using cga::test::random_blend;
+using cga::test::random_transform;
 
 namespace {
 
@@ -38,42 +41,6 @@ Motor reference_normalize(const Motor& m) {
   o[5] = ce * (e1 - ne * g2);
   o[6] = ce * (e2 + ne * g1);
   o[8] = ce * (e3 - ne * g0);
-  return out;
-}
-
-Transform random_transform(std::mt19937& rng, bool scaled) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  Transform x;
-  x.translation = glm::vec3(u(rng), u(rng), u(rng)) * 5.0f;
-  x.rotation = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)));
-  x.scale = scaled ? std::exp(1.5f * u(rng)) : 1.0f;
-  return x;
-}
-
-// A weighted sum of n nearby random motors (weights summing to 1, each on the first one's side), times w.
-Motor random_blend(std::mt19937& rng, int n, float w, bool scaled) {
-  std::uniform_real_distribution<float> u(0.05f, 1.0f), d(-1.0f, 1.0f);
-  const Transform first = random_transform(rng, scaled);
-  std::vector<Motor> m;
-  std::vector<float> weight;
-  float sum = 0.0f;
-  for (int i = 0; i < n; ++i) {
-    Transform x = first;
-    if (i > 0) {
-      x.translation += glm::vec3(d(rng), d(rng), d(rng));
-      x.rotation = glm::normalize(x.rotation + 0.4f * glm::quat(d(rng), d(rng), d(rng), d(rng)));
-      if (scaled) x.scale *= std::exp(0.3f * d(rng));
-    }
-    m.push_back(motor_from_transform(x));
-    weight.push_back(u(rng));
-    sum += weight.back();
-  }
-  Motor out;
-  out.c.fill(0.0f);
-  for (int i = 0; i < n; ++i) {
-    const float sign = motor_rotor_dot(m[i], m[0]) < 0.0f ? -1.0f : 1.0f;
-    for (int c = 0; c < 12; ++c) out.c[c] += w * sign * weight[i] / sum * m[i].c[c];
-  }
   return out;
 }
 
