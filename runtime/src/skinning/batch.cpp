@@ -83,13 +83,14 @@ CGA_SKINNING_METHODS(CGA_METHOD_BATCH)
 
 // The input lines of vertices [begin, end) + kAhead, for a large mesh: its loop is bound by the misses one
 // core keeps in flight, which the hardware prefetchers alone leave too few of. Addresses past the arrays are
-// formed as integers (a prefetch never faults).
+// formed as integers (a prefetch never faults). Both always inlined: GCC takes a function whose only effect
+// is a prefetch for one without effects and deletes the calls to it (the prefetches vanish).
 constexpr std::size_t kAhead = 1024;
-inline void prefetch(const void* base, std::size_t bytes) {
+CGA_ALWAYS_INLINE void prefetch(const void* base, std::size_t bytes) {
   __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(base) + bytes));
 }
 template <bool kNormals>
-inline void prefetch_block(const Streams& s, std::size_t begin, std::size_t end) {
+CGA_ALWAYS_INLINE void prefetch_block(const Streams& s, std::size_t begin, std::size_t end) {
   for (std::size_t v = begin + kAhead; v < end + kAhead; v += 16) {
     for (const float* p : {s.px, s.py, s.pz}) prefetch(p, 4 * v);
     if constexpr (kNormals)
