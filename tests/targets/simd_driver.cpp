@@ -118,11 +118,12 @@ std::string list(const std::vector<size_t>& v) {
 
 }  // namespace
 
-std::string simd_driver_source(const std::vector<SimdCase>& cases, bool dispatch) {
+std::string simd_driver_source(const std::vector<SimdCase>& cases, bool dispatch, long long not_run) {
   std::string src = "// The simd target's test driver (tests/targets/simd_driver.cpp). Generated; do not edit.\n";
   if (dispatch)
     src += "#define CGAGEN_SIMD_DISPATCH\n"
-           "#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)\n"
+           "#define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV | " +
+           std::to_string(not_run) + "LL)\n"
            "#define HWY_TARGET_INCLUDE \"all.simd.hpp\"\n"
            "#include <hwy/foreach_target.h>\n";
   src += "#include \"all.simd.hpp\"\n#include <hwy/targets.h>\n#include <cmath>\n#include <cstdio>\n"

@@ -23,6 +23,8 @@ struct SimdCase {
   std::vector<size_t> out_sizes;
 };
 
-std::string simd_driver_source(const std::vector<SimdCase>& cases, bool dispatch);
+// `not_run`: Highway targets (bits) not compiled into a dispatch build: those the CPU running the test lacks,
+// whose code the driver could only compile, never run.
+std::string simd_driver_source(const std::vector<SimdCase>& cases, bool dispatch, long long not_run = 0);
 
 }  // namespace targets

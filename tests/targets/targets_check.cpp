@@ -43,6 +43,8 @@
 
 #include <unistd.h>
 
+#include <hwy/targets.h>
+
 #include "algebra/blade.hpp"
 #include "emit/emit.hpp"
 #include "emit/names.hpp"
@@ -652,7 +654,12 @@ void run_simd(const std::vector<Case>& cases, const std::string& gendir, const s
   // Re-included once per instruction set by Highway (no include guard).
   std::ofstream(work + "/all.simd.hpp") << all;
   const std::string base = work + "/drive_simd";
-  std::ofstream(base + ".cpp") << targets::simd_driver_source(sc, !cross);
+  // x86 targets this CPU cannot run are not compiled (each costs about a fifth of the driver's build, and code
+  // that only compiles is not tested); the runtime's build compiles every one.
+  const long long x86 = HWY_AVX3_DL | HWY_AVX3 | HWY_AVX2 | HWY_SSE4 | HWY_SSSE3;
+  const long long not_run = cross ? 0 : x86 & ~static_cast<long long>(hwy::SupportedTargets());
+  std::ofstream(base + ".cpp") << targets::simd_driver_source(sc, !cross, not_run);
+  if (not_run) std::printf("not compiled (this CPU lacks them): Highway targets 0x%llx\n", not_run);
   std::string cmd, run;
   if (cross && (std::string(CROSS_CXX).find("NOTFOUND") != std::string::npos ||
                 std::string(QEMU_AARCH64).find("NOTFOUND") != std::string::npos)) {
