@@ -25,7 +25,7 @@ constexpr size_t kMaxInlineTreeSize = 100000;
 // quadratic in the script (a chain M = M*R: each M is one term longer than the one before, of one degree
 // more; 800 steps took 15 s). Twice the budget leaves room for such cancellation; the bundled scripts'
 // values that -O1 keeps expanded stay far below.
-constexpr size_t kMaxValueNodes = 2 * kMaxExpandedNodes;
+constexpr size_t kMaxValueNodes = kMaxExpandedNodes;
 
 // e.subs(at, kSymbolSubs) for a map from symbols to values, computing each shared node once across all
 // calls (the outputs of a normalized value share one root of a large sum), and the result with each power
