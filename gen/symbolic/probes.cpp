@@ -55,50 +55,34 @@ std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
   return mul_mod(reduce(n.numer()), inverse_mod(den));
 }
 
-// e at one point, modulo p, computed directly on GiNaC's stored nodes (each shared node once); no value
-// where e is not a rational function of known symbols and opaque nodes, or has a pole there. Exact: the same
-// value as substituting the point's rationals and reducing, except where an intermediate denominator is a
-// multiple of p (probability ~2^-61 per operation).
+// e at one point, modulo p, computed directly on GiNaC's stored nodes (each shared node once); nullopt when
+// e is not a rational function of known symbols or has a pole there. Exact: the same value as
+// substituting the point's rationals and reducing, except where an intermediate denominator is a multiple
+// of p (probability ~2^-61 per operation).
 // A symbol without a value in `at` for which unknown(symbol) holds sets *unknown_met (the caller then gives
-// it one and asks again); other symbols without a value make e's value none. An opaque node without a value
-// gets opaque_value(node), which draws one and records it in `at`.
-template <class Value, class Values, class Unknown, class Opaque>
-Value value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, Opaque&& opaque_value, bool* unknown_met) {
-  std::unordered_map<const GiNaC::basic*, Value> memo;
-  auto eval = [&](auto&& self, const GiNaC::ex& x) -> Value {
-    if (symbolic::is_numeric(x)) return {number_mod(GiNaC::ex_to<GiNaC::numeric>(x)), false};
+// it one and asks again); other symbols without a value make e's value nullopt.
+template <class Values, class Unknown>
+std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, bool* unknown_met) {
+  std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
+  auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
+    if (symbolic::is_numeric(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
     if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
-    Value v;
-    const Kind kind = kind_of(x);
-    const bool root = kind == Kind::Power && !(symbolic::is_numeric(x.op(1)) &&
-                                               GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer());
-    if (kind == Kind::Symbol) {
+    std::optional<std::uint64_t> v;
+    if (symbolic::is_symbol(x)) {
       if (auto it = at.find(x); it != at.end()) v = it->second;  // none where it did not evaluate
       else if (unknown(x)) *unknown_met = true;
-    } else if (kind == Kind::Function || root) {
-      if (auto it = at.find(x); it != at.end()) v = it->second;
-      else v = opaque_value(x);
-    } else if (kind == Kind::Add || kind == Kind::Mul) {
-      const bool product = kind == Kind::Mul;
+    } else if (symbolic::is_add(x) || symbolic::is_mul(x)) {
+      const bool product = symbolic::is_mul(x);
       const auto& pairs = symbolic::pairs_of(x);
       std::uint64_t acc = product ? 1 : 0;
       bool ok = true;
       for (const auto& p : pairs) {
+        auto r = self(self, p.rest);
+        if (!r) { ok = false; break; }
         const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(p.coeff);
-        if (product && !c.is_integer()) {  // a root among the factors, stored as (base, exponent): opaque
-          const GiNaC::ex root = GiNaC::pow(p.rest, c);
-          const auto it = at.find(root);
-          const Value r = it != at.end() ? it->second : opaque_value(root);
-          v.opaque = true;
-          if (!r.v) { ok = false; break; }
-          acc = mul_mod(acc, *r.v);
-          continue;
-        }
-        const Value r = self(self, p.rest);
-        v.opaque |= r.opaque;
-        if (!r.v) { ok = false; break; }
         if (product) {
-          std::uint64_t base = *r.v;
+          if (!c.is_integer()) { ok = false; break; }
+          std::uint64_t base = *r;
           if (c.is_negative()) {
             if (base == 0) { ok = false; break; }  // a pole
             base = inverse_mod(base);
@@ -107,7 +91,7 @@ Value value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, Opaque&&
         } else {
           auto cm = number_mod(c);
           if (!cm) { ok = false; break; }
-          acc = add_mod(acc, mul_mod(*cm, *r.v));
+          acc = add_mod(acc, mul_mod(*cm, *r));
         }
       }
       if (ok && x.nops() > pairs.size()) {  // the numeric overall coefficient
@@ -115,13 +99,13 @@ Value value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, Opaque&&
         if (!oc) ok = false;
         else acc = product ? mul_mod(acc, *oc) : add_mod(acc, *oc);
       }
-      if (ok) v.v = acc;
-    } else if (kind == Kind::Power) {  // an integer power
-      const Value r = self(self, x.op(0));
+      if (ok) v = acc;
+    } else if (symbolic::is_power(x) && symbolic::is_numeric(x.op(1)) &&
+               GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer()) {
+      auto r = self(self, x.op(0));
       const GiNaC::numeric& k = GiNaC::ex_to<GiNaC::numeric>(x.op(1));
-      v.opaque = r.opaque;
-      if (r.v && !(k.is_negative() && *r.v == 0))
-        v.v = pow_mod(k.is_negative() ? inverse_mod(*r.v) : *r.v, static_cast<std::uint64_t>(GiNaC::abs(k).to_long()));
+      if (r && !(k.is_negative() && *r == 0))
+        v = pow_mod(k.is_negative() ? inverse_mod(*r) : *r, static_cast<std::uint64_t>(GiNaC::abs(k).to_long()));
     }
     memo.emplace(symbolic::node_of(x), v);
     return v;
@@ -131,44 +115,39 @@ Value value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, Opaque&&
 
 }  // namespace
 
-std::uint64_t ProbePoints::draw() {
-  state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
-  return 1 + (state_ >> 3) % (kPrime - 1);
-}
-
 void ProbePoints::add_input(const GiNaC::symbol& s) {
-  for (auto& at : at_) at[s] = {draw(), false};
+  for (auto& at : at_) {
+    state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
+    at[s] = 1 + (state_ >> 3) % (kPrime - 1);
+  }
 }
 
 void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { definitions_.emplace(s, definition); }
 
 // e at point k. The defined symbols e depends on get their values there first, when e meets one without.
-// The values drawn for opaque nodes depend only on the order in which nodes are first met, which is the
-// order of the tests: the same in every run.
-ProbePoints::Value ProbePoints::value_at_point(const GiNaC::ex& e, int k) {
+std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int k) {
   Values& at = at_[static_cast<std::size_t>(k)];
   auto pending = [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); };
-  auto opaque = [&](const GiNaC::ex& node) { return at[node] = Value{draw(), true}; };
   bool met_pending = false;
-  Value v = value_at<Value>(e, at, pending, opaque, &met_pending);
+  std::optional<std::uint64_t> v = value_at(e, at, pending, &met_pending);
   if (!met_pending) return v;
   symbolic::define_dependencies_first(
       e, pending, [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
       [&](const GiNaC::ex& s) {
         bool unused = false;
-        const Value sv = value_at<Value>(definitions_.at(s), at, pending, opaque, &unused);
+        const std::optional<std::uint64_t> sv = value_at(definitions_.at(s), at, pending, &unused);
         at[s] = sv;
       });
   bool unused = false;
-  return value_at<Value>(e, at, pending, opaque, &unused);
+  return value_at(e, at, pending, &unused);
 }
 
 ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
   int zeros = 0;
   for (int k = 0; k < kPoints; ++k) {
-    const Value v = value_at_point(e, k);
-    if (!v.v) continue;
-    if (*v.v != 0) return v.opaque ? Verdict::Unknown : Verdict::Nonzero;
+    auto v = value_at_point(e, k);
+    if (!v) continue;
+    if (*v != 0) return Verdict::Nonzero;
     ++zeros;
   }
   return zeros == kPoints ? Verdict::Zero : Verdict::Unknown;

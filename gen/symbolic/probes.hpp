@@ -14,15 +14,10 @@
 // a wrong "zero" needs (d/2^61)^3 luck. The points are fixed (the same in every process and every run), so
 // the verdict is deterministic.
 //
-// Only rational functions are evaluated (sums, products, integer powers, rational numbers). A function
-// application (sin, cos, abs, exp, ...) or a root (a non-integer power) is an opaque node: it gets drawn
-// values of its own, one per structurally equal node, as if it were one more input. A coefficient that
-// vanishes at every point with its opaque nodes as independent inputs vanishes whatever values they take,
-// so their true values too: "zero" stands (the chain M = M*R with R = cos(a) - sin(a) e12 + t e1inf has
-// blades whose coefficients cancel term by term in cos(a), sin(a) and t). A nonzero value proves nothing
-// there (cos(a)^2 + sin(a)^2 - 1 is nonzero as a function of independent cos(a) and sin(a); abs(x) - x is
-// nonzero though it vanishes for x > 0): such coefficients, and those with a pole at a point, get no
-// verdict, and callers fall back to sampling and an exact symbolic test.
+// Only rational functions are probed (sums, products, integer powers, rational numbers): abs, sqrt, sin,
+// ... are not polynomial, and abs(a-b) - (a-b) vanishes on half of all points. Such coefficients, their
+// dependants, and coefficients with a pole at a point get no verdict: callers fall back to an exact
+// symbolic test.
 #pragma once
 
 #include <ginac/ginac.h>
@@ -53,17 +48,10 @@ class ProbePoints {
   Verdict test(const GiNaC::ex& e);
 
  private:
-  // A value in [0, p) or none (a pole, a number that is not rational); `opaque` when it depends on an
-  // opaque node.
-  struct Value {
-    std::optional<std::uint64_t> v;
-    bool opaque = false;
-  };
-  using Values = ExHashMap<Value>;  // symbol or opaque node -> its value at one point
-  Value value_at_point(const GiNaC::ex& e, int k);
-  std::uint64_t draw();
+  using Values = ExHashMap<std::optional<std::uint64_t>>;  // symbol -> value in [0, p), or none there
+  std::optional<std::uint64_t> value_at_point(const GiNaC::ex& e, int k);
 
-  std::array<Values, kPoints> at_;  // inputs, opaque nodes and the defined symbols evaluated so far
+  std::array<Values, kPoints> at_;  // inputs and the defined symbols evaluated so far
   ExHashMap<GiNaC::ex> definitions_;
   std::uint64_t state_ = 0x243F6A8885A308D3ull;  // fixed: the same points in every run
 };
