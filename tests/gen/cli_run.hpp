@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -35,6 +36,14 @@ inline std::string write_temp(const std::string& name, const std::string& text) 
   std::string path = std::string(CGA_BINARY_DIR) + "/" + name;
   std::ofstream(path) << text;
   return path;
+}
+
+// The whole of the file at `path` (empty if it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
 }
 
 inline std::string script(const std::string& name) { return std::string(CGA_SOURCE_DIR) + "/runtime/scripts/" + name; }

@@ -406,12 +406,6 @@ TEST_CASE("cli: --outputs keeps the named outputs and drops the work only the ot
 TEST_CASE("cli: --library --also writes each target from one build, the same bytes as a run per target", "[cli]") {
   const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
   const std::string dir = std::string(CGA_BINARY_DIR) + "/";
-  auto slurp = [](const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
   auto r = run("--library --target cpp -o " + dir + "also_e3.hpp --also glsl=" + dir + "also_e3.glsl --also rust=" + dir +
                "also_e3.rs " + spec);
   REQUIRE(r.code == 0);
@@ -419,7 +413,7 @@ TEST_CASE("cli: --library --also writes each target from one build, the same byt
     const std::string ext = t == std::string("glsl") ? ".glsl" : ".rs";
     r = run(std::string("--library --target ") + t + " -o " + dir + "alone_e3" + ext + " " + spec);
     REQUIRE(r.code == 0);
-    const std::string together = slurp(dir + "also_e3" + ext), alone = slurp(dir + "alone_e3" + ext);
+    const std::string together = cga_test::read_text(dir + "also_e3" + ext), alone = cga_test::read_text(dir + "alone_e3" + ext);
     CHECK(!together.empty());
     CHECK(together == alone);
   }

@@ -32,12 +32,7 @@ using Shell = cga_test::Result;
 
 Shell sh(const std::string& cmd) { return cga_test::shell(cmd + " 2>&1"); }
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
+std::string slurp(const std::string& path) { return cga_test::read_text(path); }
 
 // A folder per process: ctest runs the test cases as parallel processes, which must not share files.
 std::string work_dir() {
