@@ -1,6 +1,7 @@
 // Exact evaluation at fixed points modulo a prime, for zero tests (see probes.hpp).
 #include "symbolic/probes.hpp"
 
+#include <algorithm>
 #include <exception>
 #include <optional>
 #include <unordered_map>
@@ -113,6 +114,102 @@ std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unkn
   return eval(eval, e);
 }
 
+// Degree arithmetic saturates at kHuge (far above any kMaxDegree): a bound past it means "unbounded".
+constexpr std::uint64_t kHuge = std::uint64_t{1} << 62;
+std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) { return a + b >= kHuge ? kHuge : a + b; }
+std::uint64_t mul_sat(std::uint64_t a, std::uint64_t b) {
+  return a != 0 && b >= kHuge / a ? kHuge : a * b;
+}
+
+using Factor = RationalDegree::Factor;
+constexpr std::size_t kMaxFactors = 32;  // past it, a denominator is merged into one factor of its own
+
+std::uint64_t denominator_degree(const RationalDegree& d) {
+  std::uint64_t r = 0;
+  for (const Factor& f : d.denominator) r = add_sat(r, mul_sat(f.degree, f.power));
+  return r;
+}
+
+// Adds power·b's factors to a's (a product), or takes each factor's larger power (a common denominator).
+void merge_factors(std::vector<Factor>& a, const std::vector<Factor>& b, std::uint64_t power, bool lcm) {
+  std::vector<Factor> out;
+  out.reserve(a.size() + b.size());
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    if (j == b.size() || (i < a.size() && a[i].id < b[j].id)) {
+      out.push_back(a[i++]);
+    } else if (i == a.size() || b[j].id < a[i].id) {
+      out.push_back({b[j].id, b[j].degree, mul_sat(b[j].power, power)});
+      ++j;
+    } else {
+      const std::uint64_t pb = mul_sat(b[j].power, power);
+      out.push_back({a[i].id, a[i].degree, lcm ? std::max(a[i].power, pb) : add_sat(a[i].power, pb)});
+      ++i, ++j;
+    }
+  }
+  a = std::move(out);
+}
+
+// Many distinct factors become one factor named by `node` with the low bit set (so it is never taken for
+// the inverse of that node): sound, since a product of factors is a factor, and it bounds the work per sum.
+void bound_factors(RationalDegree& d, const GiNaC::basic* node) {
+  if (d.denominator.size() <= kMaxFactors) return;
+  d.denominator = {Factor{reinterpret_cast<std::uintptr_t>(node) | 1u, denominator_degree(d), 1}};
+}
+
+// Degree bounds of e as value_at evaluates it (the same nodes, the same operations); symbols' bounds come
+// from `symbol_degree`. Each shared node once.
+template <class SymbolDegree>
+RationalDegree degree_of(const GiNaC::ex& e, SymbolDegree&& symbol_degree) {
+  std::unordered_map<const GiNaC::basic*, RationalDegree> memo;
+  const RationalDegree unbounded{kHuge, {}};
+  auto power_into = [](RationalDegree& acc, const RationalDegree& r, const GiNaC::basic* base, long k) {
+    const std::uint64_t n = static_cast<std::uint64_t>(k < 0 ? -k : k);
+    if (k >= 0) {  // (N/D)^k
+      acc.numerator = add_sat(acc.numerator, mul_sat(n, r.numerator));
+      merge_factors(acc.denominator, r.denominator, n, false);
+    } else {  // (D/N)^k: N becomes a factor named by its node
+      acc.numerator = add_sat(acc.numerator, mul_sat(n, denominator_degree(r)));
+      merge_factors(acc.denominator, {Factor{reinterpret_cast<std::uintptr_t>(base), r.numerator, 1}}, n, false);
+    }
+  };
+  auto walk = [&](auto&& self, const GiNaC::ex& x) -> RationalDegree {
+    if (symbolic::is_numeric(x)) return {};
+    if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;
+    RationalDegree d = unbounded;
+    if (symbolic::is_symbol(x)) {
+      d = symbol_degree(x);
+    } else if (symbolic::is_mul(x)) {
+      d = {};
+      for (const auto& p : symbolic::pairs_of(x)) {
+        const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(p.coeff);
+        if (!c.is_integer() || GiNaC::abs(c).int_length() > 62) { d = unbounded; break; }
+        power_into(d, self(self, p.rest), symbolic::node_of(p.rest), c.to_long());
+      }
+    } else if (symbolic::is_add(x)) {
+      std::vector<RationalDegree> terms;
+      d = {};
+      for (const auto& p : symbolic::pairs_of(x)) {
+        terms.push_back(self(self, p.rest));
+        merge_factors(d.denominator, terms.back().denominator, 1, true);
+      }
+      const std::uint64_t common = denominator_degree(d);
+      d.numerator = common;  // a numeric overall coefficient: common · c
+      for (const RationalDegree& t : terms)
+        d.numerator = std::max(d.numerator, add_sat(t.numerator, common - std::min(common, denominator_degree(t))));
+    } else if (symbolic::is_power(x) && symbolic::is_numeric(x.op(1)) &&
+               GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer() &&
+               GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(x.op(1))).int_length() <= 62) {
+      d = {};
+      power_into(d, self(self, x.op(0)), symbolic::node_of(x.op(0)), GiNaC::ex_to<GiNaC::numeric>(x.op(1)).to_long());
+    }
+    bound_factors(d, symbolic::node_of(x));
+    memo.emplace(symbolic::node_of(x), d);
+    return d;
+  };
+  return walk(walk, e);
+}
+
 }  // namespace
 
 void ProbePoints::add_input(const GiNaC::symbol& s) {
@@ -120,6 +217,7 @@ void ProbePoints::add_input(const GiNaC::symbol& s) {
     state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
     at[s] = 1 + (state_ >> 3) % (kPrime - 1);
   }
+  degrees_[s] = RationalDegree{1, {}};
 }
 
 void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { definitions_.emplace(s, definition); }
@@ -142,6 +240,20 @@ std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int
   return value_at(e, at, pending, &unused);
 }
 
+// Bounds of e's numerator degree. The defined symbols e depends on get theirs first (iteratively: chains of
+// definitions can be thousands deep).
+std::uint64_t ProbePoints::numerator_degree(const GiNaC::ex& e) {
+  auto pending = [&](const GiNaC::ex& s) { return !degrees_.count(s) && definitions_.count(s); };
+  auto symbol_degree = [&](const GiNaC::ex& s) {
+    auto it = degrees_.find(s);
+    return it != degrees_.end() ? it->second : RationalDegree{kHuge, {}};
+  };
+  symbolic::define_dependencies_first(
+      e, pending, [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
+      [&](const GiNaC::ex& s) { degrees_[s] = degree_of(definitions_.at(s), symbol_degree); });
+  return degree_of(e, symbol_degree).numerator;
+}
+
 ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
   int zeros = 0;
   for (int k = 0; k < kPoints; ++k) {
@@ -150,7 +262,9 @@ ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
     if (*v != 0) return Verdict::Nonzero;
     ++zeros;
   }
-  return zeros == kPoints ? Verdict::Zero : Verdict::Unknown;
+  // Only a zero verdict needs the degree: a nonzero value proves itself.
+  if (zeros == kPoints && numerator_degree(e) <= kMaxDegree) return Verdict::Zero;
+  return Verdict::Unknown;
 }
 
 }  // namespace cgagen::symbolic

@@ -9,10 +9,13 @@
 // the size of its own statement. Values are kept modulo the prime p = 2^61 - 1, so they stay one machine
 // word however deep the chain of statements (exact rationals would double in size with every product).
 //
-// A rational function of degree d that is not identically zero vanishes at a point drawn uniformly from
-// F_p^n with probability at most d/p (Schwartz–Zippel), and "zero" needs all kPoints points to vanish, so
-// a wrong "zero" needs (d/2^61)^3 luck. The points are fixed (the same in every process and every run), so
-// the verdict is deterministic.
+// A rational function N/D that is not identically zero vanishes at a point drawn uniformly from F_p^n with
+// probability at most deg(N)/p (Schwartz–Zippel), and "zero" needs all kPoints points to vanish, so a wrong
+// "zero" needs (deg(N)/2^61)^3 luck. That bound says nothing once deg(N) nears p: (c + s·i)^(2^128) has an
+// imaginary part that vanishes at every point of F_p. So a zero verdict also needs a bound on deg(N), the
+// degree of the numerator over the common denominator the evaluation forms, of at most kMaxDegree; past
+// it the test gives no verdict. The points are fixed (the same in every process and every run), so the
+// verdict is deterministic.
 //
 // Only rational functions are probed (sums, products, integer powers, rational numbers): abs, sqrt, sin,
 // ... are not polynomial, and abs(a-b) - (a-b) vanishes on half of all points. Such coefficients, their
@@ -25,14 +28,30 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "symbolic/dag.hpp"
 
 namespace cgagen::symbolic {
 
+// Degree bounds of a rational function N/D as the probes evaluate it: deg N, and D as a product of factors
+// (the numerators of inverted subexpressions), each named by its node, so that a sum of terms over the same
+// denominator takes it once (their least common multiple), not once per term.
+struct RationalDegree {
+  struct Factor {
+    std::uintptr_t id;      // the inverted node (low bit set: a merged product of factors, see probes.cpp)
+    std::uint64_t degree;   // of one factor
+    std::uint64_t power;
+  };
+  std::uint64_t numerator = 0;
+  std::vector<Factor> denominator;  // sorted by id
+};
+
 class ProbePoints {
  public:
   static constexpr int kPoints = 3;
+  // Largest numerator degree a zero verdict stands for: a wrong one then needs (2^-21)^3 = 2^-63 luck.
+  static constexpr std::uint64_t kMaxDegree = std::uint64_t{1} << 40;
   enum class Verdict { Zero, Nonzero, Unknown };
 
   // A free symbol (an input): draws its value at every point, in order of calls.
@@ -43,16 +62,18 @@ class ProbePoints {
   // others (nor, when no later statement uses them, even the first), and a value is the same whenever it
   // is computed.
   void define(const GiNaC::symbol& s, const GiNaC::ex& definition);
-  // Zero when e evaluates to exactly 0 at every point, Nonzero when it is a nonzero rational at some point,
-  // Unknown otherwise.
+  // Zero when e evaluates to exactly 0 at every point and its numerator's degree is at most kMaxDegree,
+  // Nonzero when it is a nonzero rational at some point, Unknown otherwise.
   Verdict test(const GiNaC::ex& e);
 
  private:
   using Values = ExHashMap<std::optional<std::uint64_t>>;  // symbol -> value in [0, p), or none there
   std::optional<std::uint64_t> value_at_point(const GiNaC::ex& e, int k);
+  std::uint64_t numerator_degree(const GiNaC::ex& e);
 
   std::array<Values, kPoints> at_;  // inputs and the defined symbols evaluated so far
   ExHashMap<GiNaC::ex> definitions_;
+  ExHashMap<RationalDegree> degrees_;  // inputs and the defined symbols whose degree was needed
   std::uint64_t state_ = 0x243F6A8885A308D3ull;  // fixed: the same points in every run
 };
 

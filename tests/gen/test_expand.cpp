@@ -524,13 +524,24 @@ TEST_CASE("zero tests through the value chain: exact probes, no inlining", "[exp
   // abs is no rational function: abs(y) - y vanishes for y > 0 only, and must not be taken for zero.
   k = expand_text("a = abs(y);\n?c = (a - y)*e1;");
   CHECK(k.values.back().blades.size() == 1);
-  // A chain of 60 squarings: degree 2^60, no expansion ever made, values kept modulo a prime.
+  // A chain of 30 squarings: degree 2^30, no expansion ever made, values kept modulo a prime.
   std::string chain = "v0 = x + 1;\n";
-  for (int i = 1; i <= 60; ++i) chain += "v" + std::to_string(i) + " = v" + std::to_string(i - 1) + "*v" + std::to_string(i - 1) + ";\n";
-  chain += "?r = (v60 - v59*v59)*e1 + v60*e2;";
+  for (int i = 1; i <= 30; ++i) chain += "v" + std::to_string(i) + " = v" + std::to_string(i - 1) + "*v" + std::to_string(i - 1) + ";\n";
+  chain += "?r = (v30 - v29*v29)*e1 + v30*e2;";
   k = expand_text(chain);
   REQUIRE(k.values.back().blades.size() == 1);
   CHECK(k.values.back().blades[0] == 2);
+}
+
+TEST_CASE("zero tests give no verdict past the degree a prime can vouch for", "[expand]") {
+  // 128 squarings of x - y e12 + t e1^einf: degree 2^128 in x, y, t. Modulo p = 2^61 - 1 the e12 part
+  // of (x - y i)^(2^128) vanishes at every point (odd-order elements of F_p^2 lie in F_p), so probes
+  // alone would drop it; the degree bound keeps them from saying "zero", and all three blades stay.
+  std::string script = "M = x - y*e1^e2 + t*e1^einf;\n";
+  for (int i = 0; i < 128; ++i) script += "M = M*M;\n";
+  script += "?M;";
+  Kernel k = expand_text(script);
+  CHECK(k.values.back().blades.size() == 3);
 }
 
 TEST_CASE("zero tests reach values whose probe values and samples were never needed before", "[expand]") {
