@@ -56,33 +56,56 @@ std::optional<std::uint64_t> number_mod(const GiNaC::numeric& n) {
   return mul_mod(reduce(n.numer()), inverse_mod(den));
 }
 
+// Nodes the probes take as independent inputs: function applications, constants (Pi), powers but integer ones.
+bool opaque_node(const GiNaC::ex& x) {
+  const symbolic::Kind k = symbolic::kind_of(x);
+  if (k == symbolic::Kind::Function || k == symbolic::Kind::Constant) return true;
+  return k == symbolic::Kind::Power &&
+         !(symbolic::is_numeric(x.op(1)) && GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer());
+}
+
 // e at one point, modulo p, computed directly on GiNaC's stored nodes (each shared node once); nullopt when
 // e is not a rational function of known symbols or has a pole there. Exact: the same value as
 // substituting the point's rationals and reducing, except where an intermediate denominator is a multiple
 // of p (probability ~2^-61 per operation).
 // A symbol without a value in `at` for which unknown(symbol) holds sets *unknown_met (the caller then gives
 // it one and asks again); other symbols without a value make e's value nullopt.
-template <class Values, class Unknown>
-std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, bool* unknown_met) {
+// An opaque node (a function application, a constant, a non-integer power) gets opaque(node): a value drawn
+// for it as if it were one more input, the same for structurally equal nodes; meeting one, or a symbol in
+// `opaque_symbols`, sets *opaque_met.
+template <class Values, class Unknown, class Opaque, class OpaqueSymbols>
+std::optional<std::uint64_t> value_at(const GiNaC::ex& e, const Values& at, Unknown&& unknown, bool* unknown_met,
+                                      Opaque&& opaque, const OpaqueSymbols& opaque_symbols, bool* opaque_met) {
   std::unordered_map<const GiNaC::basic*, std::optional<std::uint64_t>> memo;
   auto eval = [&](auto&& self, const GiNaC::ex& x) -> std::optional<std::uint64_t> {
     if (symbolic::is_numeric(x)) return number_mod(GiNaC::ex_to<GiNaC::numeric>(x));
     if (auto it = memo.find(symbolic::node_of(x)); it != memo.end()) return it->second;  // symbols too
     std::optional<std::uint64_t> v;
     if (symbolic::is_symbol(x)) {
-      if (auto it = at.find(x); it != at.end()) v = it->second;  // none where it did not evaluate
-      else if (unknown(x)) *unknown_met = true;
+      if (auto it = at.find(x); it != at.end()) {
+        v = it->second;  // none where it did not evaluate
+        if (opaque_symbols.count(x)) *opaque_met = true;
+      } else if (unknown(x)) {
+        *unknown_met = true;
+      }
+    } else if (opaque_node(x)) {
+      v = opaque(x);
+      *opaque_met = true;
     } else if (symbolic::is_add(x) || symbolic::is_mul(x)) {
       const bool product = symbolic::is_mul(x);
       const auto& pairs = symbolic::pairs_of(x);
       std::uint64_t acc = product ? 1 : 0;
       bool ok = true;
       for (const auto& p : pairs) {
+        const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(p.coeff);
+        if (product && !c.is_integer()) {  // rest^c, a root: opaque
+          acc = mul_mod(acc, opaque(GiNaC::pow(p.rest, c)));
+          *opaque_met = true;
+          continue;
+        }
         auto r = self(self, p.rest);
         if (!r) { ok = false; break; }
-        const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(p.coeff);
         if (product) {
-          if (!c.is_integer()) { ok = false; break; }
           std::uint64_t base = *r;
           if (c.is_negative()) {
             if (base == 0) { ok = false; break; }  // a pole
@@ -179,11 +202,17 @@ RationalDegree degree_of(const GiNaC::ex& e, SymbolDegree&& symbol_degree) {
     RationalDegree d = unbounded;
     if (symbolic::is_symbol(x)) {
       d = symbol_degree(x);
+    } else if (opaque_node(x)) {
+      d = {1, {}};  // an input
     } else if (symbolic::is_mul(x)) {
       d = {};
       for (const auto& p : symbolic::pairs_of(x)) {
         const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(p.coeff);
-        if (!c.is_integer() || GiNaC::abs(c).int_length() > 62) { d = unbounded; break; }
+        if (!c.is_integer()) {  // an opaque root: an input
+          d.numerator = add_sat(d.numerator, 1);
+          continue;
+        }
+        if (GiNaC::abs(c).int_length() > 62) { d = unbounded; break; }
         power_into(d, self(self, p.rest), symbolic::node_of(p.rest), c.to_long());
       }
     } else if (symbolic::is_add(x)) {
@@ -223,21 +252,31 @@ void ProbePoints::add_input(const GiNaC::symbol& s) {
 void ProbePoints::define(const GiNaC::symbol& s, const GiNaC::ex& definition) { definitions_.emplace(s, definition); }
 
 // e at point k. The defined symbols e depends on get their values there first, when e meets one without.
-std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int k) {
+// Sets *opaque_met when the value takes an opaque node as an input (probes.hpp).
+std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int k, bool* opaque_met) {
   Values& at = at_[static_cast<std::size_t>(k)];
+  auto& drawn = opaque_values_[static_cast<std::size_t>(k)];
+  auto opaque = [&](const GiNaC::ex& node) {
+    auto [it, added] = drawn.try_emplace(node, 0);
+    if (added) {
+      opaque_state_ = opaque_state_ * 6364136223846793005ull + 1442695040888963407ull;
+      it->second = 1 + (opaque_state_ >> 3) % (kPrime - 1);
+    }
+    return it->second;
+  };
   auto pending = [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); };
   bool met_pending = false;
-  std::optional<std::uint64_t> v = value_at(e, at, pending, &met_pending);
+  std::optional<std::uint64_t> v = value_at(e, at, pending, &met_pending, opaque, opaque_symbols_, opaque_met);
   if (!met_pending) return v;
   symbolic::define_dependencies_first(
       e, pending, [&](const GiNaC::ex& s) -> const GiNaC::ex& { return definitions_.at(s); },
       [&](const GiNaC::ex& s) {
-        bool unused = false;
-        const std::optional<std::uint64_t> sv = value_at(definitions_.at(s), at, pending, &unused);
-        at[s] = sv;
+        bool unused = false, through_opaque = false;
+        at[s] = value_at(definitions_.at(s), at, pending, &unused, opaque, opaque_symbols_, &through_opaque);
+        if (through_opaque) opaque_symbols_.emplace(s, true);
       });
   bool unused = false;
-  return value_at(e, at, pending, &unused);
+  return value_at(e, at, pending, &unused, opaque, opaque_symbols_, opaque_met);
 }
 
 // Bounds of e's numerator degree. The defined symbols e depends on get theirs first (iteratively: chains of
@@ -256,10 +295,12 @@ std::uint64_t ProbePoints::numerator_degree(const GiNaC::ex& e) {
 
 ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
   int zeros = 0;
+  bool opaque = false;
   for (int k = 0; k < kPoints; ++k) {
-    auto v = value_at_point(e, k);
+    auto v = value_at_point(e, k, &opaque);
     if (!v) continue;
-    if (*v != 0) return Verdict::Nonzero;
+    // Opaque inputs may be related (sin^2 + cos^2 = 1): a nonzero there proves nothing.
+    if (*v != 0) return opaque ? Verdict::Unknown : Verdict::Nonzero;
     ++zeros;
   }
   // Only a zero verdict needs the degree: a nonzero value proves itself.

@@ -17,10 +17,12 @@
 // it the test gives no verdict. The points are fixed (the same in every process and every run), so the
 // verdict is deterministic.
 //
-// Only rational functions are probed (sums, products, integer powers, rational numbers): abs, sqrt, sin,
-// ... are not polynomial, and abs(a-b) - (a-b) vanishes on half of all points. Such coefficients, their
-// dependants, and coefficients with a pole at a point get no verdict: callers fall back to an exact
-// symbolic test.
+// Sums, products, integer powers and rational numbers are evaluated. Every other node (abs, sqrt, sin,
+// Pi, x^y, ...) is opaque: it gets a drawn value of its own, as one more input, the same for structurally
+// equal nodes. A coefficient that vanishes with its opaque nodes taken as independent inputs vanishes
+// whatever their values, so "zero" stands; "nonzero" does not (sin(a)^2 + cos(a)^2 - 1 is nonzero as a
+// polynomial in independent sin and cos; abs(a-b) - (a-b) vanishes on half of all points), and such
+// coefficients, like those with a pole at a point, get no verdict: callers fall back to other tests.
 #pragma once
 
 #include <ginac/ginac.h>
@@ -68,13 +70,16 @@ class ProbePoints {
 
  private:
   using Values = ExHashMap<std::optional<std::uint64_t>>;  // symbol -> value in [0, p), or none there
-  std::optional<std::uint64_t> value_at_point(const GiNaC::ex& e, int k);
+  std::optional<std::uint64_t> value_at_point(const GiNaC::ex& e, int k, bool* opaque_met);
   std::uint64_t numerator_degree(const GiNaC::ex& e);
 
   std::array<Values, kPoints> at_;  // inputs and the defined symbols evaluated so far
   ExHashMap<GiNaC::ex> definitions_;
   ExHashMap<RationalDegree> degrees_;  // inputs and the defined symbols whose degree was needed
+  std::array<ExHashMap<std::uint64_t>, kPoints> opaque_values_;  // each opaque node's value, by structure
+  ExHashMap<bool> opaque_symbols_;  // defined symbols whose values take opaque nodes as inputs
   std::uint64_t state_ = 0x243F6A8885A308D3ull;  // fixed: the same points in every run
+  std::uint64_t opaque_state_ = 0x13198A2E03707344ull;
 };
 
 }  // namespace cgagen::symbolic

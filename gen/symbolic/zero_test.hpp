@@ -4,7 +4,8 @@
 // The expander asks it for every coefficient it records (a blade whose coefficient vanishes is dropped, so
 // sparsity survives from statement to statement) and where an identity matters (a divisor, the argument of
 // exp). Each test costs time linear in the coefficient's own statement, never in the chain behind it:
-//   1. exact probes modulo a prime (ProbePoints): a verdict for rational functions;
+//   1. exact probes modulo a prime (ProbePoints): a verdict for rational functions, and a zero verdict
+//      with functions and roots taken as independent inputs;
 //   2. a double sample at a fixed point: a coefficient clearly away from 0 is kept at once;
 //   3. three double samples at points of either sign: far from 0 at one of them is nonzero;
 //   4. for what is left (values under abs, sqrt, sin, ... that come out small at every sample), each

@@ -15,6 +15,7 @@
 #include "front/parser.hpp"
 #include "oracle/multivector.hpp"
 #include "symbolic/node_cache.hpp"
+#include "symbolic/probes.hpp"
 
 using namespace cgagen;
 using OMV = oracle::MV<double>;
@@ -604,4 +605,44 @@ TEST_CASE("built-ins: CLUCalc's DefVars calls do nothing, exp in a basis that is
   const double s = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e.values.back().coeffs[1])).to_double();
   CHECK(c == Approx(std::cos(1.0)));
   CHECK(s == Approx(std::sin(1.0) / 2));
+}
+
+TEST_CASE("exact probes: opaque nodes as inputs, and a degree bound on zero verdicts", "[expand]") {
+  using V = symbolic::ProbePoints::Verdict;
+  symbolic::ProbePoints probes;
+  const GiNaC::symbol x("x"), y("y"), a("a"), r("r");
+  probes.add_input(x);
+  probes.add_input(y);
+  probes.define(a, GiNaC::cos(x));
+  probes.define(r, GiNaC::sqrt(x));
+  // A function application is one more input: what vanishes with it free vanishes whatever its value.
+  CHECK(probes.test(a * a - GiNaC::pow(GiNaC::cos(x), 2)) == V::Zero);
+  CHECK(probes.test(r - GiNaC::sqrt(x)) == V::Zero);
+  // ... but its values are related: a nonzero with opaque inputs proves nothing.
+  CHECK(probes.test(GiNaC::pow(GiNaC::sin(x), 2) + a * a - 1) == V::Unknown);
+  CHECK(probes.test(r * r - x) == V::Unknown);
+  CHECK(probes.test(GiNaC::abs(y) - y) == V::Unknown);
+  CHECK(probes.test(x - y) == V::Nonzero);
+  // Zero at every point, but only up to numerator degree 2^40 does that prove anything.
+  std::vector<GiNaC::symbol> v;
+  v.emplace_back("v0");
+  probes.define(v[0], x + 1);
+  for (int i = 1; i <= 45; ++i) {
+    v.emplace_back("v" + std::to_string(i));
+    probes.define(v[i], v[i - 1] * v[i - 1]);
+  }
+  CHECK(probes.test(v[30] - v[29] * v[29]) == V::Zero);
+  CHECK(probes.test(v[45] - v[44] * v[44]) == V::Unknown);
+  // A common denominator counts once: w_i = w_(i-1)/d + y w_(i-1)/d has degree i over d^i, where a bound
+  // adding the terms' denominators would double with every step and pass 2^40.
+  const GiNaC::symbol d("d");
+  probes.define(d, x + y);
+  std::vector<GiNaC::symbol> w;
+  w.emplace_back("w0");
+  probes.define(w[0], x);
+  for (int i = 1; i <= 45; ++i) {
+    w.emplace_back("w" + std::to_string(i));
+    probes.define(w[i], w[i - 1] / d + y * w[i - 1] / d);
+  }
+  CHECK(probes.test(w[45] * d - w[44] * (1 + y)) == V::Zero);
 }
