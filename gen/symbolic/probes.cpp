@@ -304,8 +304,8 @@ ProbePoints::Verdict ProbePoints::test(const GiNaC::ex& e) {
     ++zeros;
   }
   // Only a zero verdict needs the degree: a nonzero value proves itself.
-  if (zeros == kPoints && numerator_degree(e) <= kMaxDegree) return Verdict::Zero;
-  return Verdict::Unknown;
+  if (zeros < kPoints) return Verdict::Unknown;
+  return numerator_degree(e) <= kMaxDegree ? Verdict::Zero : Verdict::ZeroPastDegree;
 }
 
 }  // namespace cgagen::symbolic

@@ -54,7 +54,9 @@ class ProbePoints {
   static constexpr int kPoints = 3;
   // Largest numerator degree a zero verdict stands for: a wrong one then needs (2^-21)^3 = 2^-63 luck.
   static constexpr std::uint64_t kMaxDegree = std::uint64_t{1} << 40;
-  enum class Verdict { Zero, Nonzero, Unknown };
+  // ZeroPastDegree: zero at every point, but of a degree past kMaxDegree, where that proves nothing (and
+  // where expanding the value exactly is out of reach too).
+  enum class Verdict { Zero, Nonzero, Unknown, ZeroPastDegree };
 
   // A free symbol (an input): draws its value at every point, in order of calls.
   void add_input(const GiNaC::symbol& s);
@@ -64,8 +66,9 @@ class ProbePoints {
   // others (nor, when no later statement uses them, even the first), and a value is the same whenever it
   // is computed.
   void define(const GiNaC::symbol& s, const GiNaC::ex& definition);
-  // Zero when e evaluates to exactly 0 at every point and its numerator's degree is at most kMaxDegree,
-  // Nonzero when it is a nonzero rational at some point, Unknown otherwise.
+  // Zero when e evaluates to exactly 0 at every point and its numerator's degree is at most kMaxDegree
+  // (ZeroPastDegree when that degree is larger), Nonzero when it is a nonzero rational at some point (and
+  // takes no opaque input), Unknown otherwise.
   Verdict test(const GiNaC::ex& e);
 
  private:

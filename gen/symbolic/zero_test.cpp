@@ -206,6 +206,9 @@ bool ZeroTests::vanishes(const ex& c) {
     case ProbePoints::Verdict::Zero: return true;
     case ProbePoints::Verdict::Nonzero: return false;
     case ProbePoints::Verdict::Unknown: break;
+    // Past degree 2^40 no sample vouches for a zero, and the exact expansion is out of reach (though it can
+    // pass the term-count check and then spend a minute on huge coefficients): the coefficient is kept.
+    case ProbePoints::Verdict::ZeroPastDegree: return false;
   }
   // Far from 0 at a signed point: not identically zero (rounding at that size cannot reach 1e-6).
   for (size_t k = 0; k < signed_samples_.size(); ++k)

@@ -632,7 +632,7 @@ TEST_CASE("exact probes: opaque nodes as inputs, and a degree bound on zero verd
     probes.define(v[i], v[i - 1] * v[i - 1]);
   }
   CHECK(probes.test(v[30] - v[29] * v[29]) == V::Zero);
-  CHECK(probes.test(v[45] - v[44] * v[44]) == V::Unknown);
+  CHECK(probes.test(v[45] - v[44] * v[44]) == V::ZeroPastDegree);
   // A common denominator counts once: w_i = w_(i-1)/d + y w_(i-1)/d has degree i over d^i, where a bound
   // adding the terms' denominators would double with every step and pass 2^40.
   const GiNaC::symbol d("d");
