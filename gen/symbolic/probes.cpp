@@ -17,12 +17,6 @@ std::uint64_t mul_mod(std::uint64_t a, std::uint64_t b) {
   return static_cast<std::uint64_t>(static_cast<unsigned __int128>(a) * b % kPrime);
 }
 
-std::uint64_t inverse_mod(std::uint64_t a) {  // a^(p-2), a != 0 (Fermat)
-  std::uint64_t r = 1, e = kPrime - 2;
-  for (; e; e >>= 1, a = mul_mod(a, a))
-    if (e & 1) r = mul_mod(r, a);
-  return r;
-}
 
 std::uint64_t reduce(const GiNaC::numeric& integer) {  // integer mod p, in [0, p)
   // Most coefficients are small integers: reduced in machine words, without cln's allocating mod.
@@ -45,6 +39,14 @@ std::uint64_t pow_mod(std::uint64_t a, std::uint64_t e) {
   for (; e; e >>= 1, a = mul_mod(a, a))
     if (e & 1) r = mul_mod(r, a);
   return r;
+}
+
+std::uint64_t inverse_mod(std::uint64_t a) { return pow_mod(a, kPrime - 2); }  // a != 0 (Fermat)
+
+// The next value of a fixed-seed generator, in [1, p): a probe point's coordinate.
+std::uint64_t draw(std::uint64_t& state) {
+  state = state * 6364136223846793005ull + 1442695040888963407ull;
+  return 1 + (state >> 3) % (kPrime - 1);
 }
 
 // A rational number modulo p; nullopt when its denominator is a multiple of p.
@@ -242,10 +244,7 @@ RationalDegree degree_of(const GiNaC::ex& e, SymbolDegree&& symbol_degree) {
 }  // namespace
 
 void ProbePoints::add_input(const GiNaC::symbol& s) {
-  for (auto& at : at_) {
-    state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
-    at[s] = 1 + (state_ >> 3) % (kPrime - 1);
-  }
+  for (auto& at : at_) at[s] = draw(state_);
   degrees_[s] = RationalDegree{1, {}};
 }
 
@@ -258,10 +257,7 @@ std::optional<std::uint64_t> ProbePoints::value_at_point(const GiNaC::ex& e, int
   auto& drawn = opaque_values_[static_cast<std::size_t>(k)];
   auto opaque = [&](const GiNaC::ex& node) {
     auto [it, added] = drawn.try_emplace(node, 0);
-    if (added) {
-      opaque_state_ = opaque_state_ * 6364136223846793005ull + 1442695040888963407ull;
-      it->second = 1 + (opaque_state_ >> 3) % (kPrime - 1);
-    }
+    if (added) it->second = draw(opaque_state_);
     return it->second;
   };
   auto pending = [&](const GiNaC::ex& s) { return !at.count(s) && definitions_.count(s); };
