@@ -17,7 +17,6 @@ std::uint64_t mul_mod(std::uint64_t a, std::uint64_t b) {
   return static_cast<std::uint64_t>(static_cast<unsigned __int128>(a) * b % kPrime);
 }
 
-
 std::uint64_t reduce(const GiNaC::numeric& integer) {  // integer mod p, in [0, p)
   // Most coefficients are small integers: reduced in machine words, without cln's allocating mod.
   if (integer.int_length() < 62) {
@@ -146,6 +145,9 @@ std::uint64_t mul_sat(std::uint64_t a, std::uint64_t b) {
   return a != 0 && b >= kHuge / a ? kHuge : a * b;
 }
 
+// An integer exponent that fits a machine word (larger ones: the degree is unbounded).
+bool word_sized(const GiNaC::numeric& k) { return GiNaC::abs(k).int_length() <= 62; }
+
 using Factor = RationalDegree::Factor;
 constexpr std::size_t kMaxFactors = 32;  // past it, a denominator is merged into one factor of its own
 
@@ -214,7 +216,7 @@ RationalDegree degree_of(const GiNaC::ex& e, SymbolDegree&& symbol_degree) {
           d.numerator = add_sat(d.numerator, 1);
           continue;
         }
-        if (GiNaC::abs(c).int_length() > 62) { d = unbounded; break; }
+        if (!word_sized(c)) { d = unbounded; break; }
         power_into(d, self(self, p.rest), symbolic::node_of(p.rest), c.to_long());
       }
     } else if (symbolic::is_add(x)) {
@@ -228,9 +230,7 @@ RationalDegree degree_of(const GiNaC::ex& e, SymbolDegree&& symbol_degree) {
       d.numerator = common;  // a numeric overall coefficient: common · c
       for (const RationalDegree& t : terms)
         d.numerator = std::max(d.numerator, add_sat(t.numerator, common - std::min(common, denominator_degree(t))));
-    } else if (symbolic::is_power(x) && symbolic::is_numeric(x.op(1)) &&
-               GiNaC::ex_to<GiNaC::numeric>(x.op(1)).is_integer() &&
-               GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(x.op(1))).int_length() <= 62) {
+    } else if (symbolic::is_power(x) && !opaque_node(x) && word_sized(GiNaC::ex_to<GiNaC::numeric>(x.op(1)))) {
       d = {};
       power_into(d, self(self, x.op(0)), symbolic::node_of(x.op(0)), GiNaC::ex_to<GiNaC::numeric>(x.op(1)).to_long());
     }

@@ -14,8 +14,8 @@
 // "zero" needs (deg(N)/2^61)^3 luck. That bound says nothing once deg(N) nears p: (c + s·i)^(2^128) has an
 // imaginary part that vanishes at every point of F_p. So a zero verdict also needs a bound on deg(N), the
 // degree of the numerator over the common denominator the evaluation forms, of at most kMaxDegree; past
-// it the test says so (ZeroPastDegree) and proves nothing. The points are fixed (the same in every process and every run), so the
-// verdict is deterministic.
+// it the test says so (ZeroPastDegree) and proves nothing. The points are fixed (the same in every process
+// and every run), so the verdict is deterministic.
 //
 // Sums, products, integer powers and rational numbers are evaluated. Every other node (abs, sqrt, sin,
 // Pi, x^y, ...) is opaque: it gets a drawn value of its own, as one more input, the same for structurally
