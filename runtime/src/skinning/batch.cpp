@@ -1,86 +1,39 @@
 // The batch path of SkinningJob: every method of the table (skinning_methods.hpp) on its blend's generated
-// SIMD batch kernels (the simd target over runtime/scripts/skin), which Highway dispatches to the best
-// instruction set of the CPU. A blend comes in one of two forms (skinning_batch_forms.hpp, generated from the
-// table's SPLIT column):
+// lane-wise kernels (the simd target over runtime/scripts/skin), built once per instruction set by Highway's
+// per-target inclusion of this file and dispatched to the best one of the CPU. A blend comes in one of two
+// forms (skinning_batch_forms.hpp, generated from the table's SPLIT column):
 //   split  the blend staged at its named values (cgagen --stage-at): pass 1 runs NAME_split_prepare once per
 //          vertex on its four entries and weights (straight-line code the compiler vectorizes across the
-//          entry's blades), pass 2 runs NAME_split_batch lane-wise across the block's vertices on the
+//          entry's blades), pass 2 runs the lane kernel NAME_split across the block's vertices on the
 //          prepared values;
-//   whole  NAME_batch lane-wise across vertices, gathering the four entries through the joints as 32-bit index
-//          streams.
-// What is written here is method-blind: the block check, the two loops, the index streams and the stream
-// descriptors. The entries are the method's prepared palette (prepare_palette: 4 * VEC4S floats each), the
-// blend's entry inputs read at 4 * v within an entry.
-#define CGAGEN_SIMD_DISPATCH
-// Before Highway's first header: the generated kernels take arrays of vectors, which sizeless vectors (SVE,
-// RVV) cannot be elements of.
+//   whole  the lane kernel NAME across vertices on the four entries of each.
+// What is written here is method-blind: the block check, the loops, prefetch, and one transposer that turns
+// rows of 4 floats (a vertex's prepared values, a palette entry's vec4s, a vertex's weights) into lanes. The
+// kernels are called directly on vectors, so no stream descriptor is looked at inside the loops. The entries
+// are the method's prepared palette (prepare_palette: 4 * VEC4S floats each), the blend's entry inputs read
+// at 4 * v within an entry.
+#ifndef CGA_SKINNING_BATCH_ONCE
+#define CGA_SKINNING_BATCH_ONCE
+// Before Highway's first header: the kernels take arrays of vectors, which sizeless vectors (SVE, RVV) cannot
+// be elements of.
 #define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
-#undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "skinning_batch_kernels.hpp"
-#include <hwy/foreach_target.h>  // IWYU pragma: keep
-
-#include <skinning_batch_kernels.hpp>
-
+#include <cstdint>
 #include <utility>
 
 #include "batch.hpp"
-
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-#define CGA_BATCH_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#define CGA_BATCH_INLINE __attribute__((always_inline)) inline
-#else
-#define CGA_BATCH_CLONES
-#define CGA_BATCH_INLINE inline
 #endif
 
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "batch.cpp"  // this file, found through the include path runtime/CMakeLists.txt sets
+#include <hwy/foreach_target.h>         // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <skinning_batch_kernels.hpp>
+
+#ifndef CGA_SKINNING_BATCH_SHARED
+#define CGA_SKINNING_BATCH_SHARED
 namespace cga::skinning_detail {
 namespace {
-
-namespace ks = ::cga::kernels::simd;
-
-// Each blend's kernels as a function object, in the form the table gives it.
-#define CGA_BLEND_FORM_split(blend)                                                              \
-  struct blend##_form {                                                                          \
-    static constexpr bool kSplit = true;                                                         \
-    static constexpr std::size_t kPrepared = ks::blend##_split_prepare_prepared_blades.size();   \
-    template <class... A>                                                                        \
-    static void prepare(A... a) {                                                                \
-      ks::blend##_split_prepare(a...);                                                           \
-    }                                                                                            \
-    template <class... A>                                                                        \
-    static void both(A... a) {                                                                   \
-      ks::blend##_split_batch(a...);                                                             \
-    }                                                                                            \
-    template <class... A>                                                                        \
-    static void positions(A... a) {                                                              \
-      ks::blend##_split_positions_batch(a...);                                                   \
-    }                                                                                            \
-  };
-#define CGA_BLEND_FORM_whole(blend)                                                              \
-  struct blend##_form {                                                                          \
-    static constexpr bool kSplit = false;                                                        \
-    static constexpr std::size_t kPrepared = 0;                                                  \
-    template <class... A>                                                                        \
-    static void both(A... a) {                                                                   \
-      ks::blend##_batch(a...);                                                                   \
-    }                                                                                            \
-    template <class... A>                                                                        \
-    static void positions(A... a) {                                                              \
-      ks::blend##_positions_batch(a...);                                                         \
-    }                                                                                            \
-  };
-#define CGA_BLEND_FORM(blend, form) CGA_BLEND_FORM_##form(blend)
-#include <skinning_batch_forms.hpp>
-#undef CGA_BLEND_FORM
-
-// A method: its blend's form and its entry size.
-#define CGA_METHOD_BATCH(id, name, palette, bone, blend, vec4s, r, g, b) \
-  struct id##_batch : blend##_form {                                   \
-    static constexpr std::size_t kVec4s = vec4s;                       \
-  };
-CGA_SKINNING_METHODS(CGA_METHOD_BATCH)
-#undef CGA_METHOD_BATCH
-
 // The input lines of vertices [begin, end) + kAhead, for a large mesh: its loop is bound by the misses one
 // core keeps in flight, which the hardware prefetchers alone leave too few of. Addresses past the arrays are
 // formed as integers (a prefetch never faults). Both always inlined: GCC takes a function whose only effect
@@ -99,67 +52,185 @@ CGA_ALWAYS_INLINE void prefetch_block(const Streams& s, std::size_t begin, std::
     for (std::size_t b = 0; b < 256; b += 64) prefetch(s.weights, 16 * v + b);
   }
 }
+}  // namespace
+}  // namespace cga::skinning_detail
+#endif
 
-// The whole form's arguments: 4 x VEC4S entry streams, 4 weights, the position, the normal (positions only:
-// the position's streams again, which the kernel does not read), then the outputs.
-template <class K, bool kNormals, std::size_t... I>
-void call_whole(std::size_t n, const ks::In* e, const ks::In* w, const ks::In* p, const ks::In* nrm, const ks::Out& op,
-                const ks::Out& on, std::index_sequence<I...>) {
-  if constexpr (kNormals)
-    K::both(n, e[I]..., w[0], w[1], w[2], w[3], p[0], p[1], p[2], nrm[0], nrm[1], nrm[2], op, on);
-  else
-    K::positions(n, e[I]..., w[0], w[1], w[2], w[3], p[0], p[1], p[2], p[0], p[1], p[2], op);
+HWY_BEFORE_NAMESPACE();
+namespace cga::skinning_detail::HWY_NAMESPACE {
+namespace {
+
+namespace hn = hwy::HWY_NAMESPACE;
+namespace ks = ::cga::kernels::simd;
+namespace kl = ::cga::kernels::simd::HWY_NAMESPACE;
+
+// Each blend's kernels as a function object, in the form the table gives it: the scalar prepare (split) and
+// the lane kernels with and without normals.
+#define CGA_BLEND_FORM_split(blend)                                                              \
+  struct blend##_form {                                                                          \
+    static constexpr bool kSplit = true;                                                         \
+    static constexpr std::size_t kPrepared = ks::blend##_split_prepare_prepared_blades.size();   \
+    template <class... A>                                                                        \
+    static HWY_INLINE void prepare(A... a) {                                                     \
+      ks::blend##_split_prepare(a...);                                                           \
+    }                                                                                            \
+    template <class... A>                                                                        \
+    static HWY_INLINE void both(A&&... a) {                                                      \
+      kl::blend##_split(a...);                                                                   \
+    }                                                                                            \
+    template <class... A>                                                                        \
+    static HWY_INLINE void positions(A&&... a) {                                                 \
+      kl::blend##_split_positions(a...);                                                         \
+    }                                                                                            \
+  };
+#define CGA_BLEND_FORM_whole(blend)                                                              \
+  struct blend##_form {                                                                          \
+    static constexpr bool kSplit = false;                                                        \
+    static constexpr std::size_t kPrepared = 0;                                                  \
+    template <class... A>                                                                        \
+    static HWY_INLINE void both(A&&... a) {                                                      \
+      kl::blend(a...);                                                                           \
+    }                                                                                            \
+    template <class... A>                                                                        \
+    static HWY_INLINE void positions(A&&... a) {                                                 \
+      kl::blend##_positions(a...);                                                               \
+    }                                                                                            \
+  };
+#define CGA_BLEND_FORM(blend, form) CGA_BLEND_FORM_##form(blend)
+#include <skinning_batch_forms.hpp>
+#undef CGA_BLEND_FORM
+#undef CGA_BLEND_FORM_split
+#undef CGA_BLEND_FORM_whole
+
+// A method: its blend's form and its entry size.
+#define CGA_METHOD_BATCH(id, name, palette, bone, blend, vec4s, r, g, b) \
+  struct id##_batch : blend##_form {                                   \
+    static constexpr std::size_t kVec4s = vec4s;                       \
+  };
+CGA_SKINNING_METHODS(CGA_METHOD_BATCH)
+#undef CGA_METHOD_BATCH
+
+#if HWY_TARGET != HWY_SCALAR  // one-lane vectors: no 128-bit blocks to transpose
+// One vector whose 128-bit block b holds the 4 floats at row(4 b + a) (Lanes(d) a multiple of 4).
+template <class D, class Row>
+HWY_INLINE hn::Vec<D> blocks(D d, const Row& row, std::size_t first, std::size_t a) {
+  constexpr std::size_t N = hn::MaxLanes(D());
+  if constexpr (N == 4) {
+    return hn::LoadU(d, row(first + a));
+  } else {
+    const hn::Half<D> dh;
+    return hn::Combine(d, blocks(dh, row, first + N / 2, a), blocks(dh, row, first, a));
+  }
+}
+#endif
+
+// The transposer: floats k .. k + kN - 1 of rows row(0) .. row(Lanes(d) - 1) (row(j) a float pointer) as kN
+// vectors, lane j from row j: with lanes a multiple of 4, one 128-bit load per row and 4 adjacent floats and a
+// 4 x 4 transpose within each 128-bit block; otherwise (one lane, the scalar target) lane by lane.
+template <std::size_t kN, class D, class Row>
+HWY_INLINE void transpose(D d, const Row& row, hn::Vec<D>* out) {
+  constexpr std::size_t N = hn::MaxLanes(D());
+  std::size_t k = 0;
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (N % 4 == 0) {
+    const hn::Repartition<std::uint64_t, D> d64;
+    for (; k + 4 <= kN; k += 4) {
+      const auto at = [&](std::size_t j) { return row(j) + k; };
+      const auto b0 = blocks(d, at, 0, 0), b1 = blocks(d, at, 0, 1);
+      const auto b2 = blocks(d, at, 0, 2), b3 = blocks(d, at, 0, 3);
+      const auto t0 = hn::BitCast(d64, hn::InterleaveLower(d, b0, b1));  // r0.x r1.x r0.y r1.y
+      const auto t1 = hn::BitCast(d64, hn::InterleaveLower(d, b2, b3));  // r2.x r3.x r2.y r3.y
+      const auto t2 = hn::BitCast(d64, hn::InterleaveUpper(d, b0, b1));  // r0.z r1.z r0.w r1.w
+      const auto t3 = hn::BitCast(d64, hn::InterleaveUpper(d, b2, b3));  // r2.z r3.z r2.w r3.w
+      out[k] = hn::BitCast(d, hn::InterleaveLower(d64, t0, t1));
+      out[k + 1] = hn::BitCast(d, hn::InterleaveUpper(d64, t0, t1));
+      out[k + 2] = hn::BitCast(d, hn::InterleaveLower(d64, t2, t3));
+      out[k + 3] = hn::BitCast(d, hn::InterleaveUpper(d64, t2, t3));
+    }
+  }
+#endif
+  for (; k < kN; ++k) {
+    alignas(64) float lanes[N];
+    for (std::size_t j = 0; j < N; ++j) lanes[j] = row(j)[k];
+    out[k] = hn::Load(d, lanes);
+  }
+}
+
+// Split form, pass 2 on vertices i .. i + Lanes(d) - 1 (prepared: the block's prepared values, vertex b first).
+template <class K, bool kNormals, class D>
+HWY_INLINE void split_lanes(D d, const Streams& s, const float* prepared, std::size_t b, std::size_t i) {
+  using V = hn::Vec<D>;
+  V prep[K::kPrepared];
+  transpose<K::kPrepared>(d, [&](std::size_t j) { return prepared + K::kPrepared * (i - b + j); }, prep);
+  const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
+  V p[3], n[3];
+  if constexpr (kNormals) {
+    const V nx = hn::LoadU(d, s.nx + i), ny = hn::LoadU(d, s.ny + i), nz = hn::LoadU(d, s.nz + i);
+    K::both(d, prep, x, y, z, nx, ny, nz, p, n);
+    hn::StoreU(n[0], d, s.onx + i), hn::StoreU(n[1], d, s.ony + i), hn::StoreU(n[2], d, s.onz + i);
+  } else {
+    K::positions(d, prep, x, y, z, p);
+  }
+  hn::StoreU(p[0], d, s.ox + i), hn::StoreU(p[1], d, s.oy + i), hn::StoreU(p[2], d, s.oz + i);
+}
+
+// Whole form on vertices i .. i + Lanes(d) - 1: each influence's entry transposed from its palette rows, the
+// weights from the vertices' weight rows.
+template <class K, bool kNormals, class D, std::size_t... I>
+HWY_INLINE void whole_lanes(D d, const float* pal, const Streams& s, std::size_t i, std::index_sequence<I...>) {
+  using V = hn::Vec<D>;
+  constexpr std::size_t kFloats = 4 * K::kVec4s;
+  V e[4][K::kVec4s][4], w[4];
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto entry = [&](std::size_t j) { return pal + kFloats * s.joints[i + j][k]; };
+    for (std::size_t v = 0; v < K::kVec4s; ++v)
+      transpose<4>(d, [&](std::size_t j) { return entry(j) + 4 * v; }, e[k][v]);
+  }
+  transpose<4>(d, [&](std::size_t j) { return s.weights[i + j].data(); }, w);
+  const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
+  V p[3], n[3];
+  if constexpr (kNormals) {
+    const V nx = hn::LoadU(d, s.nx + i), ny = hn::LoadU(d, s.ny + i), nz = hn::LoadU(d, s.nz + i);
+    K::both(d, e[I / K::kVec4s][I % K::kVec4s]..., w[0], w[1], w[2], w[3], x, y, z, nx, ny, nz, p, n);
+    hn::StoreU(n[0], d, s.onx + i), hn::StoreU(n[1], d, s.ony + i), hn::StoreU(n[2], d, s.onz + i);
+  } else {
+    // The position kernel of the whole form lists the normal's inputs too, which it does not read.
+    K::positions(d, e[I / K::kVec4s][I % K::kVec4s]..., w[0], w[1], w[2], w[3], x, y, z, x, y, z, p);
+  }
+  hn::StoreU(p[0], d, s.ox + i), hn::StoreU(p[1], d, s.oy + i), hn::StoreU(p[2], d, s.oz + i);
 }
 
 // The split form's pass 1 for one vertex: the prepare on its four entries and weights, into `out`.
 template <class K, std::size_t... I>
-CGA_BATCH_INLINE void prepare_one(const float* pal, const std::uint16_t* j, const float* w, float* out,
-                                  std::index_sequence<I...>) {
+HWY_INLINE void prepare_one(const float* pal, const std::uint16_t* j, const float* w, float* out,
+                            std::index_sequence<I...>) {
   constexpr std::size_t kFloats = 4 * K::kVec4s;
   K::prepare((pal + kFloats * j[I / K::kVec4s] + 4 * (I % K::kVec4s))..., w[0], w[1], w[2], w[3], out);
 }
 
-// Vertices [begin, end) of packed streams (strided runs are staged into packed blocks by the caller).
+// Vertices [begin, end) of packed streams (strided runs are staged into packed blocks by the caller): whole
+// vectors, then the tail one lane at a time (the same kernel on one lane).
 template <class K, bool kNormals>
-CGA_BATCH_CLONES bool batch_block(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
-                                  std::size_t palette) {
+HWY_NOINLINE bool batch_block(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
+                              std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
   prefetch_block<kNormals>(s, begin, end);
-  const std::size_t n = end - begin;
-  const ks::In p[3] = {{s.px + begin}, {s.py + begin}, {s.pz + begin}};
-  // Without normals their streams are null: no offset is applied to them.
-  const auto at = [begin](auto* q) { return kNormals ? q + begin : q; };
-  const ks::In nrm[3] = {{at(s.nx)}, {at(s.ny)}, {at(s.nz)}};
-  float* const op_blades[3] = {s.ox + begin, s.oy + begin, s.oz + begin};
-  float* const on_blades[3] = {at(s.onx), at(s.ony), at(s.onz)};
-  const ks::Out op{nullptr, 1, 1, op_blades}, on{nullptr, 1, 1, on_blades};
+  const hn::ScalableTag<float> d;
+  const hn::CappedTag<float, 1> d1;
+  const std::size_t N = hn::Lanes(d);
+  std::size_t i = begin;
   if constexpr (K::kSplit) {
     // Pass 1 vertex after vertex into one prepared block, pass 2 across it.
     alignas(64) float prepared[kBlock * K::kPrepared];
-    for (std::size_t i = 0; i < n; ++i)
-      prepare_one<K>(pal, s.joints[begin + i].data(), s.weights[begin + i].data(), prepared + K::kPrepared * i,
+    for (std::size_t v = begin; v < end; ++v)
+      prepare_one<K>(pal, s.joints[v].data(), s.weights[v].data(), prepared + K::kPrepared * (v - begin),
                      std::make_index_sequence<4 * K::kVec4s>{});
-    const ks::In prep{prepared, static_cast<std::ptrdiff_t>(K::kPrepared), 1};
-    if constexpr (kNormals)
-      K::both(n, prep, p[0], p[1], p[2], nrm[0], nrm[1], nrm[2], op, on);
-    else
-      K::positions(n, prep, p[0], p[1], p[2], op);
+    for (; i + N <= end; i += N) split_lanes<K, kNormals>(d, s, prepared, begin, i);
+    for (; i < end; ++i) split_lanes<K, kNormals>(d1, s, prepared, begin, i);
   } else {
-    constexpr std::size_t kFloats = 4 * K::kVec4s;
-    // The joints as 32-bit index streams and the weights as plain streams, one per influence.
-    alignas(64) std::int32_t joints[4][kBlock];
-    alignas(64) float weights[4][kBlock];
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t k = 0; k < 4; ++k) {
-        joints[k][i] = s.joints[begin + i][k];
-        weights[k][i] = s.weights[begin + i][k];
-      }
-    ks::In e[4 * K::kVec4s];
-    for (std::size_t k = 0; k < 4; ++k)
-      for (std::size_t v = 0; v < K::kVec4s; ++v)
-        e[k * K::kVec4s + v] = ks::In{pal + 4 * v, static_cast<std::ptrdiff_t>(kFloats), 1, joints[k], 1, nullptr};
-    const ks::In w[4] = {{weights[0]}, {weights[1]}, {weights[2]}, {weights[3]}};
-    call_whole<K, kNormals>(n, e, w, p, nrm, op, on, std::make_index_sequence<4 * K::kVec4s>{});
+    constexpr auto kInputs = std::make_index_sequence<4 * K::kVec4s>{};
+    for (; i + N <= end; i += N) whole_lanes<K, kNormals>(d, pal, s, i, kInputs);
+    for (; i < end; ++i) whole_lanes<K, kNormals>(d1, pal, s, i, kInputs);
   }
   if constexpr (kNormals) renormalize(s, begin, end);
   return true;
@@ -167,13 +238,25 @@ CGA_BATCH_CLONES bool batch_block(const float* pal, const Streams& s, std::size_
 
 }  // namespace
 
-const GeneratedBlocks& batch_blocks() {
-  static const GeneratedBlocks blocks{{
+// The block functions of this instruction set, [method][normals].
+const GeneratedBlocks& blocks() {
+  static const GeneratedBlocks table{{
 #define CGA_METHOD_BLOCKS(id, ...) {batch_block<id##_batch, false>, batch_block<id##_batch, true>},
       CGA_SKINNING_METHODS(CGA_METHOD_BLOCKS)
 #undef CGA_METHOD_BLOCKS
   }};
-  return blocks;
+  return table;
 }
 
+}  // namespace cga::skinning_detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace cga::skinning_detail {
+
+HWY_EXPORT(blocks);
+
+const GeneratedBlocks& batch_blocks() { return HWY_DYNAMIC_DISPATCH(blocks)(); }
+
 }  // namespace cga::skinning_detail
+#endif
