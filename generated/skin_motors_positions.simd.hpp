@@ -25,15 +25,14 @@
 // input w1
 // input w2
 // input w3
-// input prepared: G.1 G.e1^e2 G.e1^e3 G.e2^e3 H.1 H.e1^e2 H.e1^e3 H.e2^e3 U.e1^einf U.e2^einf U.e3^einf U.e1^e2^e3^einf
 // input x
 // input y
 // input z
 // input nx
 // input ny
 // input nz
-#ifndef CGAGEN_SIMD_skin_motors_split_SHARED
-#define CGAGEN_SIMD_skin_motors_split_SHARED
+#ifndef CGAGEN_SIMD_skin_motors_positions_SHARED
+#define CGAGEN_SIMD_skin_motors_positions_SHARED
 
 #include <array>
 #include <cmath>
@@ -76,151 +75,18 @@ struct Out {
 
 namespace cga::kernels::simd {
 
-inline constexpr std::array<std::string_view, 12> skin_motors_split_prepare_prepared_blades = {"G.1", "G.e1^e2", "G.e1^e3", "G.e2^e3", "H.1", "H.e1^e2", "H.e1^e3", "H.e2^e3", "U.e1^einf", "U.e2^einf", "U.e3^einf", "U.e1^e2^e3^einf"};
-inline constexpr std::array<std::string_view, 3> skin_motors_split_p_blades = {"e1", "e2", "e3"};
-inline constexpr std::array<std::string_view, 3> skin_motors_split_n__blades = {"e1", "e2", "e3"};
-inline void skin_motors_split_prepare(const float G0[4], const float H0[4], const float U0[4], const float G1[4], const float H1[4], const float U1[4], const float G2[4], const float H2[4], const float U2[4], const float G3[4], const float H3[4], const float U3[4], float w0, float w1, float w2, float w3, float prepared[12]) {
-  const float G0_s = G0[0];
-  const float G0_e12 = G0[1];
-  const float G0_e13 = G0[2];
-  const float G0_e23 = G0[3];
-  const float H0_s = H0[0];
-  const float H0_e12 = H0[1];
-  const float H0_e13 = H0[2];
-  const float H0_e23 = H0[3];
-  const float U0_e1inf = U0[0];
-  const float U0_e2inf = U0[1];
-  const float U0_e3inf = U0[2];
-  const float U0_e123inf = U0[3];
-  const float G1_s = G1[0];
-  const float G1_e12 = G1[1];
-  const float G1_e13 = G1[2];
-  const float G1_e23 = G1[3];
-  const float H1_s = H1[0];
-  const float H1_e12 = H1[1];
-  const float H1_e13 = H1[2];
-  const float H1_e23 = H1[3];
-  const float U1_e1inf = U1[0];
-  const float U1_e2inf = U1[1];
-  const float U1_e3inf = U1[2];
-  const float U1_e123inf = U1[3];
-  const float G2_s = G2[0];
-  const float G2_e12 = G2[1];
-  const float G2_e13 = G2[2];
-  const float G2_e23 = G2[3];
-  const float H2_s = H2[0];
-  const float H2_e12 = H2[1];
-  const float H2_e13 = H2[2];
-  const float H2_e23 = H2[3];
-  const float U2_e1inf = U2[0];
-  const float U2_e2inf = U2[1];
-  const float U2_e3inf = U2[2];
-  const float U2_e123inf = U2[3];
-  const float G3_s = G3[0];
-  const float G3_e12 = G3[1];
-  const float G3_e13 = G3[2];
-  const float G3_e23 = G3[3];
-  const float H3_s = H3[0];
-  const float H3_e12 = H3[1];
-  const float H3_e13 = H3[2];
-  const float H3_e23 = H3[3];
-  const float U3_e1inf = U3[0];
-  const float U3_e2inf = U3[1];
-  const float U3_e3inf = U3[2];
-  const float U3_e123inf = U3[3];
-  const float t0 = ((G0_e12 * G1_e12 + G0_e13 * G1_e13 + G0_e23 * G1_e23 + G0_s * G1_s) < 0.0f ? -w1 : w1);
-  const float t1 = ((G0_e12 * G2_e12 + G0_e13 * G2_e13 + G0_e23 * G2_e23 + G0_s * G2_s) < 0.0f ? -w2 : w2);
-  const float t2 = ((G0_e12 * G3_e12 + G0_e13 * G3_e13 + G0_e23 * G3_e23 + G0_s * G3_s) < 0.0f ? -w3 : w3);
-  prepared[0] = G0_s * w0 + G1_s * t0 + G2_s * t1 + G3_s * t2;  // G.1
-  prepared[1] = G0_e12 * w0 + G1_e12 * t0 + G2_e12 * t1 + G3_e12 * t2;  // G.e1^e2
-  prepared[2] = G0_e13 * w0 + G1_e13 * t0 + G2_e13 * t1 + G3_e13 * t2;  // G.e1^e3
-  prepared[3] = G0_e23 * w0 + G1_e23 * t0 + G2_e23 * t1 + G3_e23 * t2;  // G.e2^e3
-  prepared[4] = H0_s * w0 + H1_s * t0 + H2_s * t1 + H3_s * t2;  // H.1
-  prepared[5] = H0_e12 * w0 + H1_e12 * t0 + H2_e12 * t1 + H3_e12 * t2;  // H.e1^e2
-  prepared[6] = H0_e13 * w0 + H1_e13 * t0 + H2_e13 * t1 + H3_e13 * t2;  // H.e1^e3
-  prepared[7] = H0_e23 * w0 + H1_e23 * t0 + H2_e23 * t1 + H3_e23 * t2;  // H.e2^e3
-  prepared[8] = U0_e1inf * w0 + U1_e1inf * t0 + U2_e1inf * t1 + U3_e1inf * t2;  // U.e1^einf
-  prepared[9] = U0_e2inf * w0 + U1_e2inf * t0 + U2_e2inf * t1 + U3_e2inf * t2;  // U.e2^einf
-  prepared[10] = U0_e3inf * w0 + U1_e3inf * t0 + U2_e3inf * t1 + U3_e3inf * t2;  // U.e3^einf
-  prepared[11] = U0_e123inf * w0 + U1_e123inf * t0 + U2_e123inf * t1 + U3_e123inf * t2;  // U.e1^e2^e3^einf
-}
-
-inline void skin_motors_split_prepare(const double G0[4], const double H0[4], const double U0[4], const double G1[4], const double H1[4], const double U1[4], const double G2[4], const double H2[4], const double U2[4], const double G3[4], const double H3[4], const double U3[4], double w0, double w1, double w2, double w3, double prepared[12]) {
-  const double G0_s = G0[0];
-  const double G0_e12 = G0[1];
-  const double G0_e13 = G0[2];
-  const double G0_e23 = G0[3];
-  const double H0_s = H0[0];
-  const double H0_e12 = H0[1];
-  const double H0_e13 = H0[2];
-  const double H0_e23 = H0[3];
-  const double U0_e1inf = U0[0];
-  const double U0_e2inf = U0[1];
-  const double U0_e3inf = U0[2];
-  const double U0_e123inf = U0[3];
-  const double G1_s = G1[0];
-  const double G1_e12 = G1[1];
-  const double G1_e13 = G1[2];
-  const double G1_e23 = G1[3];
-  const double H1_s = H1[0];
-  const double H1_e12 = H1[1];
-  const double H1_e13 = H1[2];
-  const double H1_e23 = H1[3];
-  const double U1_e1inf = U1[0];
-  const double U1_e2inf = U1[1];
-  const double U1_e3inf = U1[2];
-  const double U1_e123inf = U1[3];
-  const double G2_s = G2[0];
-  const double G2_e12 = G2[1];
-  const double G2_e13 = G2[2];
-  const double G2_e23 = G2[3];
-  const double H2_s = H2[0];
-  const double H2_e12 = H2[1];
-  const double H2_e13 = H2[2];
-  const double H2_e23 = H2[3];
-  const double U2_e1inf = U2[0];
-  const double U2_e2inf = U2[1];
-  const double U2_e3inf = U2[2];
-  const double U2_e123inf = U2[3];
-  const double G3_s = G3[0];
-  const double G3_e12 = G3[1];
-  const double G3_e13 = G3[2];
-  const double G3_e23 = G3[3];
-  const double H3_s = H3[0];
-  const double H3_e12 = H3[1];
-  const double H3_e13 = H3[2];
-  const double H3_e23 = H3[3];
-  const double U3_e1inf = U3[0];
-  const double U3_e2inf = U3[1];
-  const double U3_e3inf = U3[2];
-  const double U3_e123inf = U3[3];
-  const double t0 = ((G0_e12 * G1_e12 + G0_e13 * G1_e13 + G0_e23 * G1_e23 + G0_s * G1_s) < 0.0 ? -w1 : w1);
-  const double t1 = ((G0_e12 * G2_e12 + G0_e13 * G2_e13 + G0_e23 * G2_e23 + G0_s * G2_s) < 0.0 ? -w2 : w2);
-  const double t2 = ((G0_e12 * G3_e12 + G0_e13 * G3_e13 + G0_e23 * G3_e23 + G0_s * G3_s) < 0.0 ? -w3 : w3);
-  prepared[0] = G0_s * w0 + G1_s * t0 + G2_s * t1 + G3_s * t2;  // G.1
-  prepared[1] = G0_e12 * w0 + G1_e12 * t0 + G2_e12 * t1 + G3_e12 * t2;  // G.e1^e2
-  prepared[2] = G0_e13 * w0 + G1_e13 * t0 + G2_e13 * t1 + G3_e13 * t2;  // G.e1^e3
-  prepared[3] = G0_e23 * w0 + G1_e23 * t0 + G2_e23 * t1 + G3_e23 * t2;  // G.e2^e3
-  prepared[4] = H0_s * w0 + H1_s * t0 + H2_s * t1 + H3_s * t2;  // H.1
-  prepared[5] = H0_e12 * w0 + H1_e12 * t0 + H2_e12 * t1 + H3_e12 * t2;  // H.e1^e2
-  prepared[6] = H0_e13 * w0 + H1_e13 * t0 + H2_e13 * t1 + H3_e13 * t2;  // H.e1^e3
-  prepared[7] = H0_e23 * w0 + H1_e23 * t0 + H2_e23 * t1 + H3_e23 * t2;  // H.e2^e3
-  prepared[8] = U0_e1inf * w0 + U1_e1inf * t0 + U2_e1inf * t1 + U3_e1inf * t2;  // U.e1^einf
-  prepared[9] = U0_e2inf * w0 + U1_e2inf * t0 + U2_e2inf * t1 + U3_e2inf * t2;  // U.e2^einf
-  prepared[10] = U0_e3inf * w0 + U1_e3inf * t0 + U2_e3inf * t1 + U3_e3inf * t2;  // U.e3^einf
-  prepared[11] = U0_e123inf * w0 + U1_e123inf * t0 + U2_e123inf * t1 + U3_e123inf * t2;  // U.e1^e2^e3^einf
-}
+inline constexpr std::array<std::string_view, 3> skin_motors_positions_p_blades = {"e1", "e2", "e3"};
 
 }  // namespace cga::kernels::simd
 
 #endif
 
 // The lane-wise part, once per instruction set (Highway's per-target inclusion).
-#if defined(CGAGEN_SIMD_skin_motors_split_TOGGLE) == defined(HWY_TARGET_TOGGLE)
-#ifdef CGAGEN_SIMD_skin_motors_split_TOGGLE
-#undef CGAGEN_SIMD_skin_motors_split_TOGGLE
+#if defined(CGAGEN_SIMD_skin_motors_positions_TOGGLE) == defined(HWY_TARGET_TOGGLE)
+#ifdef CGAGEN_SIMD_skin_motors_positions_TOGGLE
+#undef CGAGEN_SIMD_skin_motors_positions_TOGGLE
 #else
-#define CGAGEN_SIMD_skin_motors_split_TOGGLE
+#define CGAGEN_SIMD_skin_motors_positions_TOGGLE
 #endif
 
 #include <hwy/highway.h>
@@ -393,36 +259,84 @@ namespace cga::kernels::simd::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 template <class D, class V>
-HWY_INLINE void skin_motors_split(D d, const V prepared[12], V x, V y, V z, V nx, V ny, V nz, V p[3], V n_[3]) {
+HWY_INLINE void skin_motors_positions(D d, const V G0[4], const V H0[4], const V U0[4], const V G1[4], const V H1[4], const V U1[4], const V G2[4], const V H2[4], const V U2[4], const V G3[4], const V H3[4], const V U3[4], V w0, V w1, V w2, V w3, V x, V y, V z, V nx, V ny, V nz, V p[3]) {
   (void)d;
-  const V t0 = hn::Set(d, 1.0f) / (prepared[0] * prepared[0] + prepared[1] * prepared[1] + prepared[2] * prepared[2] + prepared[3] * prepared[3]);
-  const V t1 = prepared[4] * t0;
-  const V t2 = prepared[5] * t0;
-  const V t3 = prepared[6] * t0;
-  const V t4 = prepared[7] * t0;
-  const V t5 = hn::Set(d, 2.0f) * prepared[10] * t0 + t3 * x + t4 * y - t1 * z;
-  const V t6 = hn::Set(d, 2.0f) * prepared[11] * t0 + t3 * y - t2 * z - t4 * x;
-  const V t7 = hn::Set(d, 2.0f) * prepared[8] * t0 - t1 * x - t2 * y - t3 * z;
-  const V t8 = hn::Set(d, 2.0f) * prepared[9] * t0 + t2 * x - t1 * y - t4 * z;
-  const V t9 = nx * t1 + ny * t2 + nz * t3;
-  const V t10 = nx * t2 - ny * t1 - nz * t4;
-  const V t11 = nx * t3 + ny * t4 - nz * t1;
-  const V t12 = nx * t4 + nz * t2 - ny * t3;
-  p[0] = hn::Neg(prepared[0] * t7) - prepared[1] * t8 - prepared[2] * t5 - prepared[3] * t6;  // e1
-  p[1] = prepared[1] * t7 + prepared[2] * t6 - prepared[0] * t8 - prepared[3] * t5;  // e2
-  p[2] = prepared[2] * t7 + prepared[3] * t8 - prepared[0] * t5 - prepared[1] * t6;  // e3
-  n_[0] = prepared[0] * t9 + prepared[3] * t12 - prepared[1] * t10 - prepared[2] * t11;  // e1
-  n_[1] = hn::Neg(prepared[0] * t10) - prepared[1] * t9 - prepared[2] * t12 - prepared[3] * t11;  // e2
-  n_[2] = prepared[1] * t12 + prepared[3] * t10 - prepared[0] * t11 - prepared[2] * t9;  // e3
+  (void)nx;
+  (void)ny;
+  (void)nz;
+  const V t0 = hn::IfThenElse(hn::Lt((G0[1] * G1[1] + G0[2] * G1[2] + G0[3] * G1[3] + G0[0] * G1[0]), hn::Set(d, 0.0f)), hn::Neg(w1), w1);
+  const V t1 = hn::IfThenElse(hn::Lt((G0[1] * G2[1] + G0[2] * G2[2] + G0[3] * G2[3] + G0[0] * G2[0]), hn::Set(d, 0.0f)), hn::Neg(w2), w2);
+  const V t2 = hn::IfThenElse(hn::Lt((G0[1] * G3[1] + G0[2] * G3[2] + G0[3] * G3[3] + G0[0] * G3[0]), hn::Set(d, 0.0f)), hn::Neg(w3), w3);
+  const V t3 = G0[0] * w0 + G1[0] * t0 + G2[0] * t1 + G3[0] * t2;
+  const V t4 = G0[1] * w0 + G1[1] * t0 + G2[1] * t1 + G3[1] * t2;
+  const V t5 = G0[2] * w0 + G1[2] * t0 + G2[2] * t1 + G3[2] * t2;
+  const V t6 = G0[3] * w0 + G1[3] * t0 + G2[3] * t1 + G3[3] * t2;
+  const V t7 = H0[0] * w0 + H1[0] * t0 + H2[0] * t1 + H3[0] * t2;
+  const V t8 = H0[1] * w0 + H1[1] * t0 + H2[1] * t1 + H3[1] * t2;
+  const V t9 = H0[2] * w0 + H1[2] * t0 + H2[2] * t1 + H3[2] * t2;
+  const V t10 = H0[3] * w0 + H1[3] * t0 + H2[3] * t1 + H3[3] * t2;
+  const V t11 = U0[0] * w0 + U1[0] * t0 + U2[0] * t1 + U3[0] * t2;
+  const V t12 = U0[1] * w0 + U1[1] * t0 + U2[1] * t1 + U3[1] * t2;
+  const V t13 = U0[2] * w0 + U1[2] * t0 + U2[2] * t1 + U3[2] * t2;
+  const V t14 = U0[3] * w0 + U1[3] * t0 + U2[3] * t1 + U3[3] * t2;
+  const V t15 = hn::Set(d, 1.0f) / (t3 * t3 + t4 * t4 + t5 * t5 + t6 * t6);
+  const V t16 = t15 * x;
+  const V t17 = t16 * t4;
+  const V t18 = t16 * t5;
+  const V t19 = t16 * t6;
+  const V t20 = t16 * t3;
+  const V t21 = t15 * y;
+  const V t22 = t21 * t4;
+  const V t23 = t21 * t5;
+  const V t24 = t21 * t6;
+  const V t25 = t21 * t3;
+  const V t26 = t15 * z;
+  const V t27 = t26 * t4;
+  const V t28 = t26 * t5;
+  const V t29 = t26 * t6;
+  const V t30 = t26 * t3;
+  const V t31 = t25 + t29 - t17;
+  const V t32 = t30 - t18 - t24;
+  const V t33 = t19 + t27 - t23;
+  const V t34 = t20 + t22 + t28;
+  p[0] = t10 * t33 + t31 * t8 + t32 * t9 + t34 * t7 - hn::Set(d, 2.0f) * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15;  // e1
+  p[1] = hn::Set(d, 2.0f) * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t10 * t32 + t31 * t7 - t33 * t9 - t34 * t8;  // e2
+  p[2] = hn::Set(d, 2.0f) * (t11 * t5 + t12 * t6 - t13 * t3 - t14 * t4) * t15 + t32 * t7 + t33 * t8 - t10 * t31 - t34 * t9;  // e3
 }
 
 // Elements i .. i + Lanes(d) - 1: the streams' lanes in, NAME, the lanes out.
 template <class D>
-HWY_INLINE void skin_motors_split_lanes(D d, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_, std::size_t i) {
+HWY_INLINE void skin_motors_positions_lanes(D d, const In& G0, const In& H0, const In& U0, const In& G1, const In& H1, const In& U1, const In& G2, const In& H2, const In& U2, const In& G3, const In& H3, const In& U3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, std::size_t i) {
   using V = hn::Vec<D>;
   cgagen_rows<D> cgagen_rows_cache;
-  V lanes_prepared[12];
-  cgagen_load(d, prepared, i, lanes_prepared, cgagen_rows_cache);
+  V lanes_G0[4];
+  cgagen_load(d, G0, i, lanes_G0, cgagen_rows_cache);
+  V lanes_H0[4];
+  cgagen_load(d, H0, i, lanes_H0, cgagen_rows_cache);
+  V lanes_U0[4];
+  cgagen_load(d, U0, i, lanes_U0, cgagen_rows_cache);
+  V lanes_G1[4];
+  cgagen_load(d, G1, i, lanes_G1, cgagen_rows_cache);
+  V lanes_H1[4];
+  cgagen_load(d, H1, i, lanes_H1, cgagen_rows_cache);
+  V lanes_U1[4];
+  cgagen_load(d, U1, i, lanes_U1, cgagen_rows_cache);
+  V lanes_G2[4];
+  cgagen_load(d, G2, i, lanes_G2, cgagen_rows_cache);
+  V lanes_H2[4];
+  cgagen_load(d, H2, i, lanes_H2, cgagen_rows_cache);
+  V lanes_U2[4];
+  cgagen_load(d, U2, i, lanes_U2, cgagen_rows_cache);
+  V lanes_G3[4];
+  cgagen_load(d, G3, i, lanes_G3, cgagen_rows_cache);
+  V lanes_H3[4];
+  cgagen_load(d, H3, i, lanes_H3, cgagen_rows_cache);
+  V lanes_U3[4];
+  cgagen_load(d, U3, i, lanes_U3, cgagen_rows_cache);
+  const V lanes_w0 = cgagen_load(d, w0, i, cgagen_rows_cache);
+  const V lanes_w1 = cgagen_load(d, w1, i, cgagen_rows_cache);
+  const V lanes_w2 = cgagen_load(d, w2, i, cgagen_rows_cache);
+  const V lanes_w3 = cgagen_load(d, w3, i, cgagen_rows_cache);
   const V lanes_x = cgagen_load(d, x, i, cgagen_rows_cache);
   const V lanes_y = cgagen_load(d, y, i, cgagen_rows_cache);
   const V lanes_z = cgagen_load(d, z, i, cgagen_rows_cache);
@@ -430,19 +344,17 @@ HWY_INLINE void skin_motors_split_lanes(D d, const In& prepared, const In& x, co
   const V lanes_ny = cgagen_load(d, ny, i, cgagen_rows_cache);
   const V lanes_nz = cgagen_load(d, nz, i, cgagen_rows_cache);
   V lanes_p[3];
-  V lanes_n_[3];
-  skin_motors_split(d, lanes_prepared, lanes_x, lanes_y, lanes_z, lanes_nx, lanes_ny, lanes_nz, lanes_p, lanes_n_);
+  skin_motors_positions(d, lanes_G0, lanes_H0, lanes_U0, lanes_G1, lanes_H1, lanes_U1, lanes_G2, lanes_H2, lanes_U2, lanes_G3, lanes_H3, lanes_U3, lanes_w0, lanes_w1, lanes_w2, lanes_w3, lanes_x, lanes_y, lanes_z, lanes_nx, lanes_ny, lanes_nz, lanes_p);
   cgagen_store(d, p, i, lanes_p);
-  cgagen_store(d, n_, i, lanes_n_);
 }
 
 // Elements 0 .. n - 1: whole vectors, then the tail one lane at a time (the same code on one lane).
-inline HWY_NOINLINE void skin_motors_split_batch(std::size_t n, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
+inline HWY_NOINLINE void skin_motors_positions_batch(std::size_t n, const In& G0, const In& H0, const In& U0, const In& G1, const In& H1, const In& U1, const In& G2, const In& H2, const In& U2, const In& G3, const In& H3, const In& U3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p) {
   const hn::ScalableTag<float> d;
   const std::size_t N = hn::Lanes(d);
   std::size_t i = 0;
-  for (; i + N <= n; i += N) skin_motors_split_lanes(d, prepared, x, y, z, nx, ny, nz, p, n_, i);
-  for (; i < n; ++i) skin_motors_split_lanes(hn::CappedTag<float, 1>(), prepared, x, y, z, nx, ny, nz, p, n_, i);
+  for (; i + N <= n; i += N) skin_motors_positions_lanes(d, G0, H0, U0, G1, H1, U1, G2, H2, U2, G3, H3, U3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p, i);
+  for (; i < n; ++i) skin_motors_positions_lanes(hn::CappedTag<float, 1>(), G0, H0, U0, G1, H1, U1, G2, H2, U2, G3, H3, U3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p, i);
 }
 
 }  // namespace cga::kernels::simd::HWY_NAMESPACE
@@ -451,17 +363,17 @@ HWY_AFTER_NAMESPACE();
 #endif
 
 // The entry a caller uses: dispatched to the best instruction set, or the static one.
-#if HWY_ONCE && !defined(CGAGEN_SIMD_skin_motors_split_ENTRY)
-#define CGAGEN_SIMD_skin_motors_split_ENTRY
+#if HWY_ONCE && !defined(CGAGEN_SIMD_skin_motors_positions_ENTRY)
+#define CGAGEN_SIMD_skin_motors_positions_ENTRY
 namespace cga::kernels::simd {
 #ifdef CGAGEN_SIMD_DISPATCH
-HWY_EXPORT(skin_motors_split_batch);
-inline void skin_motors_split_batch(std::size_t n, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
-  HWY_DYNAMIC_DISPATCH(skin_motors_split_batch)(n, prepared, x, y, z, nx, ny, nz, p, n_);
+HWY_EXPORT(skin_motors_positions_batch);
+inline void skin_motors_positions_batch(std::size_t n, const In& G0, const In& H0, const In& U0, const In& G1, const In& H1, const In& U1, const In& G2, const In& H2, const In& U2, const In& G3, const In& H3, const In& U3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p) {
+  HWY_DYNAMIC_DISPATCH(skin_motors_positions_batch)(n, G0, H0, U0, G1, H1, U1, G2, H2, U2, G3, H3, U3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p);
 }
 #else
-inline void skin_motors_split_batch(std::size_t n, const In& prepared, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p, const Out& n_) {
-  HWY_STATIC_DISPATCH(skin_motors_split_batch)(n, prepared, x, y, z, nx, ny, nz, p, n_);
+inline void skin_motors_positions_batch(std::size_t n, const In& G0, const In& H0, const In& U0, const In& G1, const In& H1, const In& U1, const In& G2, const In& H2, const In& U2, const In& G3, const In& H3, const In& U3, const In& w0, const In& w1, const In& w2, const In& w3, const In& x, const In& y, const In& z, const In& nx, const In& ny, const In& nz, const Out& p) {
+  HWY_STATIC_DISPATCH(skin_motors_positions_batch)(n, G0, H0, U0, G1, H1, U1, G2, H2, U2, G3, H3, U3, w0, w1, w2, w3, x, y, z, nx, ny, nz, p);
 }
 #endif
 }  // namespace cga::kernels::simd
