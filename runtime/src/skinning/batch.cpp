@@ -7,11 +7,11 @@
 //          entry's blades), pass 2 runs the lane kernel NAME_split across the block's vertices on the
 //          prepared values;
 //   whole  the lane kernel NAME across vertices on the four entries of each.
-// What is written here is method-blind: the block check, the loops, prefetch, and one transposer that turns
-// rows of 4 floats (a vertex's prepared values, a palette entry's vec4s, a vertex's weights) into lanes. The
-// kernels are called directly on vectors, so no stream descriptor is looked at inside the loops. The entries
-// are the method's prepared palette (prepare_palette: 4 * VEC4S floats each), the blend's entry inputs read
-// at 4 * v within an entry.
+// What is written here is method-blind: the block check, the loops, prefetch, and the row offsets through
+// which the generated headers' transposer turns rows of 4 floats (a vertex's prepared values, a palette
+// entry's vec4s, a vertex's weights) into lanes. The kernels are called directly on vectors, so no stream
+// descriptor is looked at inside the loops. The entries are the method's prepared palette (prepare_palette:
+// 4 * VEC4S floats each), the blend's entry inputs read at 4 * v within an entry.
 #ifndef CGA_SKINNING_BATCH_ONCE
 #define CGA_SKINNING_BATCH_ONCE
 // Before Highway's first header: the kernels take arrays of vectors, which sizeless vectors (SVE, RVV) cannot
@@ -110,58 +110,35 @@ namespace kl = ::cga::kernels::simd::HWY_NAMESPACE;
 CGA_SKINNING_METHODS(CGA_METHOD_BATCH)
 #undef CGA_METHOD_BATCH
 
-#if HWY_TARGET != HWY_SCALAR  // one-lane vectors: no 128-bit blocks to transpose
-// One vector whose 128-bit block b holds the 4 floats at row(4 b + a) (Lanes(d) a multiple of 4).
-template <class D, class Row>
-HWY_INLINE hn::Vec<D> blocks(D d, const Row& row, std::size_t first, std::size_t a) {
-  constexpr std::size_t N = hn::MaxLanes(D());
-  if constexpr (N == 4) {
-    return hn::LoadU(d, row(first + a));
-  } else {
-    const hn::Half<D> dh;
-    return hn::Combine(d, blocks(dh, row, first + N / 2, a), blocks(dh, row, first, a));
-  }
-}
-#endif
-
-// The transposer: floats k .. k + kN - 1 of rows row(0) .. row(Lanes(d) - 1) (row(j) a float pointer) as kN
-// vectors, lane j from row j: with lanes a multiple of 4, one 128-bit load per row and 4 adjacent floats and a
-// 4 x 4 transpose within each 128-bit block; otherwise (one lane, the scalar target) lane by lane.
-template <std::size_t kN, class D, class Row>
-HWY_INLINE void transpose(D d, const Row& row, hn::Vec<D>* out) {
-  constexpr std::size_t N = hn::MaxLanes(D());
+// Floats k .. k + kN - 1 of the rows base + offs[j], j < Lanes(d), as kN vectors, lane j from row j: the
+// generated headers' transposer (cgagen_rows4: one 128-bit load per row and a 4 x 4 transpose within each
+// 128-bit block) 4 floats at a time, a gather for the rest and on one lane.
+template <std::size_t kN, class D>
+HWY_INLINE void transpose(D d, const float* base, const std::int32_t* offs, hn::Vec<D>* out) {
   std::size_t k = 0;
 #if HWY_TARGET != HWY_SCALAR
-  if constexpr (N % 4 == 0) {
-    const hn::Repartition<std::uint64_t, D> d64;
-    for (; k + 4 <= kN; k += 4) {
-      const auto at = [&](std::size_t j) { return row(j) + k; };
-      const auto b0 = blocks(d, at, 0, 0), b1 = blocks(d, at, 0, 1);
-      const auto b2 = blocks(d, at, 0, 2), b3 = blocks(d, at, 0, 3);
-      const auto t0 = hn::BitCast(d64, hn::InterleaveLower(d, b0, b1));  // r0.x r1.x r0.y r1.y
-      const auto t1 = hn::BitCast(d64, hn::InterleaveLower(d, b2, b3));  // r2.x r3.x r2.y r3.y
-      const auto t2 = hn::BitCast(d64, hn::InterleaveUpper(d, b0, b1));  // r0.z r1.z r0.w r1.w
-      const auto t3 = hn::BitCast(d64, hn::InterleaveUpper(d, b2, b3));  // r2.z r3.z r2.w r3.w
-      out[k] = hn::BitCast(d, hn::InterleaveLower(d64, t0, t1));
-      out[k + 1] = hn::BitCast(d, hn::InterleaveUpper(d64, t0, t1));
-      out[k + 2] = hn::BitCast(d, hn::InterleaveLower(d64, t2, t3));
-      out[k + 3] = hn::BitCast(d, hn::InterleaveUpper(d64, t2, t3));
-    }
-  }
+  if constexpr (hn::MaxLanes(D()) % 4 == 0)
+    for (; k + 4 <= kN; k += 4) kl::cgagen_rows4(d, base + k, offs, out[k], out[k + 1], out[k + 2], out[k + 3]);
 #endif
-  for (; k < kN; ++k) {
-    alignas(64) float lanes[N];
-    for (std::size_t j = 0; j < N; ++j) lanes[j] = row(j)[k];
-    out[k] = hn::Load(d, lanes);
-  }
+  const hn::RebindToSigned<D> di;
+  for (; k < kN; ++k) out[k] = hn::GatherIndex(d, base + k, hn::Load(di, offs));
 }
+
+// Row offsets j * stride of lanes j < Lanes(d), for rows of `stride` floats laid out one after another.
+template <class D>
+struct Strided {
+  alignas(64) std::int32_t offs[hn::MaxLanes(D())];
+  explicit Strided(std::size_t stride) {
+    for (std::size_t j = 0; j < hn::MaxLanes(D()); ++j) offs[j] = static_cast<std::int32_t>(j * stride);
+  }
+};
 
 // Split form, pass 2 on vertices i .. i + Lanes(d) - 1 (prepared: the block's prepared values, vertex b first).
 template <class K, bool kNormals, class D>
 HWY_INLINE void split_lanes(D d, const Streams& s, const float* prepared, std::size_t b, std::size_t i) {
   using V = hn::Vec<D>;
   V prep[K::kPrepared];
-  transpose<K::kPrepared>(d, [&](std::size_t j) { return prepared + K::kPrepared * (i - b + j); }, prep);
+  transpose<K::kPrepared>(d, prepared + K::kPrepared * (i - b), Strided<D>(K::kPrepared).offs, prep);
   const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
   V p[3], n[3];
   if constexpr (kNormals) {
@@ -182,11 +159,12 @@ HWY_INLINE void whole_lanes(D d, const float* pal, const Streams& s, std::size_t
   constexpr std::size_t kFloats = 4 * K::kVec4s;
   V e[4][K::kVec4s][4], w[4];
   for (std::size_t k = 0; k < 4; ++k) {
-    const auto entry = [&](std::size_t j) { return pal + kFloats * s.joints[i + j][k]; };
-    for (std::size_t v = 0; v < K::kVec4s; ++v)
-      transpose<4>(d, [&](std::size_t j) { return entry(j) + 4 * v; }, e[k][v]);
+    alignas(64) std::int32_t entries[hn::MaxLanes(D())];
+    for (std::size_t j = 0; j < hn::MaxLanes(D()); ++j)
+      entries[j] = static_cast<std::int32_t>(kFloats * s.joints[i + j][k]);
+    for (std::size_t v = 0; v < K::kVec4s; ++v) transpose<4>(d, pal + 4 * v, entries, e[k][v]);
   }
-  transpose<4>(d, [&](std::size_t j) { return s.weights[i + j].data(); }, w);
+  transpose<4>(d, s.weights[i].data(), Strided<D>(4).offs, w);
   const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
   V p[3], n[3];
   if constexpr (kNormals) {
