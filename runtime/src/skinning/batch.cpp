@@ -133,22 +133,31 @@ struct Strided {
   }
 };
 
+// The kernel on vertices i .. i + Lanes(d) - 1: their positions (and normals) loaded, `both(x, y, z, nx, ny,
+// nz, p, n)` or `positions(x, y, z, p)` (the kernel with its leading inputs bound), the outputs stored.
+template <bool kNormals, class D, class Both, class Positions>
+HWY_INLINE void apply(D d, const Streams& s, std::size_t i, const Both& both, const Positions& positions) {
+  using V = hn::Vec<D>;
+  const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
+  V p[3], n[3];
+  if constexpr (kNormals) {
+    both(x, y, z, hn::LoadU(d, s.nx + i), hn::LoadU(d, s.ny + i), hn::LoadU(d, s.nz + i), p, n);
+    hn::StoreU(n[0], d, s.onx + i), hn::StoreU(n[1], d, s.ony + i), hn::StoreU(n[2], d, s.onz + i);
+  } else {
+    positions(x, y, z, p);
+  }
+  hn::StoreU(p[0], d, s.ox + i), hn::StoreU(p[1], d, s.oy + i), hn::StoreU(p[2], d, s.oz + i);
+}
+
 // Split form, pass 2 on vertices i .. i + Lanes(d) - 1 (prepared: the block's prepared values, vertex b first).
 template <class K, bool kNormals, class D>
 HWY_INLINE void split_lanes(D d, const Streams& s, const float* prepared, std::size_t b, std::size_t i) {
   using V = hn::Vec<D>;
   V prep[K::kPrepared];
   transpose<K::kPrepared>(d, prepared + K::kPrepared * (i - b), Strided<D>(K::kPrepared).offs, prep);
-  const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
-  V p[3], n[3];
-  if constexpr (kNormals) {
-    const V nx = hn::LoadU(d, s.nx + i), ny = hn::LoadU(d, s.ny + i), nz = hn::LoadU(d, s.nz + i);
-    K::both(d, prep, x, y, z, nx, ny, nz, p, n);
-    hn::StoreU(n[0], d, s.onx + i), hn::StoreU(n[1], d, s.ony + i), hn::StoreU(n[2], d, s.onz + i);
-  } else {
-    K::positions(d, prep, x, y, z, p);
-  }
-  hn::StoreU(p[0], d, s.ox + i), hn::StoreU(p[1], d, s.oy + i), hn::StoreU(p[2], d, s.oz + i);
+  apply<kNormals>(
+      d, s, i, [&](V x, V y, V z, V nx, V ny, V nz, V* p, V* n) { K::both(d, prep, x, y, z, nx, ny, nz, p, n); },
+      [&](V x, V y, V z, V* p) { K::positions(d, prep, x, y, z, p); });
 }
 
 // Whole form on vertices i .. i + Lanes(d) - 1: each influence's entry transposed from its palette rows, the
@@ -165,17 +174,15 @@ HWY_INLINE void whole_lanes(D d, const float* pal, const Streams& s, std::size_t
     for (std::size_t v = 0; v < K::kVec4s; ++v) transpose<4>(d, pal + 4 * v, entries, e[k][v]);
   }
   transpose<4>(d, s.weights[i].data(), Strided<D>(4).offs, w);
-  const V x = hn::LoadU(d, s.px + i), y = hn::LoadU(d, s.py + i), z = hn::LoadU(d, s.pz + i);
-  V p[3], n[3];
-  if constexpr (kNormals) {
-    const V nx = hn::LoadU(d, s.nx + i), ny = hn::LoadU(d, s.ny + i), nz = hn::LoadU(d, s.nz + i);
-    K::both(d, e[I / K::kVec4s][I % K::kVec4s]..., w[0], w[1], w[2], w[3], x, y, z, nx, ny, nz, p, n);
-    hn::StoreU(n[0], d, s.onx + i), hn::StoreU(n[1], d, s.ony + i), hn::StoreU(n[2], d, s.onz + i);
-  } else {
-    // The position kernel of the whole form lists the normal's inputs too, which it does not read.
-    K::positions(d, e[I / K::kVec4s][I % K::kVec4s]..., w[0], w[1], w[2], w[3], x, y, z, x, y, z, p);
-  }
-  hn::StoreU(p[0], d, s.ox + i), hn::StoreU(p[1], d, s.oy + i), hn::StoreU(p[2], d, s.oz + i);
+  apply<kNormals>(
+      d, s, i,
+      [&](V x, V y, V z, V nx, V ny, V nz, V* p, V* n) {
+        K::both(d, e[I / K::kVec4s][I % K::kVec4s]..., w[0], w[1], w[2], w[3], x, y, z, nx, ny, nz, p, n);
+      },
+      // The position kernel of the whole form lists the normal's inputs too, which it does not read.
+      [&](V x, V y, V z, V* p) {
+        K::positions(d, e[I / K::kVec4s][I % K::kVec4s]..., w[0], w[1], w[2], w[3], x, y, z, x, y, z, p);
+      });
 }
 
 // The split form's pass 1 for one vertex: the prepare on its four entries and weights, into `out`.
