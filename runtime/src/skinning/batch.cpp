@@ -10,13 +10,14 @@
 // What is written here is method-blind: the block check, the loops, prefetch, and the row offsets through
 // which the generated headers' transposer turns rows of 4 floats (a vertex's prepared values, a palette
 // entry's vec4s, a vertex's weights) into lanes. The kernels are called directly on vectors, so no stream
-// descriptor is looked at inside the loops. The entries are the method's prepared palette (prepare_palette:
-// 4 * VEC4S floats each), the blend's entry inputs read at 4 * v within an entry.
+// descriptor is looked at inside the loops. The entries are the method's prepared palette, one line of kEntry
+// floats each (prepare_palette_strided), the blend's entry inputs read at 4 * v within an entry.
 #ifndef CGA_SKINNING_BATCH_ONCE
 #define CGA_SKINNING_BATCH_ONCE
 // Before Highway's first header: the kernels take arrays of vectors, which sizeless vectors (SVE, RVV) cannot
 // be elements of.
 #define HWY_DISABLED_TARGETS (HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 
@@ -34,23 +35,23 @@
 #define CGA_SKINNING_BATCH_SHARED
 namespace cga::skinning_detail {
 namespace {
-// The input lines of vertices [begin, end) + kAhead, for a large mesh: its loop is bound by the misses one
-// core keeps in flight, which the hardware prefetchers alone leave too few of. Addresses past the arrays are
-// formed as integers (a prefetch never faults). Both always inlined: GCC takes a function whose only effect
-// is a prefetch for one without effects and deletes the calls to it (the prefetches vanish).
-constexpr std::size_t kAhead = 1024;
+// The input lines of the 16 vertices v + kAhead on, for a large mesh: its loop is bound by the misses one core
+// keeps in flight, which the hardware prefetchers alone leave too few of. Issued as the loops go, 16 vertices
+// at a time, so the prefetches spread between the loads. Addresses past the arrays are formed as integers (a
+// prefetch never faults). Both always inlined: GCC takes a function whose only effect is a prefetch for one
+// without effects and deletes the calls to it (the prefetches vanish).
+constexpr std::size_t kAhead = 1024, kAheadStep = 16;  // at least the widest vector's lanes
 CGA_ALWAYS_INLINE void prefetch(const void* base, std::size_t bytes) {
   __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(base) + bytes));
 }
 template <bool kNormals>
-CGA_ALWAYS_INLINE void prefetch_block(const Streams& s, std::size_t begin, std::size_t end) {
-  for (std::size_t v = begin + kAhead; v < end + kAhead; v += 16) {
-    for (const float* p : {s.px, s.py, s.pz}) prefetch(p, 4 * v);
-    if constexpr (kNormals)
-      for (const float* p : {s.nx, s.ny, s.nz}) prefetch(p, 4 * v);
-    for (std::size_t b = 0; b < 128; b += 64) prefetch(s.joints, 8 * v + b);
-    for (std::size_t b = 0; b < 256; b += 64) prefetch(s.weights, 16 * v + b);
-  }
+CGA_ALWAYS_INLINE void prefetch_ahead(const Streams& s, std::size_t v) {
+  v += kAhead;
+  for (const float* p : {s.px, s.py, s.pz}) prefetch(p, 4 * v);
+  if constexpr (kNormals)
+    for (const float* p : {s.nx, s.ny, s.nz}) prefetch(p, 4 * v);
+  for (std::size_t b = 0; b < 128; b += 64) prefetch(s.joints, 8 * v + b);
+  for (std::size_t b = 0; b < 256; b += 64) prefetch(s.weights, 16 * v + b);
 }
 }  // namespace
 }  // namespace cga::skinning_detail
@@ -133,8 +134,27 @@ struct Strided {
   }
 };
 
+// 1 / |n| on each lane, or 0 where |n| = 0 (a degenerate normal becomes 0 rather than NaN): the reciprocal
+// square root estimate and one Newton step (relative error below 1e-6) where the instruction set has an
+// estimate of 12 bits or more, else the exact quotient. The division and square root it replaces kept the
+// divider busy about 20 cycles per 8 vertices.
+template <class D>
+HWY_INLINE hn::Vec<D> inv_length(D d, hn::Vec<D> x, hn::Vec<D> y, hn::Vec<D> z) {
+  const auto len2 = hn::MulAdd(z, z, hn::MulAdd(y, y, hn::Mul(x, x)));
+  const auto safe = hn::Max(len2, hn::Set(d, 1e-30f));
+#if HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
+  const auto inv = hn::Div(hn::Set(d, 1.0f), hn::Sqrt(safe));
+#else
+  const auto r = hn::ApproximateReciprocalSqrt(safe);
+  // r (1.5 - 0.5 len2 r^2)
+  const auto inv = hn::Mul(r, hn::NegMulAdd(hn::Mul(hn::Mul(hn::Set(d, 0.5f), safe), r), r, hn::Set(d, 1.5f)));
+#endif
+  return hn::IfThenElseZero(hn::Gt(len2, hn::Zero(d)), inv);
+}
+
 // The kernel on vertices i .. i + Lanes(d) - 1: their positions (and normals) loaded, `both(x, y, z, nx, ny,
-// nz, p, n)` or `positions(x, y, z, p)` (the kernel with its leading inputs bound), the outputs stored.
+// nz, p, n)` or `positions(x, y, z, p)` (the kernel with its leading inputs bound), the outputs stored, the
+// normals renormalized on the way.
 template <bool kNormals, class D, class Both, class Positions>
 HWY_INLINE void apply(D d, const Streams& s, std::size_t i, const Both& both, const Positions& positions) {
   using V = hn::Vec<D>;
@@ -142,7 +162,9 @@ HWY_INLINE void apply(D d, const Streams& s, std::size_t i, const Both& both, co
   V p[3], n[3];
   if constexpr (kNormals) {
     both(x, y, z, hn::LoadU(d, s.nx + i), hn::LoadU(d, s.ny + i), hn::LoadU(d, s.nz + i), p, n);
-    hn::StoreU(n[0], d, s.onx + i), hn::StoreU(n[1], d, s.ony + i), hn::StoreU(n[2], d, s.onz + i);
+    const V inv = inv_length(d, n[0], n[1], n[2]);
+    hn::StoreU(hn::Mul(n[0], inv), d, s.onx + i), hn::StoreU(hn::Mul(n[1], inv), d, s.ony + i);
+    hn::StoreU(hn::Mul(n[2], inv), d, s.onz + i);
   } else {
     positions(x, y, z, p);
   }
@@ -165,15 +187,20 @@ HWY_INLINE void split_lanes(D d, const Streams& s, const float* prepared, std::s
 template <class K, bool kNormals, class D, std::size_t... I>
 HWY_INLINE void whole_lanes(D d, const float* pal, const Streams& s, std::size_t i, std::index_sequence<I...>) {
   using V = hn::Vec<D>;
-  constexpr std::size_t kFloats = 4 * K::kVec4s;
   V e[4][K::kVec4s][4], w[4];
+  // The lanes' joints, influence k in joints[k], as offsets of their entries in the palette.
+  const hn::Rebind<std::uint16_t, D> d16;
+  const hn::RebindToSigned<D> di;
+  hn::Vec<decltype(d16)> joints[4];
+  hn::LoadInterleaved4(d16, s.joints[i].data(), joints[0], joints[1], joints[2], joints[3]);
   for (std::size_t k = 0; k < 4; ++k) {
     alignas(64) std::int32_t entries[hn::MaxLanes(D())];
-    for (std::size_t j = 0; j < hn::MaxLanes(D()); ++j)
-      entries[j] = static_cast<std::int32_t>(kFloats * s.joints[i + j][k]);
+    hn::Store(hn::Mul(hn::BitCast(di, hn::PromoteTo(hn::RebindToUnsigned<D>(), joints[k])),
+                      hn::Set(di, static_cast<std::int32_t>(kEntry))),
+              di, entries);
     for (std::size_t v = 0; v < K::kVec4s; ++v) transpose<4>(d, pal + 4 * v, entries, e[k][v]);
   }
-  transpose<4>(d, s.weights[i].data(), Strided<D>(4).offs, w);
+  hn::LoadInterleaved4(d, s.weights[i].data(), w[0], w[1], w[2], w[3]);
   apply<kNormals>(
       d, s, i,
       [&](V x, V y, V z, V nx, V ny, V nz, V* p, V* n) {
@@ -189,8 +216,7 @@ HWY_INLINE void whole_lanes(D d, const float* pal, const Streams& s, std::size_t
 template <class K, std::size_t... I>
 HWY_INLINE void prepare_one(const float* pal, const std::uint16_t* j, const float* w, float* out,
                             std::index_sequence<I...>) {
-  constexpr std::size_t kFloats = 4 * K::kVec4s;
-  K::prepare((pal + kFloats * j[I / K::kVec4s] + 4 * (I % K::kVec4s))..., w[0], w[1], w[2], w[3], out);
+  K::prepare((pal + kEntry * j[I / K::kVec4s] + 4 * (I % K::kVec4s))..., w[0], w[1], w[2], w[3], out);
 }
 
 // Vertices [begin, end) of packed streams (strided runs are staged into packed blocks by the caller): whole
@@ -199,25 +225,32 @@ template <class K, bool kNormals>
 HWY_NOINLINE bool batch_block(const float* pal, const Streams& s, std::size_t begin, std::size_t end,
                               std::size_t palette) {
   if (!block_ok(s.joints, s.weights, begin, end, palette)) return false;
-  prefetch_block<kNormals>(s, begin, end);
   const hn::ScalableTag<float> d;
   const hn::CappedTag<float, 1> d1;
   const std::size_t N = hn::Lanes(d);
+  // The prefetch for each chunk of kAheadStep vertices (a whole number of vectors) as the loops reach it.
+  static_assert(kAheadStep % hn::MaxLanes(d) == 0, "a chunk must hold whole vectors");
   std::size_t i = begin;
   if constexpr (K::kSplit) {
     // Pass 1 vertex after vertex into one prepared block, pass 2 across it.
     alignas(64) float prepared[kBlock * K::kPrepared];
-    for (std::size_t v = begin; v < end; ++v)
-      prepare_one<K>(pal, s.joints[v].data(), s.weights[v].data(), prepared + K::kPrepared * (v - begin),
-                     std::make_index_sequence<4 * K::kVec4s>{});
+    for (std::size_t c = begin; c < end; c += kAheadStep) {
+      prefetch_ahead<kNormals>(s, c);
+      for (std::size_t v = c; v < std::min(end, c + kAheadStep); ++v)
+        prepare_one<K>(pal, s.joints[v].data(), s.weights[v].data(), prepared + K::kPrepared * (v - begin),
+                       std::make_index_sequence<4 * K::kVec4s>{});
+    }
     for (; i + N <= end; i += N) split_lanes<K, kNormals>(d, s, prepared, begin, i);
     for (; i < end; ++i) split_lanes<K, kNormals>(d1, s, prepared, begin, i);
   } else {
     constexpr auto kInputs = std::make_index_sequence<4 * K::kVec4s>{};
-    for (; i + N <= end; i += N) whole_lanes<K, kNormals>(d, pal, s, i, kInputs);
+    std::size_t fetched = begin;
+    for (; i + N <= end; i += N) {
+      if (i >= fetched) prefetch_ahead<kNormals>(s, fetched), fetched += kAheadStep;
+      whole_lanes<K, kNormals>(d, pal, s, i, kInputs);
+    }
     for (; i < end; ++i) whole_lanes<K, kNormals>(d1, pal, s, i, kInputs);
   }
-  if constexpr (kNormals) renormalize(s, begin, end);
   return true;
 }
 

@@ -1,12 +1,13 @@
 // The generated skinning path: every method of the table (skinning_methods.hpp) as its two generated kernels
 // (runtime/scripts/skin -> cga::kernels): the per-bone prepare fills the run's converted palette with
-// prepared entries (entry_vec4s vec4s each), and the portable block loop calls the per-vertex blend on four
-// of them. This is the loop every method runs on without SIMD (and dqs / cga_log always); the hand-written
+// prepared entries (entry_vec4s vec4s each, one kEntry-float line per entry: prepare_palette_strided), and the
+// portable block loop calls the per-vertex blend on four of them. This is the loop every method runs on without SIMD (and dqs / cga_log always); the hand-written
 // AVX2 / AVX-512 loops of lbs, cga_points and cga_motors are checked against it (test_skinning_simd).
 // Private to runtime/src/skinning/.
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <utility>
 
 #include <skinning_kernels.hpp>
@@ -50,6 +51,13 @@ CGA_ALWAYS_INLINE void prepare_from_dual_quat(const glm::dualquat& q, float* ent
   K::bone_fn(q.real.x, q.real.y, q.real.z, q.real.w, q.dual.x, q.dual.y, q.dual.z, q.dual.w, (entry + 4 * I)...);
 }
 
+// The method's palette prepared into `out` at `stride` floats per entry (prepare.cpp; prepare_palette packs
+// them at prepared_entry_floats). The CPU loops read entries of kEntry floats: one 64-byte line each, and an
+// entry's offset is a shift of its joint index.
+void prepare_palette_strided(SkinningMethod method, std::span<const glm::mat3x4> matrices,
+                             std::span<const glm::dualquat> dual_quats, std::span<const Motor> motors,
+                             std::span<float> out, std::size_t stride);
+
 // The blend of one vertex on the entries e[0..3].
 template <class K, std::size_t... I>
 CGA_ALWAYS_INLINE void blend_vertex(const float* const e[4], const float w[4], float x, float y, float z,
@@ -61,7 +69,7 @@ CGA_ALWAYS_INLINE void blend_vertex(const float* const e[4], const float w[4], f
 template <class K, bool kNormals>
 CGA_ALWAYS_INLINE void generated_block(const float* __restrict pal, const Streams& s, std::size_t begin,
                                        std::size_t end) {
-  constexpr std::size_t kFloats = 4 * K::kVec4s;
+  constexpr std::size_t kFloats = kEntry;
   // One vertex per iteration: GCC 12 vectorizes neither the four entry gathers nor (in cga-log) the libm
   // calls, so this loop stays scalar (docs/skinning.md has the A/B against the SIMD loops).
   const std::uint16_t* __restrict joints = s.joints[0].data();

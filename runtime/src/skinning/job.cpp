@@ -286,7 +286,8 @@ bool SkinningJob::Run() const {
   }
   const bool generated = block == nullptr;
   if (generated) {
-    prepare_palette(method, matrices, dual_quats, motors, std::span<float>(converted, sizeof converted / sizeof(float)));
+    prepare_palette_strided(method, matrices, dual_quats, motors,
+                            std::span<float>(converted, sizeof converted / sizeof(float)), kEntry);
     block = (use_simd ? batch_blocks() : generated_blocks())[static_cast<std::size_t>(method)][normals];
   }
   const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
