@@ -1,7 +1,9 @@
 // The skinning method table (skinning_methods.hpp, generated from runtime/skinning_methods.txt) and its
 // promise: every blend is written once, as a script.
 // The shader and CUDA sources of the repository (everything but the generated outputs) are scanned for a
-// hand-written blend: an expression that multiplies by a skin weight.
+// hand-written blend: an expression that multiplies by a skin weight. The C++ of runtime/ is scanned for x86
+// intrinsics and its skinning sources for weighted sums: both may stand only in the hand-written SIMD loops
+// still kept beside the generated batch path, and each of those is listed, so the list cannot outlive them.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -34,6 +36,25 @@ std::vector<std::string> weighted_lines(const std::string& text) {
   return hits;
 }
 
+// Lines of C++ `text` that multiply by a skin weight (w[k], wk, w0..w3 on either side of a '*'; a pointer
+// declaration `const float* w` names no weight of these) or call an x86 intrinsic (_mm_, _mm256_, _mm512_).
+std::vector<std::string> cpp_lines(const std::string& text, const std::regex& pattern) {
+  std::vector<std::string> hits;
+  std::istringstream in(text);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number)
+    if (std::regex_search(line.substr(0, line.find("//")), pattern)) hits.push_back(std::to_string(number) + ": " + line);
+  return hits;
+}
+const std::regex& cpp_weighted() {
+  static const std::regex r(R"((\b(w\[\w+\]|wk|w[0-3])\s*\*[^/*])|(\*\s*(w\[\w+\]|wk|w[0-3])\b))");
+  return r;
+}
+const std::regex& cpp_intrinsic() {
+  static const std::regex r(R"(\b_mm(256|512)?_\w+\s*\()");
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("the method table names every method once, in enum order, with a blend and a prepared entry") {
@@ -63,6 +84,14 @@ TEST_CASE("the blend scan finds a hand-written blend") {
   CHECK(weighted_lines("  // the blend: w[0] * M0 + ...\n").empty());
   CHECK(weighted_lines("  gl_Position = u_view_projection * vec4(p, 1.0);\n").empty());
   CHECK(weighted_lines("  float s = q.w * q.w;\n").empty());
+  // The C++ scan: a weighted sum of entries and an intrinsic call are found; declarations and forwarding not.
+  CHECK(cpp_lines("    const v8 lo = (w[0] * load8(a) + w[1] * load8(b));\n", cpp_weighted()).size() == 1);
+  CHECK(cpp_lines("    lo += wk * load8(q);\n", cpp_weighted()).size() == 1);
+  CHECK(cpp_lines("  acc[c] = w0 * ref[c];\n", cpp_weighted()).size() == 1);
+  CHECK(cpp_lines("  const __m256 w0 = _mm256_broadcast_ss(w);\n", cpp_intrinsic()).size() == 1);
+  CHECK(cpp_lines("void f(const float* w, float* out);\n", cpp_weighted()).empty());
+  CHECK(cpp_lines("  K::prepare(e0, e1, w[0], w[1], w[2], w[3], out);\n", cpp_weighted()).empty());
+  CHECK(cpp_lines("  // _mm256_fmadd_ps(w0 * a)\n", cpp_intrinsic()).empty());
 }
 
 TEST_CASE("no GLSL, WGSL or CUDA source outside the generated outputs blends by hand") {
@@ -88,4 +117,43 @@ TEST_CASE("no GLSL, WGSL or CUDA source outside the generated outputs blends by 
   for (const std::string& f : found) all += f + "\n";
   INFO(all);
   CHECK(found.empty());
+}
+
+TEST_CASE("x86 intrinsics and hand skinning blends in runtime/ stand only in the hand loops still kept") {
+  namespace fs = std::filesystem;
+  const fs::path root = CGA_SOURCE_DIR;
+  // The hand-written SIMD skinning loops kept while they are faster than their methods' generated batch
+  // kernels (docs/skinning.md, "Code layout"). Everything else runs generated code.
+  const std::set<std::string> kept = {"runtime/src/skinning/avx2.cpp", "runtime/src/skinning/avx512.cpp",
+                                      "runtime/src/skinning/x86.hpp", "runtime/src/skinning/loops.hpp"};
+  std::size_t scanned = 0;
+  std::vector<std::string> found;
+  std::set<std::string> hit_files;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(root / "runtime")) {
+    const std::string ext = e.path().extension().string();
+    if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp" && ext != ".h")) continue;
+    const std::string rel = fs::relative(e.path(), root).generic_string();
+    std::ifstream in(e.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    ++scanned;
+    std::vector<std::string> hits = cpp_lines(text.str(), cpp_intrinsic());
+    if (rel.rfind("runtime/src/skinning/", 0) == 0)
+      for (std::string& hit : cpp_lines(text.str(), cpp_weighted())) hits.push_back(std::move(hit));
+    if (hits.empty()) continue;
+    hit_files.insert(rel);
+    if (!kept.count(rel))
+      for (const std::string& hit : hits) found.push_back(rel + ":" + hit);
+  }
+  INFO("scanned " << scanned << " C++ sources under runtime/");
+  CHECK(scanned >= 40);
+  std::string all;
+  for (const std::string& f : found) all += f + "\n";
+  INFO(all);
+  CHECK(found.empty());
+  // A kept file without intrinsics or blends left leaves the list.
+  for (const std::string& file : kept) {
+    INFO(file);
+    CHECK(hit_files.count(file) == 1);
+  }
 }

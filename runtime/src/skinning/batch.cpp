@@ -188,16 +188,10 @@ template <class K, bool kNormals, class D, std::size_t... I>
 HWY_INLINE void whole_lanes(D d, const float* pal, const Streams& s, std::size_t i, std::index_sequence<I...>) {
   using V = hn::Vec<D>;
   V e[4][K::kVec4s][4], w[4];
-  // The lanes' joints, influence k in joints[k], as offsets of their entries in the palette.
-  const hn::Rebind<std::uint16_t, D> d16;
-  const hn::RebindToSigned<D> di;
-  hn::Vec<decltype(d16)> joints[4];
-  hn::LoadInterleaved4(d16, s.joints[i].data(), joints[0], joints[1], joints[2], joints[3]);
   for (std::size_t k = 0; k < 4; ++k) {
     alignas(64) std::int32_t entries[hn::MaxLanes(D())];
-    hn::Store(hn::Mul(hn::BitCast(di, hn::PromoteTo(hn::RebindToUnsigned<D>(), joints[k])),
-                      hn::Set(di, static_cast<std::int32_t>(kEntry))),
-              di, entries);
+    for (std::size_t j = 0; j < hn::MaxLanes(D()); ++j)
+      entries[j] = static_cast<std::int32_t>(kEntry * s.joints[i + j][k]);
     for (std::size_t v = 0; v < K::kVec4s; ++v) transpose<4>(d, pal + 4 * v, entries, e[k][v]);
   }
   hn::LoadInterleaved4(d, s.weights[i].data(), w[0], w[1], w[2], w[3]);
