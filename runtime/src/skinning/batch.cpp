@@ -7,9 +7,9 @@
 //          entry's blades), pass 2 runs the lane kernel NAME_split across the block's vertices on the
 //          prepared values;
 //   whole  the lane kernel NAME across vertices on the four entries of each.
-// What is written here is method-blind: the block check, the loops, prefetch, and the row offsets through
-// which the generated headers' transposer turns rows of 4 floats (a vertex's prepared values, a palette
-// entry's vec4s, a vertex's weights) into lanes. The kernels are called directly on vectors, so no stream
+// What is written here is method-blind: the block check, the loops, prefetch, the normals' renormalization,
+// and the row offsets through which the generated headers' transposer turns rows of 4 floats (a vertex's
+// prepared values, a palette entry's vec4s) into lanes. The kernels are called directly on vectors, so no stream
 // descriptor is looked at inside the loops. The entries are the method's prepared palette, one line of kEntry
 // floats each (prepare_palette_strided), the blend's entry inputs read at 4 * v within an entry.
 #ifndef CGA_SKINNING_BATCH_ONCE
@@ -134,20 +134,20 @@ struct Strided {
   }
 };
 
-// 1 / |n| on each lane, or 0 where |n| = 0 (a degenerate normal becomes 0 rather than NaN): the reciprocal
-// square root estimate and one Newton step (relative error below 1e-6) where the instruction set has an
-// estimate of 12 bits or more, else the exact quotient. The division and square root it replaces kept the
-// divider busy about 20 cycles per 8 vertices.
+// 1 / |n| on each lane, or 0 where |n| = 0 (a degenerate normal becomes 0 rather than NaN): on x86 the
+// reciprocal square root estimate (12 bits or more) and one Newton step, relative error below 1e-6; elsewhere
+// the exact quotient (NEON's estimate has 8 bits, which one step takes only to about 16). The division and
+// square root the estimate replaces kept the divider busy about 20 cycles per 8 vertices.
 template <class D>
 HWY_INLINE hn::Vec<D> inv_length(D d, hn::Vec<D> x, hn::Vec<D> y, hn::Vec<D> z) {
   const auto len2 = hn::MulAdd(z, z, hn::MulAdd(y, y, hn::Mul(x, x)));
   const auto safe = hn::Max(len2, hn::Set(d, 1e-30f));
-#if HWY_TARGET == HWY_SCALAR || HWY_TARGET == HWY_EMU128
-  const auto inv = hn::Div(hn::Set(d, 1.0f), hn::Sqrt(safe));
-#else
+#if HWY_ARCH_X86 && HWY_TARGET != HWY_SCALAR && HWY_TARGET != HWY_EMU128
   const auto r = hn::ApproximateReciprocalSqrt(safe);
   // r (1.5 - 0.5 len2 r^2)
   const auto inv = hn::Mul(r, hn::NegMulAdd(hn::Mul(hn::Mul(hn::Set(d, 0.5f), safe), r), r, hn::Set(d, 1.5f)));
+#else
+  const auto inv = hn::Div(hn::Set(d, 1.0f), hn::Sqrt(safe));
 #endif
   return hn::IfThenElseZero(hn::Gt(len2, hn::Zero(d)), inv);
 }
