@@ -20,25 +20,9 @@ using namespace cga;
 
 namespace {
 
-// Lines of `text` that multiply by a skin weight: w, wk, w[k], w.x, weight(s), in_weights[...] on either side
-// of a '*' (a blend is a weighted sum; passing the weights on to a generated function multiplies nothing).
-// A swizzle .w (q.w * q.w) is not a weight.
-std::vector<std::string> weighted_lines(const std::string& text) {
-  static const std::regex weight(
-      R"(((^|[^.\w])(w|wk|weight|weights|in_weights)\b\s*(\[[^\]]*\]|\.[xyzw])?\s*\*[^/*])|(\*\s*(w|wk|weight|weights|in_weights)\b))");
-  std::vector<std::string> hits;
-  std::istringstream in(text);
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::string code = line.substr(0, line.find("//"));  // comments may speak of weights
-    if (std::regex_search(code, weight)) hits.push_back(std::to_string(number) + ": " + line);
-  }
-  return hits;
-}
-
-// Lines of C++ `text` that multiply by a skin weight (w[k], wk, w0..w3 on either side of a '*'; a pointer
-// declaration `const float* w` names no weight of these) or call an x86 intrinsic (_mm_, _mm256_, _mm512_).
-std::vector<std::string> cpp_lines(const std::string& text, const std::regex& pattern) {
+// Lines of `text` (numbered, as "N: line") whose code before any `//` comment matches `pattern`: comments may
+// speak of weights and intrinsics.
+std::vector<std::string> matching_lines(const std::string& text, const std::regex& pattern) {
   std::vector<std::string> hits;
   std::istringstream in(text);
   std::string line;
@@ -46,6 +30,18 @@ std::vector<std::string> cpp_lines(const std::string& text, const std::regex& pa
     if (std::regex_search(line.substr(0, line.find("//")), pattern)) hits.push_back(std::to_string(number) + ": " + line);
   return hits;
 }
+
+// Shader lines that multiply by a skin weight: w, wk, w[k], w.x, weight(s), in_weights[...] on either side of a
+// '*' (a blend is a weighted sum; passing the weights on to a generated function multiplies nothing). A
+// swizzle .w (q.w * q.w) is not a weight.
+std::vector<std::string> weighted_lines(const std::string& text) {
+  static const std::regex weight(
+      R"(((^|[^.\w])(w|wk|weight|weights|in_weights)\b\s*(\[[^\]]*\]|\.[xyzw])?\s*\*[^/*])|(\*\s*(w|wk|weight|weights|in_weights)\b))");
+  return matching_lines(text, weight);
+}
+
+// C++ lines that multiply by a skin weight (w[k], wk, w0..w3 on either side of a '*'; a pointer declaration
+// `const float* w` names no weight of these) or call an x86 intrinsic (_mm_, _mm256_, _mm512_).
 const std::regex& cpp_weighted() {
   static const std::regex r(R"((\b(w\[\w+\]|wk|w[0-3])\s*\*[^/*])|(\*\s*(w\[\w+\]|wk|w[0-3])\b))");
   return r;
@@ -85,13 +81,13 @@ TEST_CASE("the blend scan finds a hand-written blend") {
   CHECK(weighted_lines("  gl_Position = u_view_projection * vec4(p, 1.0);\n").empty());
   CHECK(weighted_lines("  float s = q.w * q.w;\n").empty());
   // The C++ scan: a weighted sum of entries and an intrinsic call are found; declarations and forwarding not.
-  CHECK(cpp_lines("    const v8 lo = (w[0] * load8(a) + w[1] * load8(b));\n", cpp_weighted()).size() == 1);
-  CHECK(cpp_lines("    lo += wk * load8(q);\n", cpp_weighted()).size() == 1);
-  CHECK(cpp_lines("  acc[c] = w0 * ref[c];\n", cpp_weighted()).size() == 1);
-  CHECK(cpp_lines("  const __m256 w0 = _mm256_broadcast_ss(w);\n", cpp_intrinsic()).size() == 1);
-  CHECK(cpp_lines("void f(const float* w, float* out);\n", cpp_weighted()).empty());
-  CHECK(cpp_lines("  K::prepare(e0, e1, w[0], w[1], w[2], w[3], out);\n", cpp_weighted()).empty());
-  CHECK(cpp_lines("  // _mm256_fmadd_ps(w0 * a)\n", cpp_intrinsic()).empty());
+  CHECK(matching_lines("    const v8 lo = (w[0] * load8(a) + w[1] * load8(b));\n", cpp_weighted()).size() == 1);
+  CHECK(matching_lines("    lo += wk * load8(q);\n", cpp_weighted()).size() == 1);
+  CHECK(matching_lines("  acc[c] = w0 * ref[c];\n", cpp_weighted()).size() == 1);
+  CHECK(matching_lines("  const __m256 w0 = _mm256_broadcast_ss(w);\n", cpp_intrinsic()).size() == 1);
+  CHECK(matching_lines("void f(const float* w, float* out);\n", cpp_weighted()).empty());
+  CHECK(matching_lines("  K::prepare(e0, e1, w[0], w[1], w[2], w[3], out);\n", cpp_weighted()).empty());
+  CHECK(matching_lines("  // _mm256_fmadd_ps(w0 * a)\n", cpp_intrinsic()).empty());
 }
 
 TEST_CASE("no GLSL, WGSL or CUDA source outside the generated outputs blends by hand") {
@@ -137,9 +133,9 @@ TEST_CASE("x86 intrinsics and hand skinning blends in runtime/ stand only in the
     std::stringstream text;
     text << in.rdbuf();
     ++scanned;
-    std::vector<std::string> hits = cpp_lines(text.str(), cpp_intrinsic());
+    std::vector<std::string> hits = matching_lines(text.str(), cpp_intrinsic());
     if (rel.rfind("runtime/src/skinning/", 0) == 0)
-      for (std::string& hit : cpp_lines(text.str(), cpp_weighted())) hits.push_back(std::move(hit));
+      for (std::string& hit : matching_lines(text.str(), cpp_weighted())) hits.push_back(std::move(hit));
     if (hits.empty()) continue;
     hit_files.insert(rel);
     if (!kept.count(rel))
