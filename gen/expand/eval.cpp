@@ -69,18 +69,31 @@ std::optional<algebra::ProductKind> Expander::chain_kind(const Expr& e) {
   return std::nullopt;
 }
 
-// The factors of a chain of products of `kind`, in order, each evaluated once, left to right as written.
-void Expander::flatten(const Expr& e, algebra::ProductKind kind, expand_words::Word& out) {
+// The factors of a chain of products of `kind`, in order, each evaluated once, left to right as written. Number
+// factors and divisions by a number (`x*x/6` parses as x*(x/6)) go into `coeff` instead, so that the word is
+// over the multivectors alone: x*x*x/6 is (1/6) x x x, a power of x.
+void Expander::flatten(const Expr& e, algebra::ProductKind kind, expand_words::Word& out, ex& coeff) {
   const bool outer = kind == algebra::ProductKind::Outer;
   if (e.kind == Expr::Kind::Binary && e.binary_op == (outer ? front::BinaryOp::Outer : front::BinaryOp::Geo)) {
     if (auto w = outer ? hints::outer_with_number(e) : std::nullopt) hints::warn_once(kernel_.warnings, e.loc, *w);
-    flatten(*e.args.at(0), kind, out);
-    flatten(*e.args.at(1), kind, out);
+    flatten(*e.args.at(0), kind, out, coeff);
+    flatten(*e.args.at(1), kind, out, coeff);
     return;
   }
+  if (e.kind == Expr::Kind::Binary && e.binary_op == front::BinaryOp::Div && e.args.at(1)->kind == Expr::Kind::Number)
+    if (auto d = parse_number(e.args.at(1)->text); d && !d->is_zero()) {
+      flatten(*e.args.at(0), kind, out, coeff);
+      coeff /= *d;
+      return;
+    }
+  if (e.kind == Expr::Kind::Number)
+    if (auto d = parse_number(e.text)) {
+      coeff *= *d;
+      return;
+    }
   if (e.kind == Expr::Kind::Unary && e.unary_op == front::UnaryOp::Reverse && chain_kind(*e.args.at(0)) == kind) {
     expand_words::Word inner;
-    flatten(*e.args.at(0), kind, inner);
+    flatten(*e.args.at(0), kind, inner, coeff);
     const expand_words::Word r = expand_words::reversed(inner);
     out.insert(out.end(), r.begin(), r.end());
     return;
@@ -93,9 +106,12 @@ void Expander::flatten(const Expr& e, algebra::ProductKind kind, expand_words::W
 Multivector Expander::eval_chain(const Expr& e, algebra::ProductKind kind) {
   const bool whole_statement = &e == statement_value_;
   expand_words::Word w;
-  flatten(e, kind, w);
-  if (whole_statement) statement_word_ = {kind, w};
-  return words_.evaluate(kind, w, e.loc, *this);
+  ex coeff = 1;
+  flatten(e, kind, w, coeff);
+  if (w.empty()) return Multivector(coeff);  // numbers only: 2*3
+  if (whole_statement && coeff.is_equal(1)) statement_word_ = {kind, w};
+  const Multivector v = words_.evaluate(kind, w, e.loc, *this, whole_statement && coeff.is_equal(1));
+  return coeff.is_equal(1) ? v : v * coeff;
 }
 
 Multivector Expander::lookup(const Expr& e) {

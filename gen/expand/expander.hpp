@@ -171,7 +171,7 @@ class Expander : private expand_pragmas::PragmaHost,
   static std::optional<algebra::ProductKind> chain_kind(const Expr& e);
 
   // The factors of a chain of products of `kind`, in order, each evaluated once, left to right as written.
-  void flatten(const Expr& e, algebra::ProductKind kind, expand_words::Word& out);
+  void flatten(const Expr& e, algebra::ProductKind kind, expand_words::Word& out, ex& coeff);
 
   Multivector eval_chain(const Expr& e, algebra::ProductKind kind);
 

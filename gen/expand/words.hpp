@@ -65,8 +65,10 @@ class Products {
   // The atom's word in products of `kind`: the word its value was remembered as (through names bound to
   // words), else the atom alone.
   Word expand(Atom a, algebra::ProductKind kind) const;
-  // The value of word w (not empty) of products of the given kind.
-  Multivector evaluate(algebra::ProductKind kind, const Word& w, front::SourceLoc loc, Host& host);
+  // The value of word w (not empty) of products of the given kind; `statement`: w is the whole value of a
+  // statement, which the expander binds and remember()s itself.
+  Multivector evaluate(algebra::ProductKind kind, const Word& w, front::SourceLoc loc, Host& host,
+                       bool statement = false);
   // A statement `name = w;` was recorded with the value `reference`: later words reuse it, and the name
   // stands for w where it is read.
   void remember(algebra::ProductKind kind, const Word& w, const Multivector& reference, const std::string& name);
