@@ -112,7 +112,7 @@ TEST_CASE("the 5-joint arm: exact blade support, and few ops at -O2", "[chains]"
   CHECK(blades["Jg_f"] == 5);
   const long o2 = ops(k, Level::O2), o0 = ops(k, Level::O0);
   INFO("-O0 " << o0 << " ops, -O2 " << o2);
-  CHECK(o2 < 900);  // 798 when written (330 add, 468 mul); Gaalop-style full expansion does not finish
+  CHECK(o2 < 650);  // 605 when written (259 add, 346 mul); Gaalop-style full expansion does not finish
   CHECK(o2 * 2 < o0);
 }
 
@@ -123,7 +123,8 @@ TEST_CASE("a chain written with explicit products costs what the carried chain c
     std::map<int, long> counts = chain_ops(cga::testing::explicit_chain_script, level);
     INFO("level " << static_cast<int>(level) << ": ops " << counts[5] << ", " << counts[10] << ", " << counts[20]
                   << ", " << counts[40]);
-    // Each doubling at most 2.4 times the code. The first (5 to 10) is a little above 2, as in the carried
+    // Each doubling at most 2.3 times the code (2.29 from 5 to 10 at -O2, 2.28 at -O0 when written; 2.34
+    // before powers were taken by their square). The first (5 to 10) is a little above 2, as in the carried
     // chain: the first joints turn in the plane and have fewer blades. And each rotor's degree in the angles
     // is about 9 times the sum of the earlier ones': from about 13 joints on it passes the degree the exact
     // probes can vouch for (probes.hpp), and the zero blades no other test can prove stay (more code per
@@ -131,7 +132,7 @@ TEST_CASE("a chain written with explicit products costs what the carried chain c
     for (int n : {5, 10, 20}) {
       const double ratio = static_cast<double>(counts[2 * n]) / static_cast<double>(counts[n]);
       CHECK(ratio > 1.6);
-      CHECK(ratio < 2.4);
+      CHECK(ratio < 2.3);
     }
   }
   for (int n : {5, 10, 20}) {
