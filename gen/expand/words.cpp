@@ -158,9 +158,9 @@ Multivector Products::evaluate(algebra::ProductKind kind, const Word& w, front::
   }
 
   // A power x x ... x: its square first, bound where it has fewer blades than x and is not a constant (a
-  // line's square is a scalar and a 4-vector), so that the higher powers are products of
-  // that short value and not polynomials in x's coefficients (the 4th-order Taylor series of a rotor about a
-  // line: 44 ops instead of 104). A statement that is the square itself is bound by the expander already.
+  // line's square is a scalar and a 4-vector), so that the higher powers are products of that short value
+  // and not polynomials in x's coefficients (the 4th-order Taylor series of a rotor about a line: 44 ops
+  // instead of 104). A statement that is the square itself is bound by the expander already.
   if (kind == algebra::ProductKind::Geometric && !(n == 2 && statement) &&
       std::all_of(w.begin(), w.end(), [&](Atom a) { return a == w[0]; })) {
     const Word square(2, w[0]);
