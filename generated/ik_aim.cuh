@@ -17,6 +17,9 @@ namespace cga::kernels {
 inline constexpr std::array<std::string_view, 4> ik_aim_R_blades = {"1", "e1^e2", "e1^e3", "e2^e3"};
 
 __host__ __device__ __forceinline__ void ik_aim(float fx, float fy, float fz, float dx, float dy, float dz, float R[4]) {
+  R[1] = dx * fy - dy * fx;  // e1^e2
+  R[2] = dx * fz - dz * fx;  // e1^e3
+  R[3] = dy * fz - dz * fy;  // e2^e3
   const float t0 = dx * dx;
   const float t1 = dy * dy;
   const float t2 = dz * dz;
@@ -25,12 +28,12 @@ __host__ __device__ __forceinline__ void ik_aim(float fx, float fy, float fz, fl
   const float t5 = fz * fz;
   const float t6 = t3 + t4 + t5;
   R[0] = dx * fx + dy * fy + dz * fz + sqrt(t0 * t6 + t1 * t6 + t2 * t6);  // 1
-  R[1] = dx * fy - dy * fx;  // e1^e2
-  R[2] = dx * fz - dz * fx;  // e1^e3
-  R[3] = dy * fz - dz * fy;  // e2^e3
 }
 
 __host__ __device__ __forceinline__ void ik_aim(double fx, double fy, double fz, double dx, double dy, double dz, double R[4]) {
+  R[1] = dx * fy - dy * fx;  // e1^e2
+  R[2] = dx * fz - dz * fx;  // e1^e3
+  R[3] = dy * fz - dz * fy;  // e2^e3
   const double t0 = dx * dx;
   const double t1 = dy * dy;
   const double t2 = dz * dz;
@@ -39,9 +42,6 @@ __host__ __device__ __forceinline__ void ik_aim(double fx, double fy, double fz,
   const double t5 = fz * fz;
   const double t6 = t3 + t4 + t5;
   R[0] = dx * fx + dy * fy + dz * fz + sqrt(t0 * t6 + t1 * t6 + t2 * t6);  // 1
-  R[1] = dx * fy - dy * fx;  // e1^e2
-  R[2] = dx * fz - dz * fx;  // e1^e3
-  R[3] = dy * fz - dz * fy;  // e2^e3
 }
 
 }  // namespace cga::kernels

@@ -9,6 +9,9 @@
 // R: 1, e1^e2, e1^e3, e2^e3
 
 void ik_aim(float fx, float fy, float fz, float dx, float dy, float dz, out float R[4]) {
+  R[1] = dx * fy - dy * fx;  // e1^e2
+  R[2] = dx * fz - dz * fx;  // e1^e3
+  R[3] = dy * fz - dz * fy;  // e2^e3
   float t0 = dx * dx;
   float t1 = dy * dy;
   float t2 = dz * dz;
@@ -17,8 +20,5 @@ void ik_aim(float fx, float fy, float fz, float dx, float dy, float dz, out floa
   float t5 = fz * fz;
   float t6 = t3 + t4 + t5;
   R[0] = dx * fx + dy * fy + dz * fz + sqrt(t0 * t6 + t1 * t6 + t2 * t6);  // 1
-  R[1] = dx * fy - dy * fx;  // e1^e2
-  R[2] = dx * fz - dz * fx;  // e1^e3
-  R[3] = dy * fz - dz * fy;  // e2^e3
 }
 

@@ -110,22 +110,22 @@ inline void ik_chain_joint_position(const float M[8], float ax, float ay, float 
   const float t68 = t38 + t53 + t56;
   const float t69 = t59 - t60;
   const float t70 = px * t65 + t34 * t45 + t37 * t48 + t43 * t66 - t36 * t47 - t42 * t68 - t44 * t67 - t46 * t69;
+  P_d_a[0] = -2.0f * t70;  // e1
   const float t71 = t49 + t51 + t52 - t50;
   const float t72 = t63 - t38 - t56;
   const float t73 = t41 + t58 + t62;
   const float t74 = t57 + t61 - t40;
   const float t75 = t64 - t60;
   const float t76 = py * t71 + t34 * t47 + t36 * t45 + t42 * t74 - t39 * t48 - t43 * t72 - t44 * t75 - t46 * t73;
+  P_d_a[1] = -2.0f * t76;  // e2
   const float t77 = t49 - t50 - t51 - t52;
   const float t78 = t63 - t38 - t53;
   const float t79 = t55 + t61 - t40;
   const float t80 = t41 + t62 - t54;
   const float t81 = t59 + t64;
   const float t82 = pz * t77 + t34 * t48 + t39 * t47 + t44 * t78 - t37 * t45 - t42 * t80 - t43 * t81 - t46 * t79;
-  const float t83 = t49 + t50 + t51 - t52;
-  P_d_a[0] = -2.0f * t70;  // e1
-  P_d_a[1] = -2.0f * t76;  // e2
   P_d_a[2] = 2.0f * t82;  // e3
+  const float t83 = t49 + t50 + t51 - t52;
   P_d_a[3] = 2.0f * t83;  // e0
 }
 
@@ -215,22 +215,22 @@ inline void ik_chain_joint_position(const double M[8], double ax, double ay, dou
   const double t68 = t38 + t53 + t56;
   const double t69 = t59 - t60;
   const double t70 = px * t65 + t34 * t45 + t37 * t48 + t43 * t66 - t36 * t47 - t42 * t68 - t44 * t67 - t46 * t69;
+  P_d_a[0] = -2.0 * t70;  // e1
   const double t71 = t49 + t51 + t52 - t50;
   const double t72 = t63 - t38 - t56;
   const double t73 = t41 + t58 + t62;
   const double t74 = t57 + t61 - t40;
   const double t75 = t64 - t60;
   const double t76 = py * t71 + t34 * t47 + t36 * t45 + t42 * t74 - t39 * t48 - t43 * t72 - t44 * t75 - t46 * t73;
+  P_d_a[1] = -2.0 * t76;  // e2
   const double t77 = t49 - t50 - t51 - t52;
   const double t78 = t63 - t38 - t53;
   const double t79 = t55 + t61 - t40;
   const double t80 = t41 + t62 - t54;
   const double t81 = t59 + t64;
   const double t82 = pz * t77 + t34 * t48 + t39 * t47 + t44 * t78 - t37 * t45 - t42 * t80 - t43 * t81 - t46 * t79;
-  const double t83 = t49 + t50 + t51 - t52;
-  P_d_a[0] = -2.0 * t70;  // e1
-  P_d_a[1] = -2.0 * t76;  // e2
   P_d_a[2] = 2.0 * t82;  // e3
+  const double t83 = t49 + t50 + t51 - t52;
   P_d_a[3] = 2.0 * t83;  // e0
 }
 

@@ -330,22 +330,22 @@ HWY_INLINE void ik_chain_joint_position(D d, const V M[8], V ax, V ay, V az, V a
   const V t68 = t38 + t53 + t56;
   const V t69 = t59 - t60;
   const V t70 = px * t65 + t34 * t45 + t37 * t48 + t43 * t66 - t36 * t47 - t42 * t68 - t44 * t67 - t46 * t69;
+  P_d_a[0] = hn::Neg(hn::Set(d, 2.0f) * t70);  // e1
   const V t71 = t49 + t51 + t52 - t50;
   const V t72 = t63 - t38 - t56;
   const V t73 = t41 + t58 + t62;
   const V t74 = t57 + t61 - t40;
   const V t75 = t64 - t60;
   const V t76 = py * t71 + t34 * t47 + t36 * t45 + t42 * t74 - t39 * t48 - t43 * t72 - t44 * t75 - t46 * t73;
+  P_d_a[1] = hn::Neg(hn::Set(d, 2.0f) * t76);  // e2
   const V t77 = t49 - t50 - t51 - t52;
   const V t78 = t63 - t38 - t53;
   const V t79 = t55 + t61 - t40;
   const V t80 = t41 + t62 - t54;
   const V t81 = t59 + t64;
   const V t82 = pz * t77 + t34 * t48 + t39 * t47 + t44 * t78 - t37 * t45 - t42 * t80 - t43 * t81 - t46 * t79;
-  const V t83 = t49 + t50 + t51 - t52;
-  P_d_a[0] = hn::Neg(hn::Set(d, 2.0f) * t70);  // e1
-  P_d_a[1] = hn::Neg(hn::Set(d, 2.0f) * t76);  // e2
   P_d_a[2] = hn::Set(d, 2.0f) * t82;  // e3
+  const V t83 = t49 + t50 + t51 - t52;
   P_d_a[3] = hn::Set(d, 2.0f) * t83;  // e0
 }
 

@@ -7,8 +7,8 @@
 // R: 1, e1^e2, e1^e3, e2^e3
 
 void ik_chain_rotor(float ax, float ay, float az, float a, out float R[4]) {
-  float t0 = sin(0.5 * a);
   R[0] = cos(0.5 * a);  // 1
+  float t0 = sin(0.5 * a);
   R[1] = -az * t0;  // e1^e2
   R[2] = ay * t0;  // e1^e3
   R[3] = -ax * t0;  // e2^e3

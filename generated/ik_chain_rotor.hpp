@@ -15,16 +15,16 @@ namespace cga::kernels {
 inline constexpr std::array<std::string_view, 4> ik_chain_rotor_R_blades = {"1", "e1^e2", "e1^e3", "e2^e3"};
 
 inline void ik_chain_rotor(float ax, float ay, float az, float a, float R[4]) {
-  const float t0 = std::sin(0.5f * a);
   R[0] = std::cos(0.5f * a);  // 1
+  const float t0 = std::sin(0.5f * a);
   R[1] = -az * t0;  // e1^e2
   R[2] = ay * t0;  // e1^e3
   R[3] = -ax * t0;  // e2^e3
 }
 
 inline void ik_chain_rotor(double ax, double ay, double az, double a, double R[4]) {
-  const double t0 = std::sin(0.5 * a);
   R[0] = std::cos(0.5 * a);  // 1
+  const double t0 = std::sin(0.5 * a);
   R[1] = -az * t0;  // e1^e2
   R[2] = ay * t0;  // e1^e3
   R[3] = -ax * t0;  // e2^e3

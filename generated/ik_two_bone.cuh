@@ -26,8 +26,11 @@ __host__ __device__ __forceinline__ void ik_two_bone(float dm, float ds, float x
   const float t0 = exp(-(x / ds)) - 1.0f;
   const float t1 = ds * t0 - dm;
   const float t2 = t1 * ux;
+  T[0] = -t2;  // e1
   const float t3 = t1 * uy;
+  T[1] = -t3;  // e2
   const float t4 = t1 * uz;
+  T[2] = -t4;  // e3
   const float t5 = 0.5f * l1 * l1;
   const float t6 = t1 * t1;
   const float t7 = ux * ux + uy * uy + uz * uz;
@@ -45,23 +48,23 @@ __host__ __device__ __forceinline__ void ik_two_bone(float dm, float ds, float x
   const float t19 = t12 * t9 + t16;
   const float t20 = t10 * t9 + t13;
   const float t21 = t12 * t2 - t10 * t4;
+  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
   const float t22 = (t13 * t3 + t14 * t2) * t15 + (t14 * t4 + t16 * t3) * t17 - (t13 * t4 - t16 * t2) * t21;
   const float t23 = sqrt(fabs(2.0f * t22 - t18 * t18 - t19 * t19 - t20 * t20));
-  T[0] = -t2;  // e1
-  T[1] = -t3;  // e2
-  T[2] = -t4;  // e3
   X[0] = -t15 * t18 - t17 * t23 - t19 * t21;  // e1
   X[1] = t21 * t23 - t15 * t20 - t17 * t19;  // e2
   X[2] = t15 * t23 + t20 * t21 - t17 * t18;  // e3
-  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
 }
 
 __host__ __device__ __forceinline__ void ik_two_bone(double dm, double ds, double x, double ux, double uy, double uz, double l1, double l2, double px, double py, double pz, double T[3], double X[4]) {
   const double t0 = exp(-(x / ds)) - 1.0;
   const double t1 = ds * t0 - dm;
   const double t2 = t1 * ux;
+  T[0] = -t2;  // e1
   const double t3 = t1 * uy;
+  T[1] = -t3;  // e2
   const double t4 = t1 * uz;
+  T[2] = -t4;  // e3
   const double t5 = 0.5 * l1 * l1;
   const double t6 = t1 * t1;
   const double t7 = ux * ux + uy * uy + uz * uz;
@@ -79,15 +82,12 @@ __host__ __device__ __forceinline__ void ik_two_bone(double dm, double ds, doubl
   const double t19 = t12 * t9 + t16;
   const double t20 = t10 * t9 + t13;
   const double t21 = t12 * t2 - t10 * t4;
+  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
   const double t22 = (t13 * t3 + t14 * t2) * t15 + (t14 * t4 + t16 * t3) * t17 - (t13 * t4 - t16 * t2) * t21;
   const double t23 = sqrt(fabs(2.0 * t22 - t18 * t18 - t19 * t19 - t20 * t20));
-  T[0] = -t2;  // e1
-  T[1] = -t3;  // e2
-  T[2] = -t4;  // e3
   X[0] = -t15 * t18 - t17 * t23 - t19 * t21;  // e1
   X[1] = t21 * t23 - t15 * t20 - t17 * t19;  // e2
   X[2] = t15 * t23 + t20 * t21 - t17 * t18;  // e3
-  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
 }
 
 }  // namespace cga::kernels

@@ -18,8 +18,11 @@ void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, floa
   float t0 = exp(-(x / ds)) - 1.0;
   float t1 = ds * t0 - dm;
   float t2 = t1 * ux;
+  T[0] = -t2;  // e1
   float t3 = t1 * uy;
+  T[1] = -t3;  // e2
   float t4 = t1 * uz;
+  T[2] = -t4;  // e3
   float t5 = 0.5 * l1 * l1;
   float t6 = t1 * t1;
   float t7 = ux * ux + uy * uy + uz * uz;
@@ -37,14 +40,11 @@ void ik_two_bone(float dm, float ds, float x, float ux, float uy, float uz, floa
   float t19 = t12 * t9 + t16;
   float t20 = t10 * t9 + t13;
   float t21 = t12 * t2 - t10 * t4;
+  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
   float t22 = (t13 * t3 + t14 * t2) * t15 + (t14 * t4 + t16 * t3) * t17 - (t13 * t4 - t16 * t2) * t21;
   float t23 = sqrt(abs(2.0 * t22 - t18 * t18 - t19 * t19 - t20 * t20));
-  T[0] = -t2;  // e1
-  T[1] = -t3;  // e2
-  T[2] = -t4;  // e3
   X[0] = -t15 * t18 - t17 * t23 - t19 * t21;  // e1
   X[1] = t21 * t23 - t15 * t20 - t17 * t19;  // e2
   X[2] = t15 * t23 + t20 * t21 - t17 * t18;  // e3
-  X[3] = t15 * t15 + t17 * t17 + t21 * t21;  // e0
 }
 

@@ -12,18 +12,18 @@
 
 mat3x4 motor_from_trs(float tx, float ty, float tz, float rs, float r12, float r13, float r23, float s) {
   mat3x4 M;
-  float t0 = 1.0 / (1.0 + s);
-  float t1 = s * t0;
-  float t2 = t1 - t0;
   M[0][0] = rs;  // 1
   M[0][1] = r12;  // e1^e2
   M[0][2] = r13;  // e1^e3
-  M[0][3] = (r12 * ty + r13 * tz - rs * tx) * t0;  // e1^einf
   M[1][0] = r23;  // e2^e3
+  float t0 = 1.0 / (1.0 + s);
+  M[0][3] = (r12 * ty + r13 * tz - rs * tx) * t0;  // e1^einf
   M[1][1] = -(r12 * tx + rs * ty - r23 * tz) * t0;  // e2^einf
   M[1][2] = -(r13 * tx + r23 * ty + rs * tz) * t0;  // e3^einf
-  M[1][3] = -rs * t2;  // einf^e0
   M[2][0] = -(r12 * tz + r23 * tx - r13 * ty) * t0;  // e1^e2^e3^einf
+  float t1 = s * t0;
+  float t2 = t1 - t0;
+  M[1][3] = -rs * t2;  // einf^e0
   M[2][1] = -r12 * t2;  // e1^e2^einf^e0
   M[2][2] = -r13 * t2;  // e1^e3^einf^e0
   M[2][3] = -r23 * t2;  // e2^e3^einf^e0

@@ -19,36 +19,36 @@ namespace cga::kernels {
 inline constexpr std::array<std::string_view, 12> motor_from_trs_M_blades = {"1", "e1^e2", "e1^e3", "e1^einf", "e2^e3", "e2^einf", "e3^einf", "einf^e0", "e1^e2^e3^einf", "e1^e2^einf^e0", "e1^e3^einf^e0", "e2^e3^einf^e0"};
 
 inline void motor_from_trs(float tx, float ty, float tz, float rs, float r12, float r13, float r23, float s, float M[12]) {
-  const float t0 = 1.0f / (1.0f + s);
-  const float t1 = s * t0;
-  const float t2 = t1 - t0;
   M[0] = rs;  // 1
   M[1] = r12;  // e1^e2
   M[2] = r13;  // e1^e3
-  M[3] = (r12 * ty + r13 * tz - rs * tx) * t0;  // e1^einf
   M[4] = r23;  // e2^e3
+  const float t0 = 1.0f / (1.0f + s);
+  M[3] = (r12 * ty + r13 * tz - rs * tx) * t0;  // e1^einf
   M[5] = -(r12 * tx + rs * ty - r23 * tz) * t0;  // e2^einf
   M[6] = -(r13 * tx + r23 * ty + rs * tz) * t0;  // e3^einf
-  M[7] = -rs * t2;  // einf^e0
   M[8] = -(r12 * tz + r23 * tx - r13 * ty) * t0;  // e1^e2^e3^einf
+  const float t1 = s * t0;
+  const float t2 = t1 - t0;
+  M[7] = -rs * t2;  // einf^e0
   M[9] = -r12 * t2;  // e1^e2^einf^e0
   M[10] = -r13 * t2;  // e1^e3^einf^e0
   M[11] = -r23 * t2;  // e2^e3^einf^e0
 }
 
 inline void motor_from_trs(double tx, double ty, double tz, double rs, double r12, double r13, double r23, double s, double M[12]) {
-  const double t0 = 1.0 / (1.0 + s);
-  const double t1 = s * t0;
-  const double t2 = t1 - t0;
   M[0] = rs;  // 1
   M[1] = r12;  // e1^e2
   M[2] = r13;  // e1^e3
-  M[3] = (r12 * ty + r13 * tz - rs * tx) * t0;  // e1^einf
   M[4] = r23;  // e2^e3
+  const double t0 = 1.0 / (1.0 + s);
+  M[3] = (r12 * ty + r13 * tz - rs * tx) * t0;  // e1^einf
   M[5] = -(r12 * tx + rs * ty - r23 * tz) * t0;  // e2^einf
   M[6] = -(r13 * tx + r23 * ty + rs * tz) * t0;  // e3^einf
-  M[7] = -rs * t2;  // einf^e0
   M[8] = -(r12 * tz + r23 * tx - r13 * ty) * t0;  // e1^e2^e3^einf
+  const double t1 = s * t0;
+  const double t2 = t1 - t0;
+  M[7] = -rs * t2;  // einf^e0
   M[9] = -r12 * t2;  // e1^e2^einf^e0
   M[10] = -r13 * t2;  // e1^e3^einf^e0
   M[11] = -r23 * t2;  // e2^e3^einf^e0

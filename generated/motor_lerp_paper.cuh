@@ -45,22 +45,22 @@ __host__ __device__ __forceinline__ void motor_lerp_paper(const float A[8], cons
   const float t10 = A_e2inf * t4 + B_e2inf * alpha;
   const float t11 = A_e3inf * t4 + B_e3inf * alpha;
   const float t12 = A_e123inf * t4 + B_e123inf * alpha;
-  const float t13 = 1.0f - d2;
-  const float t14 = t13 * t3 - t2;
-  const float t15 = alpha * t14 + t2;
-  const float t16 = 1.0f + t15;
   M[0] = t5;  // 1
   M[1] = t6;  // e1^e2
   M[2] = t7;  // e1^e3
-  M[3] = t16 * t8;  // e1^einf
   M[4] = t9;  // e2^e3
-  M[5] = t10 * t16;  // e2^einf
-  M[6] = t11 * t16;  // e3^einf
+  const float t13 = 1.0f - d2;
+  const float t14 = t13 * t3 - t2;
+  const float t15 = alpha * t14 + t2;
   M[7] = t15 * t5;  // einf^e0
-  M[8] = t12 * t16;  // e1^e2^e3^einf
   M[9] = t15 * t6;  // e1^e2^einf^e0
   M[10] = t15 * t7;  // e1^e3^einf^e0
   M[11] = t15 * t9;  // e2^e3^einf^e0
+  const float t16 = 1.0f + t15;
+  M[3] = t16 * t8;  // e1^einf
+  M[5] = t10 * t16;  // e2^einf
+  M[6] = t11 * t16;  // e3^einf
+  M[8] = t12 * t16;  // e1^e2^e3^einf
 }
 
 __host__ __device__ __forceinline__ void motor_lerp_paper(const double A[8], const double B[8], double d1, double d2, double alpha, double M[12]) {
@@ -93,22 +93,22 @@ __host__ __device__ __forceinline__ void motor_lerp_paper(const double A[8], con
   const double t10 = A_e2inf * t4 + B_e2inf * alpha;
   const double t11 = A_e3inf * t4 + B_e3inf * alpha;
   const double t12 = A_e123inf * t4 + B_e123inf * alpha;
-  const double t13 = 1.0 - d2;
-  const double t14 = t13 * t3 - t2;
-  const double t15 = alpha * t14 + t2;
-  const double t16 = 1.0 + t15;
   M[0] = t5;  // 1
   M[1] = t6;  // e1^e2
   M[2] = t7;  // e1^e3
-  M[3] = t16 * t8;  // e1^einf
   M[4] = t9;  // e2^e3
-  M[5] = t10 * t16;  // e2^einf
-  M[6] = t11 * t16;  // e3^einf
+  const double t13 = 1.0 - d2;
+  const double t14 = t13 * t3 - t2;
+  const double t15 = alpha * t14 + t2;
   M[7] = t15 * t5;  // einf^e0
-  M[8] = t12 * t16;  // e1^e2^e3^einf
   M[9] = t15 * t6;  // e1^e2^einf^e0
   M[10] = t15 * t7;  // e1^e3^einf^e0
   M[11] = t15 * t9;  // e2^e3^einf^e0
+  const double t16 = 1.0 + t15;
+  M[3] = t16 * t8;  // e1^einf
+  M[5] = t10 * t16;  // e2^einf
+  M[6] = t11 * t16;  // e3^einf
+  M[8] = t12 * t16;  // e1^e2^e3^einf
 }
 
 }  // namespace cga::kernels

@@ -21,21 +21,21 @@ void motor_lerp_paper(in float A[8], in float B[8], float d1, float d2, float al
   float t10 = A[5] * t4 + B[5] * alpha;
   float t11 = A[6] * t4 + B[6] * alpha;
   float t12 = A[7] * t4 + B[7] * alpha;
-  float t13 = 1.0 - d2;
-  float t14 = t13 * t3 - t2;
-  float t15 = alpha * t14 + t2;
-  float t16 = 1.0 + t15;
   M[0][0] = t5;  // 1
   M[0][1] = t6;  // e1^e2
   M[0][2] = t7;  // e1^e3
-  M[0][3] = t16 * t8;  // e1^einf
   M[1][0] = t9;  // e2^e3
-  M[1][1] = t10 * t16;  // e2^einf
-  M[1][2] = t11 * t16;  // e3^einf
+  float t13 = 1.0 - d2;
+  float t14 = t13 * t3 - t2;
+  float t15 = alpha * t14 + t2;
   M[1][3] = t15 * t5;  // einf^e0
-  M[2][0] = t12 * t16;  // e1^e2^e3^einf
   M[2][1] = t15 * t6;  // e1^e2^einf^e0
   M[2][2] = t15 * t7;  // e1^e3^einf^e0
   M[2][3] = t15 * t9;  // e2^e3^einf^e0
+  float t16 = 1.0 + t15;
+  M[0][3] = t16 * t8;  // e1^einf
+  M[1][1] = t10 * t16;  // e2^einf
+  M[1][2] = t11 * t16;  // e3^einf
+  M[2][0] = t12 * t16;  // e1^e2^e3^einf
 }
 

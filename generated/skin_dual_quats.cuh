@@ -92,22 +92,22 @@ __host__ __device__ __forceinline__ void skin_dual_quats(const float Qr0[4], con
   const float t27 = t21 - t22;
   const float t28 = t20 + t23;
   const float t29 = t10 * t16 + t12 * t8 + t14 * t9 + t18 * t6 - t27 * y - t28 * z;
+  p[0] = -2.0f * t29 - t26 * x;  // e1
   const float t30 = t13 + t17 - t15 - t19;
   const float t31 = t21 + t22;
   const float t32 = t25 - t24;
   const float t33 = t10 * t14 + t12 * t6 + t32 * z - t16 * t9 - t18 * t8 - t31 * x;
+  p[1] = 2.0f * t33 - t30 * y;  // e2
   const float t34 = t13 + t19 - t15 - t17;
   const float t35 = t23 - t20;
   const float t36 = t24 + t25;
   const float t37 = t10 * t12 + t18 * t9 + t35 * x + t36 * y - t14 * t6 - t16 * t8;
-  const float t38 = ny * t27 + nz * t28;
-  const float t39 = nx * t31 - nz * t32;
-  const float t40 = nx * t35 + ny * t36;
-  p[0] = -2.0f * t29 - t26 * x;  // e1
-  p[1] = 2.0f * t33 - t30 * y;  // e2
   p[2] = t34 * z - 2.0f * t37;  // e3
+  const float t38 = ny * t27 + nz * t28;
   n[0] = 2.0f * t38 - nx * t26;  // e1
+  const float t39 = nx * t31 - nz * t32;
   n[1] = -2.0f * t39 - ny * t30;  // e2
+  const float t40 = nx * t35 + ny * t36;
   n[2] = nz * t34 - 2.0f * t40;  // e3
 }
 
@@ -174,22 +174,22 @@ __host__ __device__ __forceinline__ void skin_dual_quats(const double Qr0[4], co
   const double t27 = t21 - t22;
   const double t28 = t20 + t23;
   const double t29 = t10 * t16 + t12 * t8 + t14 * t9 + t18 * t6 - t27 * y - t28 * z;
+  p[0] = -2.0 * t29 - t26 * x;  // e1
   const double t30 = t13 + t17 - t15 - t19;
   const double t31 = t21 + t22;
   const double t32 = t25 - t24;
   const double t33 = t10 * t14 + t12 * t6 + t32 * z - t16 * t9 - t18 * t8 - t31 * x;
+  p[1] = 2.0 * t33 - t30 * y;  // e2
   const double t34 = t13 + t19 - t15 - t17;
   const double t35 = t23 - t20;
   const double t36 = t24 + t25;
   const double t37 = t10 * t12 + t18 * t9 + t35 * x + t36 * y - t14 * t6 - t16 * t8;
-  const double t38 = ny * t27 + nz * t28;
-  const double t39 = nx * t31 - nz * t32;
-  const double t40 = nx * t35 + ny * t36;
-  p[0] = -2.0 * t29 - t26 * x;  // e1
-  p[1] = 2.0 * t33 - t30 * y;  // e2
   p[2] = t34 * z - 2.0 * t37;  // e3
+  const double t38 = ny * t27 + nz * t28;
   n[0] = 2.0 * t38 - nx * t26;  // e1
+  const double t39 = nx * t31 - nz * t32;
   n[1] = -2.0 * t39 - ny * t30;  // e2
+  const double t40 = nx * t35 + ny * t36;
   n[2] = nz * t34 - 2.0 * t40;  // e3
 }
 

@@ -52,22 +52,22 @@ void skin_dual_quats(in vec4 Qr0, in vec4 Qd0, in vec4 Qr1, in vec4 Qd1, in vec4
   float t27 = t21 - t22;
   float t28 = t20 + t23;
   float t29 = t10 * t16 + t12 * t8 + t14 * t9 + t18 * t6 - t27 * y - t28 * z;
+  p[0] = -2.0 * t29 - t26 * x;  // e1
   float t30 = t13 + t17 - t15 - t19;
   float t31 = t21 + t22;
   float t32 = t25 - t24;
   float t33 = t10 * t14 + t12 * t6 + t32 * z - t16 * t9 - t18 * t8 - t31 * x;
+  p[1] = 2.0 * t33 - t30 * y;  // e2
   float t34 = t13 + t19 - t15 - t17;
   float t35 = t23 - t20;
   float t36 = t24 + t25;
   float t37 = t10 * t12 + t18 * t9 + t35 * x + t36 * y - t14 * t6 - t16 * t8;
-  float t38 = ny * t27 + nz * t28;
-  float t39 = nx * t31 - nz * t32;
-  float t40 = nx * t35 + ny * t36;
-  p[0] = -2.0 * t29 - t26 * x;  // e1
-  p[1] = 2.0 * t33 - t30 * y;  // e2
   p[2] = t34 * z - 2.0 * t37;  // e3
+  float t38 = ny * t27 + nz * t28;
   n[0] = 2.0 * t38 - nx * t26;  // e1
+  float t39 = nx * t31 - nz * t32;
   n[1] = -2.0 * t39 - ny * t30;  // e2
+  float t40 = nx * t35 + ny * t36;
   n[2] = nz * t34 - 2.0 * t40;  // e3
 }
 

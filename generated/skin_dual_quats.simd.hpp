@@ -288,22 +288,22 @@ HWY_INLINE void skin_dual_quats(D d, const V Qr0[4], const V Qd0[4], const V Qr1
   const V t27 = t21 - t22;
   const V t28 = t20 + t23;
   const V t29 = t10 * t16 + t12 * t8 + t14 * t9 + t18 * t6 - t27 * y - t28 * z;
+  p[0] = hn::Neg(hn::Set(d, 2.0f) * t29) - t26 * x;  // e1
   const V t30 = t13 + t17 - t15 - t19;
   const V t31 = t21 + t22;
   const V t32 = t25 - t24;
   const V t33 = t10 * t14 + t12 * t6 + t32 * z - t16 * t9 - t18 * t8 - t31 * x;
+  p[1] = hn::Set(d, 2.0f) * t33 - t30 * y;  // e2
   const V t34 = t13 + t19 - t15 - t17;
   const V t35 = t23 - t20;
   const V t36 = t24 + t25;
   const V t37 = t10 * t12 + t18 * t9 + t35 * x + t36 * y - t14 * t6 - t16 * t8;
-  const V t38 = ny * t27 + nz * t28;
-  const V t39 = nx * t31 - nz * t32;
-  const V t40 = nx * t35 + ny * t36;
-  p[0] = hn::Neg(hn::Set(d, 2.0f) * t29) - t26 * x;  // e1
-  p[1] = hn::Set(d, 2.0f) * t33 - t30 * y;  // e2
   p[2] = t34 * z - hn::Set(d, 2.0f) * t37;  // e3
+  const V t38 = ny * t27 + nz * t28;
   n_[0] = hn::Set(d, 2.0f) * t38 - nx * t26;  // e1
+  const V t39 = nx * t31 - nz * t32;
   n_[1] = hn::Neg(hn::Set(d, 2.0f) * t39) - ny * t30;  // e2
+  const V t40 = nx * t35 + ny * t36;
   n_[2] = nz * t34 - hn::Set(d, 2.0f) * t40;  // e3
 }
 

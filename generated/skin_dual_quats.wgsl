@@ -54,22 +54,22 @@ fn skin_dual_quats(Qr0: array<f32, 4>, Qd0: array<f32, 4>, Qr1: array<f32, 4>, Q
   let t27: f32 = t21 - t22;
   let t28: f32 = t20 + t23;
   let t29: f32 = t10 * t16 + t12 * t8 + t14 * t9 + t18 * t6 - t27 * y - t28 * z;
+  (*p)[0] = -2.0 * t29 - t26 * x;  // e1
   let t30: f32 = t13 + t17 - t15 - t19;
   let t31: f32 = t21 + t22;
   let t32: f32 = t25 - t24;
   let t33: f32 = t10 * t14 + t12 * t6 + t32 * z - t16 * t9 - t18 * t8 - t31 * x;
+  (*p)[1] = 2.0 * t33 - t30 * y;  // e2
   let t34: f32 = t13 + t19 - t15 - t17;
   let t35: f32 = t23 - t20;
   let t36: f32 = t24 + t25;
   let t37: f32 = t10 * t12 + t18 * t9 + t35 * x + t36 * y - t14 * t6 - t16 * t8;
-  let t38: f32 = ny * t27 + nz * t28;
-  let t39: f32 = nx * t31 - nz * t32;
-  let t40: f32 = nx * t35 + ny * t36;
-  (*p)[0] = -2.0 * t29 - t26 * x;  // e1
-  (*p)[1] = 2.0 * t33 - t30 * y;  // e2
   (*p)[2] = t34 * z - 2.0 * t37;  // e3
+  let t38: f32 = ny * t27 + nz * t28;
   (*n)[0] = 2.0 * t38 - nx * t26;  // e1
+  let t39: f32 = nx * t31 - nz * t32;
   (*n)[1] = -2.0 * t39 - ny * t30;  // e2
+  let t40: f32 = nx * t35 + ny * t36;
   (*n)[2] = nz * t34 - 2.0 * t40;  // e3
 }
 

@@ -288,12 +288,12 @@ HWY_INLINE void skin_dual_quats_positions(D d, const V Qr0[4], const V Qd0[4], c
   const V t25 = t14 + t15 - t17 - t19;
   const V t26 = t7 * y + t9 - t3 * z;
   const V t27 = t10 * t16 + t12 * t8 + t13 * t26 + t18 * t6 - t20 * t3 - t21 * t7;
+  p[0] = hn::Neg(hn::Set(d, 2.0f) * t27) - t25 * x;  // e1
   const V t28 = t14 + t17 - t15 - t19;
   const V t29 = t10 * t13 + t12 * t6 + t24 * z - t16 * t9 - t18 * t8 - t21 * t5 - t22 * t3 - t23 * t7;
+  p[1] = hn::Set(d, 2.0f) * t29 - t28 * y;  // e2
   const V t30 = t14 + t19 - t15 - t17;
   const V t31 = t10 * t12 + t18 * t9 + t20 * t5 + t23 * t3 + t24 * y - t13 * t6 - t16 * t8 - t22 * t7;
-  p[0] = hn::Neg(hn::Set(d, 2.0f) * t27) - t25 * x;  // e1
-  p[1] = hn::Set(d, 2.0f) * t29 - t28 * y;  // e2
   p[2] = t30 * z - hn::Set(d, 2.0f) * t31;  // e3
 }
 

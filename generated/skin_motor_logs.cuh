@@ -149,22 +149,22 @@ __host__ __device__ __forceinline__ void skin_motor_logs(const float Lr0[4], con
   const float t57 = t51 - t52;
   const float t58 = t50 + t53;
   const float t59 = t57 * y + t58 * z;
+  p[0] = 2.0f * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
   const float t60 = t44 + t48 - t46 - t49;
   const float t61 = t51 + t52;
   const float t62 = t55 - t54;
   const float t63 = t61 * x - t62 * z;
+  p[1] = t21 - 2.0f * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   const float t64 = t44 + t49 - t46 - t48;
   const float t65 = t53 - t50;
   const float t66 = t54 + t55;
   const float t67 = t65 * x + t66 * y;
-  const float t68 = ny * t57 + nz * t58;
-  const float t69 = nx * t61 - nz * t62;
-  const float t70 = nx * t65 + ny * t66;
-  p[0] = 2.0f * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
-  p[1] = t21 - 2.0f * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   p[2] = t37 * t41 + t64 * z + t22 - 2.0f * t67 - t29 * t38 - t36 * t40;  // e3
+  const float t68 = ny * t57 + nz * t58;
   n[0] = 2.0f * t68 - nx * t56;  // e1
+  const float t69 = nx * t61 - nz * t62;
   n[1] = -2.0f * t69 - ny * t60;  // e2
+  const float t70 = nx * t65 + ny * t66;
   n[2] = nz * t64 - 2.0f * t70;  // e3
 }
 
@@ -280,22 +280,22 @@ __host__ __device__ __forceinline__ void skin_motor_logs(const double Lr0[4], co
   const double t57 = t51 - t52;
   const double t58 = t50 + t53;
   const double t59 = t57 * y + t58 * z;
+  p[0] = 2.0 * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
   const double t60 = t44 + t48 - t46 - t49;
   const double t61 = t51 + t52;
   const double t62 = t55 - t54;
   const double t63 = t61 * x - t62 * z;
+  p[1] = t21 - 2.0 * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   const double t64 = t44 + t49 - t46 - t48;
   const double t65 = t53 - t50;
   const double t66 = t54 + t55;
   const double t67 = t65 * x + t66 * y;
-  const double t68 = ny * t57 + nz * t58;
-  const double t69 = nx * t61 - nz * t62;
-  const double t70 = nx * t65 + ny * t66;
-  p[0] = 2.0 * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
-  p[1] = t21 - 2.0 * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   p[2] = t37 * t41 + t64 * z + t22 - 2.0 * t67 - t29 * t38 - t36 * t40;  // e3
+  const double t68 = ny * t57 + nz * t58;
   n[0] = 2.0 * t68 - nx * t56;  // e1
+  const double t69 = nx * t61 - nz * t62;
   n[1] = -2.0 * t69 - ny * t60;  // e2
+  const double t70 = nx * t65 + ny * t66;
   n[2] = nz * t64 - 2.0 * t70;  // e3
 }
 

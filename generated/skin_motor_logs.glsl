@@ -90,22 +90,22 @@ void skin_motor_logs(in vec4 Lr0, in vec3 Lt0, in vec4 Kr0, in vec3 Kt0, in vec4
   float t57 = t51 - t52;
   float t58 = t50 + t53;
   float t59 = t57 * y + t58 * z;
+  p[0] = 2.0 * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
   float t60 = t44 + t48 - t46 - t49;
   float t61 = t51 + t52;
   float t62 = t55 - t54;
   float t63 = t61 * x - t62 * z;
+  p[1] = t21 - 2.0 * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   float t64 = t44 + t49 - t46 - t48;
   float t65 = t53 - t50;
   float t66 = t54 + t55;
   float t67 = t65 * x + t66 * y;
-  float t68 = ny * t57 + nz * t58;
-  float t69 = nx * t61 - nz * t62;
-  float t70 = nx * t65 + ny * t66;
-  p[0] = 2.0 * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
-  p[1] = t21 - 2.0 * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   p[2] = t37 * t41 + t64 * z + t22 - 2.0 * t67 - t29 * t38 - t36 * t40;  // e3
+  float t68 = ny * t57 + nz * t58;
   n[0] = 2.0 * t68 - nx * t56;  // e1
+  float t69 = nx * t61 - nz * t62;
   n[1] = -2.0 * t69 - ny * t60;  // e2
+  float t70 = nx * t65 + ny * t66;
   n[2] = nz * t64 - 2.0 * t70;  // e3
 }
 

@@ -328,22 +328,22 @@ HWY_INLINE void skin_motor_logs(D d, const V Lr0[4], const V Lt0[3], const V Kr0
   const V t57 = t51 - t52;
   const V t58 = t50 + t53;
   const V t59 = t57 * y + t58 * z;
+  p[0] = hn::Set(d, 2.0f) * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
   const V t60 = t44 + t48 - t46 - t49;
   const V t61 = t51 + t52;
   const V t62 = t55 - t54;
   const V t63 = t61 * x - t62 * z;
+  p[1] = t21 - hn::Set(d, 2.0f) * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   const V t64 = t44 + t49 - t46 - t48;
   const V t65 = t53 - t50;
   const V t66 = t54 + t55;
   const V t67 = t65 * x + t66 * y;
-  const V t68 = ny * t57 + nz * t58;
-  const V t69 = nx * t61 - nz * t62;
-  const V t70 = nx * t65 + ny * t66;
-  p[0] = hn::Set(d, 2.0f) * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
-  p[1] = t21 - hn::Set(d, 2.0f) * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   p[2] = t37 * t41 + t64 * z + t22 - hn::Set(d, 2.0f) * t67 - t29 * t38 - t36 * t40;  // e3
+  const V t68 = ny * t57 + nz * t58;
   n_[0] = hn::Set(d, 2.0f) * t68 - nx * t56;  // e1
+  const V t69 = nx * t61 - nz * t62;
   n_[1] = hn::Neg(hn::Set(d, 2.0f) * t69) - ny * t60;  // e2
+  const V t70 = nx * t65 + ny * t66;
   n_[2] = nz * t64 - hn::Set(d, 2.0f) * t70;  // e3
 }
 

@@ -92,22 +92,22 @@ fn skin_motor_logs(Lr0: array<f32, 4>, Lt0: array<f32, 3>, Kr0: array<f32, 4>, K
   let t57: f32 = t51 - t52;
   let t58: f32 = t50 + t53;
   let t59: f32 = t57 * y + t58 * z;
+  (*p)[0] = 2.0 * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
   let t60: f32 = t44 + t48 - t46 - t49;
   let t61: f32 = t51 + t52;
   let t62: f32 = t55 - t54;
   let t63: f32 = t61 * x - t62 * z;
+  (*p)[1] = t21 - 2.0 * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   let t64: f32 = t44 + t49 - t46 - t48;
   let t65: f32 = t53 - t50;
   let t66: f32 = t54 + t55;
   let t67: f32 = t65 * x + t66 * y;
-  let t68: f32 = ny * t57 + nz * t58;
-  let t69: f32 = nx * t61 - nz * t62;
-  let t70: f32 = nx * t65 + ny * t66;
-  (*p)[0] = 2.0 * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
-  (*p)[1] = t21 - 2.0 * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   (*p)[2] = t37 * t41 + t64 * z + t22 - 2.0 * t67 - t29 * t38 - t36 * t40;  // e3
+  let t68: f32 = ny * t57 + nz * t58;
   (*n)[0] = 2.0 * t68 - nx * t56;  // e1
+  let t69: f32 = nx * t61 - nz * t62;
   (*n)[1] = -2.0 * t69 - ny * t60;  // e2
+  let t70: f32 = nx * t65 + ny * t66;
   (*n)[2] = nz * t64 - 2.0 * t70;  // e3
 }
 

@@ -330,16 +330,16 @@ HWY_INLINE void skin_motor_logs_positions(D d, const V Lr0[4], const V Lt0[3], c
   const V t57 = t51 - t52;
   const V t58 = t50 + t53;
   const V t59 = t57 * y + t58 * z;
+  p[0] = hn::Set(d, 2.0f) * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
   const V t60 = t44 + t48 - t46 - t49;
   const V t61 = t51 + t52;
   const V t62 = t55 - t54;
   const V t63 = t61 * x - t62 * z;
+  p[1] = t21 - hn::Set(d, 2.0f) * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   const V t64 = t44 + t49 - t46 - t48;
   const V t65 = t53 - t50;
   const V t66 = t54 + t55;
   const V t67 = t65 * x + t66 * y;
-  p[0] = hn::Set(d, 2.0f) * t59 + t29 * t36 + t20 - t37 * t39 - t38 * t40 - t56 * x;  // e1
-  p[1] = t21 - hn::Set(d, 2.0f) * t63 - t29 * t37 - t36 * t39 - t38 * t41 - t60 * y;  // e2
   p[2] = t37 * t41 + t64 * z + t22 - hn::Set(d, 2.0f) * t67 - t29 * t38 - t36 * t40;  // e3
 }
 

@@ -121,17 +121,17 @@ inline void skin_motors(const float G0[4], const float H0[4], const float U0[4],
   const float t36 = t27 + t31 - t17 - t21;
   const float t37 = t22 + t26 - t19 - t29;
   const float t38 = t18 + t23 + t25 + t30;
+  p[0] = t36 * x + t38 * z - 2.0f * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15 - t37 * y;  // e1
+  n[0] = nx * t36 + nz * t38 - ny * t37;  // e1
   const float t39 = t19 + t22 + t26 + t29;
   const float t40 = t17 + t27 - t21 - t31;
   const float t41 = t34 + t35 - t32 - t33;
+  p[1] = 2.0f * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t41 * z - t39 * x - t40 * y;  // e2
+  n[1] = nz * t41 - nx * t39 - ny * t40;  // e2
   const float t42 = t23 + t30 - t18 - t25;
   const float t43 = t32 + t33 + t34 + t35;
   const float t44 = t21 + t27 - t17 - t31;
-  p[0] = t36 * x + t38 * z - 2.0f * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15 - t37 * y;  // e1
-  p[1] = 2.0f * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t41 * z - t39 * x - t40 * y;  // e2
   p[2] = 2.0f * (t11 * t5 + t12 * t6 - t13 * t3 - t14 * t4) * t15 - t42 * x - t43 * y - t44 * z;  // e3
-  n[0] = nx * t36 + nz * t38 - ny * t37;  // e1
-  n[1] = nz * t41 - nx * t39 - ny * t40;  // e2
   n[2] = -nx * t42 - ny * t43 - nz * t44;  // e3
 }
 
@@ -223,17 +223,17 @@ inline void skin_motors(const double G0[4], const double H0[4], const double U0[
   const double t36 = t27 + t31 - t17 - t21;
   const double t37 = t22 + t26 - t19 - t29;
   const double t38 = t18 + t23 + t25 + t30;
+  p[0] = t36 * x + t38 * z - 2.0 * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15 - t37 * y;  // e1
+  n[0] = nx * t36 + nz * t38 - ny * t37;  // e1
   const double t39 = t19 + t22 + t26 + t29;
   const double t40 = t17 + t27 - t21 - t31;
   const double t41 = t34 + t35 - t32 - t33;
+  p[1] = 2.0 * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t41 * z - t39 * x - t40 * y;  // e2
+  n[1] = nz * t41 - nx * t39 - ny * t40;  // e2
   const double t42 = t23 + t30 - t18 - t25;
   const double t43 = t32 + t33 + t34 + t35;
   const double t44 = t21 + t27 - t17 - t31;
-  p[0] = t36 * x + t38 * z - 2.0 * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15 - t37 * y;  // e1
-  p[1] = 2.0 * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t41 * z - t39 * x - t40 * y;  // e2
   p[2] = 2.0 * (t11 * t5 + t12 * t6 - t13 * t3 - t14 * t4) * t15 - t42 * x - t43 * y - t44 * z;  // e3
-  n[0] = nx * t36 + nz * t38 - ny * t37;  // e1
-  n[1] = nz * t41 - nx * t39 - ny * t40;  // e2
   n[2] = -nx * t42 - ny * t43 - nz * t44;  // e3
 }
 

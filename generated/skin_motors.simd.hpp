@@ -301,17 +301,17 @@ HWY_INLINE void skin_motors(D d, const V G0[4], const V H0[4], const V U0[4], co
   const V t36 = t27 + t31 - t17 - t21;
   const V t37 = t22 + t26 - t19 - t29;
   const V t38 = t18 + t23 + t25 + t30;
+  p[0] = t36 * x + t38 * z - hn::Set(d, 2.0f) * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15 - t37 * y;  // e1
+  n_[0] = nx * t36 + nz * t38 - ny * t37;  // e1
   const V t39 = t19 + t22 + t26 + t29;
   const V t40 = t17 + t27 - t21 - t31;
   const V t41 = t34 + t35 - t32 - t33;
+  p[1] = hn::Set(d, 2.0f) * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t41 * z - t39 * x - t40 * y;  // e2
+  n_[1] = nz * t41 - nx * t39 - ny * t40;  // e2
   const V t42 = t23 + t30 - t18 - t25;
   const V t43 = t32 + t33 + t34 + t35;
   const V t44 = t21 + t27 - t17 - t31;
-  p[0] = t36 * x + t38 * z - hn::Set(d, 2.0f) * (t11 * t3 + t12 * t4 + t13 * t5 + t14 * t6) * t15 - t37 * y;  // e1
-  p[1] = hn::Set(d, 2.0f) * (t11 * t4 + t14 * t5 - t12 * t3 - t13 * t6) * t15 + t41 * z - t39 * x - t40 * y;  // e2
   p[2] = hn::Set(d, 2.0f) * (t11 * t5 + t12 * t6 - t13 * t3 - t14 * t4) * t15 - t42 * x - t43 * y - t44 * z;  // e3
-  n_[0] = nx * t36 + nz * t38 - ny * t37;  // e1
-  n_[1] = nz * t41 - nx * t39 - ny * t40;  // e2
   n_[2] = hn::Neg(nx * t42) - ny * t43 - nz * t44;  // e3
 }
 

@@ -4,6 +4,7 @@
 #include "emit/batch.hpp"
 #include "emit/names.hpp"
 #include "emit/printer.hpp"
+#include "opt/order.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -505,20 +506,26 @@ std::string ProgramEmitter::loads(const std::string& T, const std::set<GiNaC::ex
   return out;
 }
 
-// The temporaries, then every output element (with GLSL's padding of packed outputs).
+// The temporaries and the output elements in print order (opt/order.hpp: each element once what it reads
+// is computed), then GLSL's padding of packed outputs.
 std::string ProgramEmitter::assignments(Printer& pr, const std::string& T) const {
   std::string out;
-  for (const auto& t : program_.temps)
-    out += line(fill_pattern(sx_.temp, {{"T", T}, {"name", f_.id(t.name)}, {"value", pr.print(t.value)}}));
+  for (const opt::Assignment& a : opt::print_order(program_)) {
+    if (a.kind == opt::Assignment::Kind::Temp) {
+      const auto& t = program_.temps[a.index];
+      out += line(fill_pattern(sx_.temp, {{"T", T}, {"name", f_.id(t.name)}, {"value", pr.print(t.value)}}));
+      continue;
+    }
+    const auto& o = program_.outputs[a.index];
+    const size_t k = a.slot;
+    out += line(fill_pattern(sx_.assign, {{"elem", elem(o.name, k, f_.param_pack(o.name, o.slots.size(), true), true)},
+                                          {"value", pr.print(o.slots[k].value)},
+                                          {"blade", as_text(sx_, label(o.name, k, o.slots[k].blade))},
+                                          {"c", sx_.comment}}));
+  }
   for (const auto& o : program_.outputs) {
-    const size_t n = o.slots.size();
-    Pack p = f_.param_pack(o.name, n, true);
-    for (size_t k = 0; k < n; ++k)
-      out += line(fill_pattern(sx_.assign, {{"elem", elem(o.name, k, p, true)},
-                                            {"value", pr.print(o.slots[k].value)},
-                                            {"blade", as_text(sx_, label(o.name, k, o.slots[k].blade))},
-                                            {"c", sx_.comment}}));
-    for (size_t k = n; packing(p).pads && k < packing(p).capacity; ++k)
+    Pack p = f_.param_pack(o.name, o.slots.size(), true);
+    for (size_t k = o.slots.size(); packing(p).pads && k < packing(p).capacity; ++k)
       out += line(elem(o.name, k, p, true) + " = 0.0;  // (padding)");
   }
   return out;

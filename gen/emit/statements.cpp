@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "emit/printer.hpp"
+#include "opt/order.hpp"
 
 namespace cgagen::emit {
 
@@ -63,24 +64,23 @@ std::string emit_statements(const opt::Program& program, const StatementOptions&
     out += options.indent + "{\n";
     if (counted > 0) ++counted;
   }
-  for (size_t i = 0; i < program.temps.size(); ++i) {
-    const auto& t = program.temps[i];
-    line(options.temp_lines, i);
-    out += in + fill_pattern(sx.temp, {{"T", T}, {"name", options.temp_prefix + t.name}, {"value", pr.print(t.value)}}) +
-           "\n";
-  }
-  for (size_t i = 0; i < program.outputs.size(); ++i) {
-    const auto& o = program.outputs[i];
-    const size_t n = o.slots.size();
-    for (size_t k = 0; k < n; ++k) {
-      line(i < options.slot_lines.size() ? options.slot_lines[i] : std::vector<int>{}, k);
-      const std::string elem = n == 1 ? o.name : fill_pattern(sx.element, {{"name", o.name}, {"k", std::to_string(k)}});
-      out += in + fill_pattern(sx.assign, {{"elem", elem},
-                                           {"value", pr.print(o.slots[k].value)},
-                                           {"blade", algebra::blade_name(o.slots[k].blade)},
-                                           {"c", sx.comment}}) +
+  for (const opt::Assignment& a : opt::print_order(program)) {
+    if (a.kind == opt::Assignment::Kind::Temp) {
+      const auto& t = program.temps[a.index];
+      line(options.temp_lines, a.index);
+      out += in + fill_pattern(sx.temp, {{"T", T}, {"name", options.temp_prefix + t.name}, {"value", pr.print(t.value)}}) +
              "\n";
+      continue;
     }
+    const auto& o = program.outputs[a.index];
+    const size_t n = o.slots.size(), k = a.slot;
+    line(a.index < options.slot_lines.size() ? options.slot_lines[a.index] : std::vector<int>{}, k);
+    const std::string elem = n == 1 ? o.name : fill_pattern(sx.element, {{"name", o.name}, {"k", std::to_string(k)}});
+    out += in + fill_pattern(sx.assign, {{"elem", elem},
+                                         {"value", pr.print(o.slots[k].value)},
+                                         {"blade", algebra::blade_name(o.slots[k].blade)},
+                                         {"c", sx.comment}}) +
+           "\n";
   }
   // The code after a block may read only some outputs (an IK chain's intermediate joints): no
   // -Wunused-but-set-variable for the others.

@@ -39,7 +39,7 @@ const std::vector<std::string>& statement_targets();
 //   T s;              (an output of one blade: the variable itself)
 //   {                 (only when there are temporaries)
 //     const T <prefix>t0 = ...;
-//     r[0] = ...;  // e1^e2
+//     r[0] = ...;  // e1^e2   (temporaries and elements in print order: opt/order.hpp)
 //     (void)r;        (every output: the code after the block may leave some unread)
 //   }
 // An output without blades (identically zero) declares nothing. Throws std::invalid_argument for a target
