@@ -48,6 +48,7 @@ void topo_sort(CseState& st);
 
 // The passes, one per file.
 void pair_products(CseState& st, std::vector<GiNaC::ex>& roots);      // pass_pair_products.cpp
+void half_powers(CseState& st, std::vector<GiNaC::ex>& roots);        // pass_half_powers.cpp
 void shared_subtrees(CseState& st, std::vector<GiNaC::ex>& roots);    // pass_shared_subtrees.cpp
 void fold_negations(CseState& st, std::vector<GiNaC::ex>& roots);     // pass_negations.cpp
 void inline_single_use(CseState& st, std::vector<GiNaC::ex>& roots);  // pass_inline.cpp

@@ -72,6 +72,7 @@ const std::vector<Pass> kPasses = {
        topo_sort(st);
      }},
     {"orient", "orient the sums again (the pair products changed them)", orient_all},
+    {"half-powers", "give the half-integer powers y^(k/2) of one base one shared square root", half_powers},
     {"shared-subtrees", "make each subtree used twice or more a temporary (products keyed without their number)",
      shared_subtrees},
     {"orient", "orient the sums again (new temporaries)", orient_all},

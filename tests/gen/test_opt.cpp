@@ -226,6 +226,19 @@ TEST_CASE("O2 takes a symbol that several terms of a sum share out of them, and 
   check_same_values(k, p1, p2);
 }
 
+TEST_CASE("the half-integer powers of one base share one square root at -O2", "[opt]") {
+  // sin(sqrt(n)) / sqrt(n) and n sqrt(n) (n^(3/2), a pow() call alone): one sqrt and the sin, where -O1
+  // takes sqrt twice and pow once.
+  front::SourceFile file("t.clu", "n = a*a + b*b;\n?y = sin(sqrt(n))/sqrt(n);\n?z = n*sqrt(n) + c;\n");
+  Kernel k = expand(front::parse(file), "t");
+  const opt::Program p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
+  const auto s1 = opt::program_stats(p1).total, s2 = opt::program_stats(p2).total;
+  INFO("O1 " << opt::format_counts(s1) << " | O2 " << opt::format_counts(s2));
+  CHECK(s1.call == 4);
+  CHECK(s2.call == 2);
+  check_same_values(k, p1, p2);
+}
+
 TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
   auto k = cga_test::normalize_kernel();
   auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
