@@ -52,6 +52,7 @@ void half_powers(CseState& st, std::vector<GiNaC::ex>& roots);        // pass_ha
 void shared_subtrees(CseState& st, std::vector<GiNaC::ex>& roots);    // pass_shared_subtrees.cpp
 void fold_negations(CseState& st, std::vector<GiNaC::ex>& roots);     // pass_negations.cpp
 void inline_single_use(CseState& st, std::vector<GiNaC::ex>& roots);  // pass_inline.cpp
+void integer_powers(CseState& st, std::vector<GiNaC::ex>& roots);     // pass_integer_powers.cpp
 void drop_aliases(CseState& st, std::vector<GiNaC::ex>& roots);       // pass_aliases.cpp
 void factor_all_sums(CseState& st, std::vector<GiNaC::ex>& roots);    // pass_factor_sums.cpp
 void merge_equal_temps(CseState& st, std::vector<GiNaC::ex>& roots);  // pass_merge_equal.cpp

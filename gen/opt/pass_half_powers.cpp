@@ -23,11 +23,13 @@ bool is_half_power(const ex& e) {
   return q.is_rational() && !q.is_integer() && q.denom() == 2;
 }
 
-// The half-integer powers of e, each distinct node once.
-void collect_half_powers(const ex& e, std::set<const basic*>& seen, std::vector<ex>& out) {
+// The half-integer powers of e, each node once. The visited nodes are kept alive: op()
+// of a product builds its power factors afresh, and a freed node's address can come back as another node.
+void collect_half_powers(const ex& e, std::set<const basic*>& seen, std::vector<ex>& kept, std::vector<ex>& out) {
   if (!seen.insert(&ex_to<basic>(e)).second) return;
+  kept.push_back(e);
   if (is_half_power(e)) out.push_back(e);
-  for (size_t i = 0; i < e.nops(); ++i) collect_half_powers(e.op(i), seen, out);
+  for (size_t i = 0; i < e.nops(); ++i) collect_half_powers(e.op(i), seen, kept, out);
 }
 
 }  // namespace
@@ -43,8 +45,8 @@ void half_powers(CseState& st, std::vector<ex>& roots) {
   std::map<std::string, Base> bases;
   auto scan = [&](const ex& e) {
     std::set<const basic*> seen;
-    std::vector<ex> found;
-    collect_half_powers(e, seen, found);
+    std::vector<ex> kept, found;
+    collect_half_powers(e, seen, kept, found);
     for (const ex& p : found) {
       Base& b = bases[st.keys.key(p.op(0))];
       b.base = p.op(0);

@@ -80,6 +80,8 @@ const std::vector<Pass> kPasses = {
     {"inline-single-use", "put a temporary used once back into its user; drop unused ones", inline_single_use},
     {"factor-sums", "factor each sum by its most shared symbols, share inner sums, group common numeric factors",
      factor_all_sums},
+    {"integer-powers", "build the integer powers of a symbol from each other (x^4 = x^2 x^2), when that is shorter",
+     integer_powers},
     {"drop-aliases", "replace a temporary that is one symbol or number by its value", drop_aliases},
     {"orient", "orient the sums again (factored sums)", orient_all},
     {"fold-negations", "store negated temporaries positive again (after factoring)", fold_negations},

@@ -239,6 +239,19 @@ TEST_CASE("the half-integer powers of one base share one square root at -O2", "[
   check_same_values(k, p1, p2);
 }
 
+TEST_CASE("the integer powers of one symbol are built from each other at -O2", "[opt]") {
+  // a^4, a^8 and a^2 b: 3 + 7 + 2 multiplications as printed at -O1; at -O2 a^2, a^4 = a^2 a^2, a^8 = a^4 a^4
+  // and a^2 b, 4.
+  front::SourceFile file("t.clu", "?y = sin(a*a*a*a) + cos(a*a*a*a*a*a*a*a) + a*a*b;\n");
+  Kernel k = expand(front::parse(file), "t");
+  const opt::Program p1 = opt::optimize(k, Level::O1), p2 = opt::optimize(k, Level::O2);
+  const auto s1 = opt::program_stats(p1).total, s2 = opt::program_stats(p2).total;
+  INFO("O1 " << opt::format_counts(s1) << " | O2 " << opt::format_counts(s2));
+  CHECK(s1.mul == 12);
+  CHECK(s2.mul == 4);
+  check_same_values(k, p1, p2);
+}
+
 TEST_CASE("a shared denominator becomes one reciprocal at -O2", "[opt]") {
   auto k = cga_test::normalize_kernel();
   auto s1 = opt::program_stats(opt::optimize(k, Level::O1)).total;
