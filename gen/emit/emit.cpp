@@ -506,7 +506,7 @@ std::string ProgramEmitter::loads(const std::string& T, const std::set<GiNaC::ex
   return out;
 }
 
-// The temporaries and the output elements in print order (opt/order.hpp: each element once what it reads
+// The temporaries and the output elements in print order (opt/order.hpp: each element as soon as what it reads
 // is computed), then GLSL's padding of packed outputs.
 std::string ProgramEmitter::assignments(Printer& pr, const std::string& T) const {
   std::string out;
