@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "emit/names.hpp"
+#include "library/lanes.hpp"
 
 namespace cgagen::library {
 
@@ -23,18 +24,27 @@ struct Templates {
   std::string dir;
   std::map<std::string, std::string> text;
   const std::string& operator[](const std::string& name) const { return text.at(name); }
+  bool has(const std::string& name) const { return text.count(name) != 0; }
   std::string path(const std::string& name) const { return dir + "/" + name + ".in"; }
 };
 
+// Every target has the required templates. A target with `lanes_kernel.in` gets the 4-wide float forms of
+// its bilinear kernels (library/lanes.hpp) as well.
 Templates load(const std::string& dir) {
   Templates t{dir, {}};
-  for (const char* name : {"file", "type", "unary", "binary", "unary_operator", "binary_operator", "unary_registry", "binary_registry", "skipped", "alias", "type_registry"}) {
+  auto read = [&](const char* name, bool required) {
     std::ifstream in(t.path(name), std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read library template " + t.path(name));
+    if (!in) {
+      if (required) throw std::runtime_error("cannot read library template " + t.path(name));
+      return;
+    }
     std::ostringstream s;
     s << in.rdbuf();
     t.text[name] = s.str();
-  }
+  };
+  for (const char* name : {"file", "type", "unary", "binary", "unary_operator", "binary_operator", "unary_registry", "binary_registry", "skipped", "alias", "type_registry"})
+    read(name, true);
+  read("lanes_kernel", false);
   return t;
 }
 
@@ -119,12 +129,23 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
                             {"type", emit::spell(sx, al.type)},
                             {"Type", camel_of.at(emit::spell(sx, al.type))}});
 
-  std::string functions, registry, skipped;
+  std::string functions, registry, skipped, lanes_kernels;
   for (const Function& f : lib.functions) {
+    // The float kernel the wrappers call: the 4-wide form where the target has one and it is cheaper.
+    std::string float_kernel = emit::spell(sx, f.program.name);
+    if (t.has("lanes_kernel") && f.op->arity == 2)
+      if (const auto form = lane_form(f.program)) {
+        const LaneCode code = lane_code(*form);
+        if (static_cast<long>(code.ops) < opt::program_stats(f.program).total.total()) {
+          lanes_kernels += fill("lanes_kernel", {{"library", lib.name}, {"kernel", float_kernel}, {"body", code.body}});
+          float_kernel = "x4::" + float_kernel;
+        }
+      }
     const std::map<std::string, std::string> v = {
         {"library", lib.name},
         {"fn", f.op->name},
         {"kernel", emit::spell(sx, f.program.name)},
+        {"float_kernel", float_kernel},
         {"a", type_name(f.a)},
         {"b", f.op->arity == 2 ? type_name(f.b) : ""},
         {"result", type_name(f.result)},
@@ -157,6 +178,7 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
                        {"function_count", std::to_string(lib.functions.size())},
                        {"skipped_count", std::to_string(lib.skipped.size())},
                        {"kernels", kernels},
+                       {"lanes_kernels", lanes_kernels},
                        {"types", types},
                        {"type_registry", type_registry},
                        {"functions", functions},

@@ -3,12 +3,14 @@
 // tests/library runs every generated function against the oracle.
 #include <catch2/catch.hpp>
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cli_run.hpp"
 #include "library/build.hpp"
+#include "library/lanes.hpp"
 #include "library/spec.hpp"
 
 using namespace cgagen;
@@ -105,6 +107,38 @@ TEST_CASE("library sandwich: a b ~a for a normalized versor, -a b ~a where its n
   CHECK(plane.find("#pragma normalized a\nm = a * b * ~a;\n?r = grade(m, 2);") != std::string::npos);
   CHECK(point.find("m = -(a * b * ~a);\n?r = grade(m, 1);") != std::string::npos);
   CHECK(point.find("normalized") == std::string::npos);
+}
+
+TEST_CASE("library lanes: a bilinear product as 4-wide columns, other kernels left scalar") {
+  const library::Library lib = library::build(spec_of("library l\nalgebra 3d\ntype vector e1 e2 e3\n"
+                                                      "type rotor 1 e1^e2 e1^e3 e2^e3\n"),
+                                              opt::Level::O2);
+  // rotor * rotor, as a quaternion product: r0 = a0 b0 - a1 b1 - a2 b2 - a3 b3 (e12 e12 = -1), and
+  // r1 (e1^e2) = a0 b1 + a1 b0 - a2 b3 + a3 b2: e1^e3 e2^e3 = e1 e3 e2 e3 = -e1 e2, so a2 b3 has -1.
+  const auto form = library::lane_form(find(lib, "gp", "rotor", "rotor")->program);
+  REQUIRE(form);
+  CHECK(form->na == 4);
+  CHECK(form->nb == 4);
+  REQUIRE(form->out.size() == 4);
+  std::map<std::pair<size_t, size_t>, double> r0, r1;
+  for (const auto& t : form->out[0]) r0[{t.i, t.j}] = t.c;
+  for (const auto& t : form->out[1]) r1[{t.i, t.j}] = t.c;
+  CHECK(r0 == std::map<std::pair<size_t, size_t>, double>{{{0, 0}, 1}, {{1, 1}, -1}, {{2, 2}, -1}, {{3, 3}, -1}});
+  CHECK(r1 == std::map<std::pair<size_t, size_t>, double>{{{0, 1}, 1}, {{1, 0}, 1}, {{2, 3}, -1}, {{3, 2}, 1}});
+  // One column per a_i: 4 broadcasts, 4 products, 3 sums, 3 shuffles of b and 3 sign flips (a0's column is b
+  // itself), 17 operations against the scalar kernel's 28.
+  const library::LaneCode code = library::lane_code(*form);
+  CHECK(code.ops == 17);
+  CHECK(code.body.find("store<4>(r + 0, (splat<0>(a0) * p0 + splat<1>(a0) * p1) + (splat<2>(a0) * p2 + splat<3>(a0) * p3));") != std::string::npos);
+  CHECK(opt::program_stats(find(lib, "gp", "rotor", "rotor")->program).total.total() == 28);
+  // A vector (3 coefficients) is one vector with a lane left over; r has the rotor's 4.
+  const auto vv = library::lane_form(find(lib, "gp", "vector", "vector")->program);
+  REQUIRE(vv);
+  CHECK(library::lane_code(*vv).body.find("load<3>(a + 0)") != std::string::npos);
+  // Not bilinear: the sandwich (quadratic in a), a unary operation, the norm's square root.
+  CHECK_FALSE(library::lane_form(find(lib, "sandwich", "rotor", "vector")->program));
+  CHECK_FALSE(library::lane_form(find(lib, "reverse", "rotor")->program));
+  CHECK_FALSE(library::lane_form(find(lib, "norm", "rotor")->program));
 }
 
 TEST_CASE("cli: --library writes OpenCL C, JavaScript, GLSL ES, HLSL and WGSL the same every run") {

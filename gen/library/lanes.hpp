@@ -1,0 +1,43 @@
+// 4-wide forms of a library's bilinear kernels: a product of two types whose every result coefficient is
+// Σ c · a_i · b_j (every product of the operator set on blade bases) printed as operations on vectors of 4
+// floats, the result's coefficients 4 to a vector in storage order, as klein writes its SSE by hand:
+//
+//   r[4g .. 4g+3] = Σ_i splat(a_i) · (c ⊙ perm_i(b))
+//
+// one column per coefficient a_i that the group reads: a_i broadcast to 4 lanes times the b coefficients it
+// meets in each lane (a shuffle of b's vectors), with the coefficients c as a sign flip or, where some c is not
+// ±1 or a lane has no term, a product with a constant vector. The columns are summed as a balanced tree. The
+// first operand is the broadcast one: in a chain x = x * y the shuffles of y are off x's critical path.
+// The form is kept only where it costs fewer vector operations than the scalar kernel has operations.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "opt/program.hpp"
+
+namespace cgagen::library {
+
+struct LaneTerm {
+  size_t i = 0, j = 0;  // a_i * b_j
+  double c = 0;         // its coefficient
+};
+
+struct LaneForm {
+  size_t na = 0, nb = 0;                   // the operands' coefficient counts
+  std::vector<std::vector<LaneTerm>> out;  // per result coefficient, its terms
+};
+
+// The bilinear form of a binary kernel (its temporaries substituted), or nothing where some result
+// coefficient is not a sum of numeric multiples of a_i * b_j.
+std::optional<LaneForm> lane_form(const opt::Program& program);
+
+struct LaneCode {
+  std::string body;   // C++ statements over the helpers of templates/cpp/library/file.in (namespace x4)
+  size_t ops = 0;     // vector operations: products, sums, shuffles, sign flips and constant products
+};
+
+LaneCode lane_code(const LaneForm& form);
+
+}  // namespace cgagen::library
