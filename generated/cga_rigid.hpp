@@ -3164,15 +3164,17 @@ inline void gp_motor_motor(const float* a, const float* b, float* r) {
   const v4 a1 = load<4>(a + 4);
   const v4 b0 = load<4>(b + 0);
   const v4 b1 = load<4>(b + 4);
+  const v4 nb0 = -b0;
+  const v4 nb1 = -b1;
   const v4 p0 = b0;
-  const v4 p1 = flip(perm<1, 0, 3, 2>(b0, b0), u4{0x80000000u, 0u, 0u, 0x80000000u});
-  const v4 p2 = flip(perm<2, 3, 0, 1>(b0, b0), u4{0x80000000u, 0x80000000u, 0u, 0u});
-  const v4 p3 = flip(perm<3, 2, 1, 0>(b0, b0), u4{0x80000000u, 0u, 0x80000000u, 0u});
+  const v4 p1 = perm<5, 0, 3, 6>(b0, nb0);
+  const v4 p2 = perm<6, 7, 0, 1>(b0, nb0);
+  const v4 p3 = perm<7, 2, 5, 0>(b0, nb0);
   store<4>(r + 0, (splat<0>(a0) * p0 + splat<1>(a0) * p1) + (splat<2>(a0) * p2 + splat<3>(a0) * p3));
   const v4 p4 = b1;
-  const v4 p5 = flip(perm<1, 0, 3, 2>(b1, b1), u4{0u, 0x80000000u, 0x80000000u, 0u});
-  const v4 p6 = flip(perm<2, 3, 0, 1>(b1, b1), u4{0u, 0u, 0x80000000u, 0x80000000u});
-  const v4 p7 = flip(perm<3, 2, 1, 0>(b1, b1), u4{0x80000000u, 0u, 0x80000000u, 0u});
+  const v4 p5 = perm<1, 4, 7, 2>(b1, nb1);
+  const v4 p6 = perm<2, 3, 4, 5>(b1, nb1);
+  const v4 p7 = perm<7, 2, 5, 0>(b1, nb1);
   store<4>(r + 4, ((splat<0>(a0) * p4 + splat<1>(a0) * p5) + (splat<2>(a0) * p6 + splat<3>(a0) * p7)) + ((splat<0>(a1) * p0 + splat<1>(a1) * p1) + (splat<2>(a1) * p2 + splat<3>(a1) * p3)));
 }
 #else
@@ -3204,13 +3206,15 @@ inline void gp_screw_motor(const float* a, const float* b, float* r) {
   const v4 a1 = load<2>(a + 4);
   const v4 b0 = load<4>(b + 0);
   const v4 b1 = load<4>(b + 4);
-  const v4 p0 = flip(perm<1, 0, 3, 2>(b0, b0), u4{0x80000000u, 0u, 0u, 0x80000000u});
-  const v4 p1 = flip(perm<2, 3, 0, 1>(b0, b0), u4{0x80000000u, 0x80000000u, 0u, 0u});
-  const v4 p2 = flip(perm<3, 2, 1, 0>(b0, b0), u4{0x80000000u, 0u, 0x80000000u, 0u});
+  const v4 nb0 = -b0;
+  const v4 nb1 = -b1;
+  const v4 p0 = perm<5, 0, 3, 6>(b0, nb0);
+  const v4 p1 = perm<6, 7, 0, 1>(b0, nb0);
+  const v4 p2 = perm<7, 2, 5, 0>(b0, nb0);
   store<4>(r + 0, (splat<0>(a0) * p0 + splat<1>(a0) * p1) + splat<2>(a0) * p2);
-  const v4 p3 = flip(perm<1, 0, 3, 2>(b1, b1), u4{0u, 0x80000000u, 0x80000000u, 0u});
-  const v4 p4 = flip(perm<2, 3, 0, 1>(b1, b1), u4{0u, 0u, 0x80000000u, 0x80000000u});
-  const v4 p5 = flip(perm<3, 2, 1, 0>(b1, b1), u4{0x80000000u, 0u, 0x80000000u, 0u});
+  const v4 p3 = perm<1, 4, 7, 2>(b1, nb1);
+  const v4 p4 = perm<2, 3, 4, 5>(b1, nb1);
+  const v4 p5 = perm<7, 2, 5, 0>(b1, nb1);
   const v4 p6 = b0;
   store<4>(r + 4, ((splat<0>(a0) * p3 + splat<1>(a0) * p4) + (splat<2>(a0) * p5 + splat<3>(a0) * p6)) + (splat<0>(a1) * p0 + splat<1>(a1) * p1));
 }

@@ -85,6 +85,7 @@ LaneCode lane_code(const LaneForm& form) {
   auto width = [](size_t n, size_t g) { return std::min<size_t>(4, n - 4 * g); };
   std::set<size_t> splats;           // the a_i broadcast
   std::set<long> b_groups;           // the vectors of b read
+  std::set<long> negated;            // the vectors of b read negated
   // A column's operand: b's coefficients lane by lane (none: the lane has no term) times their coefficients.
   using Operand = std::pair<std::vector<long>, std::vector<double>>;
   std::map<Operand, std::string> operands;
@@ -120,8 +121,24 @@ LaneCode lane_code(const LaneForm& form) {
           const long first = *src.begin(), second = *src.rbegin();
           bool identity = src.size() == 1;
           for (size_t l = 0; l < 4 && identity; ++l) identity = op.first[l] < 0 || op.first[l] == first * 4 + static_cast<long>(l);
+          bool unit = true, positive = true;
+          for (size_t l = 0; l < 4; ++l) {
+            unit = unit && (l >= lanes || (op.first[l] >= 0 && std::fabs(op.second[l]) == 1.0));
+            positive = positive && (op.first[l] < 0 || op.second[l] == 1.0);
+          }
           if (identity) {
-            e = "b" + std::to_string(first);
+            e = "b" + std::to_string(first);  // flipped below where some sign is -1
+          } else if (src.size() == 1 && unit && !identity) {
+            // The signs by the shuffle itself: each lane from b's vector or from its negation (one per vector).
+            if (negated.insert(first).second) ++code.ops;
+            e = "perm<";
+            for (size_t l = 0; l < 4; ++l) {
+              const long j = op.first[l] < 0 ? first * 4 : op.first[l];
+              e += std::string(l ? ", " : "") + std::to_string(j % 4 + (op.second[l] < 0 ? 4 : 0));
+            }
+            e += ">(b" + std::to_string(first) + ", nb" + std::to_string(first) + ")";
+            ++code.ops;
+            positive = true;
           } else if (src.size() <= 2) {
             e = "perm<";
             for (size_t l = 0; l < 4; ++l) {
@@ -135,11 +152,6 @@ LaneCode lane_code(const LaneForm& form) {
             for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + (op.first[l] < 0 ? "0.0f" : "b[" + std::to_string(op.first[l]) + "]");
             e += "}";
             code.ops += 3;
-          }
-          bool unit = true, positive = true;
-          for (size_t l = 0; l < 4; ++l) {
-            unit = unit && (l >= lanes || (op.first[l] >= 0 && std::fabs(op.second[l]) == 1.0));
-            positive = positive && (op.first[l] < 0 || op.second[l] == 1.0);
           }
           if (unit && !positive) {
             e = "flip(" + e + ", u4{";
@@ -184,6 +196,7 @@ LaneCode lane_code(const LaneForm& form) {
     code.body += "  const v4 a" + std::to_string(g) + " = load<" + std::to_string(width(form.na, g)) + ">(a + " + std::to_string(4 * g) + ");\n";
   for (long g : b_groups)
     code.body += "  const v4 b" + std::to_string(g) + " = load<" + std::to_string(width(form.nb, static_cast<size_t>(g))) + ">(b + " + std::to_string(4 * g) + ");\n";
+  for (long g : negated) code.body += "  const v4 nb" + std::to_string(g) + " = -b" + std::to_string(g) + ";\n";
   code.body += s;
   return code;
 }

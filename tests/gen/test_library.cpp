@@ -125,10 +125,13 @@ TEST_CASE("library lanes: a bilinear product as 4-wide columns, other kernels le
   for (const auto& t : form->out[1]) r1[{t.i, t.j}] = t.c;
   CHECK(r0 == std::map<std::pair<size_t, size_t>, double>{{{0, 0}, 1}, {{1, 1}, -1}, {{2, 2}, -1}, {{3, 3}, -1}});
   CHECK(r1 == std::map<std::pair<size_t, size_t>, double>{{{0, 1}, 1}, {{1, 0}, 1}, {{2, 3}, -1}, {{3, 2}, 1}});
-  // One column per a_i: 4 broadcasts, 4 products, 3 sums, 3 shuffles of b and 3 sign flips (a0's column is b
-  // itself), 17 operations against the scalar kernel's 28.
+  // One column per a_i: 4 broadcasts, 4 products, 3 sums, -b once and 3 shuffles of b and -b that take the
+  // signs with the coefficients (a0's column is b itself), 15 operations against the scalar kernel's 28.
   const library::LaneCode code = library::lane_code(*form);
-  CHECK(code.ops == 17);
+  CHECK(code.ops == 15);
+  CHECK(code.body.find("const v4 nb0 = -b0;") != std::string::npos);
+  // a1 (e1^e2) meets -b1 in r0, b0 in r1, b3 in r2 (e12 e23 = e13) and -b2 in r3 (e12 e13 = -e23):
+  CHECK(code.body.find("const v4 p1 = perm<5, 0, 3, 6>(b0, nb0);") != std::string::npos);
   CHECK(code.body.find("store<4>(r + 0, (splat<0>(a0) * p0 + splat<1>(a0) * p1) + (splat<2>(a0) * p2 + splat<3>(a0) * p3));") != std::string::npos);
   CHECK(opt::program_stats(find(lib, "gp", "rotor", "rotor")->program).total.total() == 28);
   // A vector (3 coefficients) is one vector with a lane left over; r has the rotor's 4.
