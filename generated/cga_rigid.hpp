@@ -3182,20 +3182,23 @@ inline void gp_motor_motor(const float* a, const float* b, float* r) { ::cga_rig
 #endif
 #if CGAGEN_X4
 inline void gp_motor_screw(const float* a, const float* b, float* r) {
-  const v4 a0 = load<4>(a + 0);
-  const v4 a1 = load<4>(a + 4);
   const v4 b0 = load<4>(b + 0);
   const v4 b1 = load<2>(b + 4);
-  const v4 p0 = scale(perm<0, 0, 1, 2>(b0, b0), v4{0.0f, 1.0f, 1.0f, 1.0f});
-  const v4 p1 = scale(perm<0, 0, 2, 1>(b0, b0), v4{-1.0f, 0.0f, 1.0f, -1.0f});
-  const v4 p2 = scale(perm<1, 2, 0, 0>(b0, b0), v4{-1.0f, -1.0f, 0.0f, 1.0f});
-  const v4 p3 = scale(perm<2, 1, 0, 0>(b0, b0), v4{-1.0f, 1.0f, -1.0f, 0.0f});
-  store<4>(r + 0, (splat<0>(a0) * p0 + splat<1>(a0) * p1) + (splat<2>(a0) * p2 + splat<3>(a0) * p3));
-  const v4 p4 = scale(perm<3, 4, 5, 0>(b0, b1), v4{1.0f, 1.0f, 1.0f, 0.0f});
-  const v4 p5 = scale(perm<4, 3, 0, 5>(b0, b1), v4{1.0f, -1.0f, 0.0f, 1.0f});
-  const v4 p6 = scale(perm<5, 0, 3, 4>(b0, b1), v4{1.0f, 0.0f, -1.0f, -1.0f});
-  const v4 p7 = scale(perm<0, 5, 4, 3>(b0, b1), v4{0.0f, 1.0f, -1.0f, 1.0f});
-  store<4>(r + 4, ((splat<0>(a0) * p4 + splat<1>(a0) * p5) + (splat<2>(a0) * p6 + splat<3>(a0) * p7)) + ((splat<0>(a1) * p0 + splat<1>(a1) * p1) + (splat<2>(a1) * p2 + splat<3>(a1) * p3)));
+  const v4 a0 = load<4>(a + 0);
+  const v4 a1 = load<4>(a + 4);
+  const v4 na0 = -a0;
+  const v4 na1 = -a1;
+  const v4 p0 = perm<5, 0, 7, 2>(a0, na0);
+  const v4 p1 = perm<6, 3, 0, 5>(a0, na0);
+  const v4 p2 = perm<7, 6, 1, 0>(a0, na0);
+  store<4>(r + 0, (splat<0>(b0) * p0 + splat<1>(b0) * p1) + splat<2>(b0) * p2);
+  const v4 p3 = perm<5, 0, 7, 2>(a1, na1);
+  const v4 p4 = perm<6, 3, 0, 5>(a1, na1);
+  const v4 p5 = perm<7, 6, 1, 0>(a1, na1);
+  const v4 p6 = flip(a0, u4{0u, 0x80000000u, 0x80000000u, 0u});
+  const v4 p7 = perm<1, 0, 7, 6>(a0, na0);
+  const v4 p8 = perm<2, 3, 0, 1>(a0, na0);
+  store<4>(r + 4, ((splat<0>(b0) * p3 + splat<1>(b0) * p4) + (splat<2>(b0) * p5 + splat<3>(b0) * p6)) + (splat<0>(b1) * p7 + splat<1>(b1) * p8));
 }
 #else
 inline void gp_motor_screw(const float* a, const float* b, float* r) { ::cga_rigid::detail::gp_motor_screw(a, b, r); }

@@ -78,7 +78,11 @@ std::optional<LaneForm> lane_form(const opt::Program& program) {
   return form;
 }
 
-LaneCode lane_code(const LaneForm& form) {
+namespace {
+
+// The columns with the operand named `x` (a or b) broadcast and the other, `y`, shuffled; `form` has x's
+// coefficients as its i and y's as its j.
+LaneCode columns_code(const LaneForm& form, const std::string& x, const std::string& y) {
   LaneCode code;
   std::string s;  // the statements after the loads
   auto groups = [](size_t n) { return (n + 3) / 4; };
@@ -127,7 +131,7 @@ LaneCode lane_code(const LaneForm& form) {
             positive = positive && (op.first[l] < 0 || op.second[l] == 1.0);
           }
           if (identity) {
-            e = "b" + std::to_string(first);  // flipped below where some sign is -1
+            e = y + std::to_string(first);  // flipped below where some sign is -1
           } else if (src.size() == 1 && unit && !identity) {
             // The signs by the shuffle itself: each lane from b's vector or from its negation (one per vector).
             if (negated.insert(first).second) ++code.ops;
@@ -136,7 +140,7 @@ LaneCode lane_code(const LaneForm& form) {
               const long j = op.first[l] < 0 ? first * 4 : op.first[l];
               e += std::string(l ? ", " : "") + std::to_string(j % 4 + (op.second[l] < 0 ? 4 : 0));
             }
-            e += ">(b" + std::to_string(first) + ", nb" + std::to_string(first) + ")";
+            e += ">(" + y + std::to_string(first) + ", n" + y + std::to_string(first) + ")";
             ++code.ops;
             positive = true;
           } else if (src.size() <= 2) {
@@ -145,11 +149,11 @@ LaneCode lane_code(const LaneForm& form) {
               const long j = op.first[l] < 0 ? first * 4 : op.first[l];
               e += std::string(l ? ", " : "") + std::to_string(j % 4 + (j / 4 == second && second != first ? 4 : 0));
             }
-            e += ">(b" + std::to_string(first) + ", b" + std::to_string(second) + ")";
+            e += ">(" + y + std::to_string(first) + ", " + y + std::to_string(second) + ")";
             ++code.ops;
           } else {
             e = "v4{";
-            for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + (op.first[l] < 0 ? "0.0f" : "b[" + std::to_string(op.first[l]) + "]");
+            for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + (op.first[l] < 0 ? "0.0f" : y + "[" + std::to_string(op.first[l]) + "]");
             e += "}";
             code.ops += 3;
           }
@@ -170,7 +174,7 @@ LaneCode lane_code(const LaneForm& form) {
           it = operands.emplace(op, name).first;
         }
         if (splats.insert(i).second) ++code.ops;
-        columns.push_back("splat<" + std::to_string(i % 4) + ">(a" + std::to_string(i / 4) + ") * " + it->second);
+        columns.push_back("splat<" + std::to_string(i % 4) + ">(" + x + std::to_string(i / 4) + ") * " + it->second);
         ++code.ops;
       }
     }
@@ -193,12 +197,25 @@ LaneCode lane_code(const LaneForm& form) {
   std::set<size_t> a_groups;
   for (size_t i : splats) a_groups.insert(i / 4);
   for (size_t g : a_groups)
-    code.body += "  const v4 a" + std::to_string(g) + " = load<" + std::to_string(width(form.na, g)) + ">(a + " + std::to_string(4 * g) + ");\n";
+    code.body += "  const v4 " + x + std::to_string(g) + " = load<" + std::to_string(width(form.na, g)) + ">(" + x + " + " + std::to_string(4 * g) + ");\n";
   for (long g : b_groups)
-    code.body += "  const v4 b" + std::to_string(g) + " = load<" + std::to_string(width(form.nb, static_cast<size_t>(g))) + ">(b + " + std::to_string(4 * g) + ");\n";
-  for (long g : negated) code.body += "  const v4 nb" + std::to_string(g) + " = -b" + std::to_string(g) + ";\n";
+    code.body += "  const v4 " + y + std::to_string(g) + " = load<" + std::to_string(width(form.nb, static_cast<size_t>(g))) + ">(" + y + " + " + std::to_string(4 * g) + ");\n";
+  for (long g : negated) code.body += "  const v4 n" + y + std::to_string(g) + " = -" + y + std::to_string(g) + ";\n";
   code.body += s;
   return code;
+}
+
+}  // namespace
+
+LaneCode lane_code(const LaneForm& form) {
+  LaneForm swapped{form.nb, form.na, {}};
+  for (const auto& terms : form.out) {
+    swapped.out.emplace_back();
+    for (const LaneTerm& t : terms) swapped.out.back().push_back({t.j, t.i, t.c});
+  }
+  LaneCode first = columns_code(form, "a", "b");
+  LaneCode second = columns_code(swapped, "b", "a");
+  return second.ops < first.ops ? second : first;
 }
 
 }  // namespace cgagen::library

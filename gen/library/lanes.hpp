@@ -6,8 +6,9 @@
 //
 // one column per coefficient a_i that the group reads: a_i broadcast to 4 lanes times the b coefficients it
 // meets in each lane (a shuffle of b's vectors). Coefficients ±1 come with the shuffle, each lane from b or from
-// -b; others, or a lane without a term, are a product with a constant vector. The columns are summed as a balanced tree. The
-// first operand is the broadcast one: in a chain x = x * y the shuffles of y are off x's critical path.
+// -b; others, or a lane without a term, are a product with a constant vector. The columns are summed as a
+// balanced tree. The broadcast operand is a, or b where that takes fewer operations (then the roles swap): in
+// a chain x = x * y of one type, x is broadcast and the shuffles of y are off x's critical path.
 // The form is kept only where it costs fewer vector operations than the scalar kernel has operations.
 #pragma once
 

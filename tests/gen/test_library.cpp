@@ -138,6 +138,12 @@ TEST_CASE("library lanes: a bilinear product as 4-wide columns, other kernels le
   const auto vv = library::lane_form(find(lib, "gp", "vector", "vector")->program);
   REQUIRE(vv);
   CHECK(library::lane_code(*vv).body.find("load<3>(a + 0)") != std::string::npos);
+  // rotor * vector: broadcasting the vector's 3 coefficients (3 columns) beats the rotor's 4.
+  const auto rv = library::lane_form(find(lib, "gp", "rotor", "vector")->program);
+  REQUIRE(rv);
+  const library::LaneCode rv_code = library::lane_code(*rv);
+  CHECK(rv_code.body.find("splat<0>(b0)") != std::string::npos);
+  CHECK(rv_code.body.find("splat<3>(") == std::string::npos);
   // Not bilinear: the sandwich (quadratic in a), a unary operation, the norm's square root.
   CHECK_FALSE(library::lane_form(find(lib, "sandwich", "rotor", "vector")->program));
   CHECK_FALSE(library::lane_form(find(lib, "reverse", "rotor")->program));
