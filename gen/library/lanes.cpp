@@ -3,6 +3,7 @@
 // scale in namespace x4).
 #include "library/lanes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -73,6 +74,8 @@ std::optional<LaneForm> lane_form(const opt::Program& program) {
         terms.push_back(t);
       }
     }
+    // GiNaC's order of a sum's terms is not the same from run to run; the printed code must be.
+    std::sort(terms.begin(), terms.end(), [](const LaneTerm& p, const LaneTerm& q) { return std::tie(p.i, p.j) < std::tie(q.i, q.j); });
     form.out.push_back(std::move(terms));
   }
   return form;
@@ -87,15 +90,15 @@ LaneCode columns_code(const LaneForm& form, const std::string& x, const std::str
   std::string s;  // the statements after the loads
   auto groups = [](size_t n) { return (n + 3) / 4; };
   auto width = [](size_t n, size_t g) { return std::min<size_t>(4, n - 4 * g); };
-  std::set<size_t> splats;           // the a_i broadcast
-  std::set<long> b_groups;           // the vectors of b read
-  std::set<long> negated;            // the vectors of b read negated
-  // A column's operand: b's coefficients lane by lane (none: the lane has no term) times their coefficients.
+  std::set<size_t> splats;           // the x_i broadcast
+  std::set<long> y_groups;           // the vectors of y read
+  std::set<long> negated;            // the vectors of y read negated
+  // A column's operand: y's coefficients lane by lane (none: the lane has no term) times their coefficients.
   using Operand = std::pair<std::vector<long>, std::vector<double>>;
   std::map<Operand, std::string> operands;
   for (size_t g = 0; g < groups(form.out.size()); ++g) {
     const size_t lanes = width(form.out.size(), g);
-    // Columns: for each a_i the group reads, the t-th term with a_i in every lane (one, on blade bases).
+    // Columns: for each x_i the group reads, the t-th term with x_i in every lane (one, on blade bases).
     std::map<size_t, std::vector<std::vector<const LaneTerm*>>> by_a;  // i -> lane -> terms
     for (size_t l = 0; l < lanes; ++l)
       for (const LaneTerm& t : form.out[4 * g + l]) {
@@ -116,11 +119,11 @@ LaneCode columns_code(const LaneForm& form, const std::string& x, const std::str
           }
         auto it = operands.find(op);
         if (it == operands.end()) {
-          // The b vectors the lanes read: one or two go through a shuffle, more through a gather of scalars.
+          // The y vectors the lanes read: one or two go through a shuffle, more through a gather of scalars.
           std::set<long> src;
           for (long j : op.first)
             if (j >= 0) src.insert(j / 4);
-          if (src.size() <= 2) b_groups.insert(src.begin(), src.end());
+          if (src.size() <= 2) y_groups.insert(src.begin(), src.end());
           std::string e;
           const long first = *src.begin(), second = *src.rbegin();
           bool identity = src.size() == 1;
@@ -130,27 +133,25 @@ LaneCode columns_code(const LaneForm& form, const std::string& x, const std::str
             unit = unit && (l >= lanes || (op.first[l] >= 0 && std::fabs(op.second[l]) == 1.0));
             positive = positive && (op.first[l] < 0 || op.second[l] == 1.0);
           }
+          // A two-vector shuffle: lane l takes index j % 4 of the first vector, or of the second (+4).
+          auto shuffle = [&](auto from_second, const std::string& second_vector) {
+            e = "perm<";
+            for (size_t l = 0; l < 4; ++l) {
+              const long j = op.first[l] < 0 ? first * 4 : op.first[l];
+              e += std::string(l ? ", " : "") + std::to_string(j % 4 + (from_second(l, j) ? 4 : 0));
+            }
+            e += ">(" + y + std::to_string(first) + ", " + second_vector + ")";
+            ++code.ops;
+          };
           if (identity) {
             e = y + std::to_string(first);  // flipped below where some sign is -1
-          } else if (src.size() == 1 && unit && !identity) {
-            // The signs by the shuffle itself: each lane from b's vector or from its negation (one per vector).
+          } else if (src.size() == 1 && unit) {
+            // The signs by the shuffle itself: each lane from y's vector or from its negation (one per vector).
             if (negated.insert(first).second) ++code.ops;
-            e = "perm<";
-            for (size_t l = 0; l < 4; ++l) {
-              const long j = op.first[l] < 0 ? first * 4 : op.first[l];
-              e += std::string(l ? ", " : "") + std::to_string(j % 4 + (op.second[l] < 0 ? 4 : 0));
-            }
-            e += ">(" + y + std::to_string(first) + ", n" + y + std::to_string(first) + ")";
-            ++code.ops;
+            shuffle([&](size_t l, long) { return op.second[l] < 0; }, "n" + y + std::to_string(first));
             positive = true;
           } else if (src.size() <= 2) {
-            e = "perm<";
-            for (size_t l = 0; l < 4; ++l) {
-              const long j = op.first[l] < 0 ? first * 4 : op.first[l];
-              e += std::string(l ? ", " : "") + std::to_string(j % 4 + (j / 4 == second && second != first ? 4 : 0));
-            }
-            e += ">(" + y + std::to_string(first) + ", " + y + std::to_string(second) + ")";
-            ++code.ops;
+            shuffle([&](size_t, long j) { return j / 4 == second && second != first; }, y + std::to_string(second));
           } else {
             e = "v4{";
             for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + (op.first[l] < 0 ? "0.0f" : y + "[" + std::to_string(op.first[l]) + "]");
@@ -198,7 +199,7 @@ LaneCode columns_code(const LaneForm& form, const std::string& x, const std::str
   for (size_t i : splats) a_groups.insert(i / 4);
   for (size_t g : a_groups)
     code.body += "  const v4 " + x + std::to_string(g) + " = load<" + std::to_string(width(form.na, g)) + ">(" + x + " + " + std::to_string(4 * g) + ");\n";
-  for (long g : b_groups)
+  for (long g : y_groups)
     code.body += "  const v4 " + y + std::to_string(g) + " = load<" + std::to_string(width(form.nb, static_cast<size_t>(g))) + ">(" + y + " + " + std::to_string(4 * g) + ");\n";
   for (long g : negated) code.body += "  const v4 n" + y + std::to_string(g) + " = -" + y + std::to_string(g) + ";\n";
   code.body += s;

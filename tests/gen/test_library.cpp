@@ -144,6 +144,23 @@ TEST_CASE("library lanes: a bilinear product as 4-wide columns, other kernels le
   const library::LaneCode rv_code = library::lane_code(*rv);
   CHECK(rv_code.body.find("splat<0>(b0)") != std::string::npos);
   CHECK(rv_code.body.find("splat<3>(") == std::string::npos);
+  // In CGA's null basis a_i can meet several b_j in one lane (cga3's plane times its scaled motor, whose
+  // einf^e0 blade is not a product of orthogonal vectors): the terms are sorted by (i, j), as GiNaC's order of a
+  // sum's terms changes from run to run and the printed code may not.
+  const library::Library cga = library::build(
+      spec_of("library c\nalgebra cga\ntype plane e1 e2 e3 einf\ntype scaled_motor 1 e1^e2 e1^e3 e1^einf e2^e3 "
+              "e2^einf e3^einf einf^e0 e1^e2^e3^einf e1^e2^einf^e0 e1^e3^einf^e0 e2^e3^einf^e0\n"),
+      opt::Level::O2);
+  const auto vv_cga = library::lane_form(find(cga, "gp", "plane", "scaled_motor")->program);
+  REQUIRE(vv_cga);
+  size_t multiple = 0;
+  for (const auto& terms : vv_cga->out) {
+    for (size_t k = 1; k < terms.size(); ++k) {
+      CHECK(std::make_pair(terms[k - 1].i, terms[k - 1].j) < std::make_pair(terms[k].i, terms[k].j));
+      if (terms[k - 1].i == terms[k].i) ++multiple;
+    }
+  }
+  CHECK(multiple > 0);
   // Not bilinear: the sandwich (quadratic in a), a unary operation, the norm's square root.
   CHECK_FALSE(library::lane_form(find(lib, "sandwich", "rotor", "vector")->program));
   CHECK_FALSE(library::lane_form(find(lib, "reverse", "rotor")->program));
