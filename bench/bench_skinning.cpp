@@ -4,6 +4,7 @@
 // BCN_Epileptic in a pose of its clip. Two plain GLM loops (no blocking, no hand SIMD: what a straightforward
 // engine loop does) are measured beside them as references: what a plain loop gets.
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "cga/baselines/pose_jobs.hpp"
 #include "cga/io/loader.hpp"
 #include "cga/runtime/motor.hpp"
+#include "cga/runtime/simd_targets.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
@@ -194,12 +196,13 @@ Jobs make_jobs(const SkinScene& scene, SkinningMethod method, bool normals) {
   return j;
 }
 
-// What SkinningJob runs: its default (hand-written loops where a method has them, else the batch kernels), the
-// generated batch kernels for every method, or the generated scalar loop.
-enum class Path { best, batch, scalar };
+// What SkinningJob runs: its default (the generated batch kernels, the CPU's best instruction set) or the
+// generated scalar loop.
+enum class Path { best, scalar };
 
+// target: the batch path pinned to that instruction set (ScopedSimdTarget), else the CPU's best.
 void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), SkinningMethod method, bool normals,
-                 Path path) {
+                 Path path, std::optional<SimdTarget> target) {
   const SkinScene* scene = nullptr;
   try {
     scene = &scene_fn();
@@ -214,13 +217,14 @@ void bm_skinning(benchmark::State& state, const SkinScene& (*scene_fn)(), Skinni
   Jobs jobs = make_jobs(*scene, method, normals);
   for (SkinningJob& job : jobs.jobs) {
     job.use_simd = path != Path::scalar;
-    job.use_hand_loops = path == Path::best;
   }
   for (const SkinningJob& job : jobs.jobs)
     if (const std::string error = job.ValidationError(); !error.empty()) {
       state.SkipWithError(error.c_str());
       return;
     }
+  std::optional<ScopedSimdTarget> pin;
+  if (target) pin.emplace(*target);
   for (auto _ : state) {
     bool ok = true;
     for (const SkinningJob& job : jobs.jobs) ok &= job.Run();
@@ -331,28 +335,30 @@ void register_skinning_benchmarks() {
       const std::string baseline = prefix + "lbs";
       for (SkinningMethod m : kAllSkinningMethods) {
         const std::string name = prefix + std::string(to_string(m));
-        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, Path::best)
+        benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, Path::best, std::nullopt)
             ->Unit(benchmark::kMillisecond);
         add_figure({name, section, std::string(to_string(m)), Metric::mega_items_per_s, baseline, "lbs",
                     sc.fn == random_scene ? target_for(m, normals) : std::nullopt, {}});
       }
-      // The A/B of the paths: every method on the generated scalar loop (use_simd = false), and the methods
-      // with hand-written AVX2 / AVX-512 loops on their generated batch kernels (use_hand_loops = false); in
-      // cache (64 K) the batch rows only.
-      if (sc.fn == random_scene || sc.fn == random64k_scene)
-        for (SkinningMethod m : kAllSkinningMethods)
-          for (const Path path : {Path::batch, Path::scalar}) {
-            const bool hand = m == SkinningMethod::lbs || m == SkinningMethod::cga_points || m == SkinningMethod::cga_motors;
-            if (path == Path::batch && !hand) continue;  // the default row is the batch kernels
-            if (path == Path::scalar && sc.fn != random_scene) continue;
-            const std::string name = prefix + std::string(to_string(m)) + (path == Path::batch ? "-batch" : "-generated");
-            benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, path)
+      // The A/B of the paths, 1 M vertices: every method on the batch path pinned to each instruction set of
+      // the machine but the best (NAME@TARGET), and on the generated scalar loop (use_simd = false).
+      if (sc.fn == random_scene)
+        for (SkinningMethod m : kAllSkinningMethods) {
+          const std::vector<SimdTarget> targets = simd_targets();
+          for (std::size_t t = 1; t < targets.size(); ++t) {
+            const std::string name = prefix + std::string(to_string(m)) + "@" + targets[t].name;
+            benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, Path::best, targets[t])
                 ->Unit(benchmark::kMillisecond);
-            add_figure({name, section,
-                        std::string(to_string(m)) + (path == Path::batch ? ", generated batch kernels" : ", generated scalar loop"),
+            add_figure({name, section, std::string(to_string(m)) + ", batch path on " + targets[t].name,
                         Metric::mega_items_per_s, prefix + std::string(to_string(m)), std::string(to_string(m)),
                         std::nullopt, {}});
           }
+          const std::string name = prefix + std::string(to_string(m)) + "-generated";
+          benchmark::RegisterBenchmark(name.c_str(), bm_skinning, sc.fn, m, normals, Path::scalar, std::nullopt)
+              ->Unit(benchmark::kMillisecond);
+          add_figure({name, section, std::string(to_string(m)) + ", generated scalar loop", Metric::mega_items_per_s,
+                      prefix + std::string(to_string(m)), std::string(to_string(m)), std::nullopt, {}});
+        }
       if (sc.fn != random_scene) continue;
       for (SkinningMethod m : kAllSkinningMethods) {
         const std::string name = std::string("skinning/interleaved1M/") + kind + "/" + std::string(to_string(m));

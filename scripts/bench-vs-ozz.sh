@@ -23,7 +23,7 @@ pin=()
 if [ -n "$CPU" ] && command -v taskset >/dev/null; then pin=(taskset -c "$CPU"); fi
 # Each case runs on both sides back to back (ozz first in odd rounds, cga-bench first in even ones), so a ratio
 # compares runs seconds apart: this shared host's speed drifts over minutes.
-cases=("1M:^skinning/random1M/" "64K:^skinning/random64K/" "interleaved:^skinning/interleaved1M/" "pose:^pose/paper$")
+cases=("1M:^skinning/random1M/[^@]*$" "64K:^skinning/random64K/" "interleaved:^skinning/interleaved1M/" "pose:^pose/paper$")
 run_ozz() { "${pin[@]}" "$ozz_bench" "$1" > "$work/ozz_${r}_$1.txt"; }
 # cga-bench takes the statistic ozz_bench takes (bench/ozz/common.h, time_it): the median of 7 samples of at
 # least 0.25 s each.
@@ -44,9 +44,9 @@ done
 python3 - "$work" "$ROUNDS" <<'PY'
 import json, re, statistics, sys
 work, rounds = sys.argv[1], int(sys.argv[2])
-# The methods: the skinning table's, as cga-bench names its rows (skinning/random1M/positions/NAME), with the
-# other paths' rows (NAME-batch: the generated batch kernels where a hand-written loop is the default), not
-# the scalar generated loop (NAME-generated) or the plain GLM loops.
+# The methods: the skinning table's, as cga-bench names its rows (skinning/random1M/positions/NAME), not the
+# scalar generated loop (NAME-generated), the batch path pinned to another instruction set (NAME@TARGET, not
+# run here) or the plain GLM loops.
 def methods_of(work):
     names = [b["run_name"] for b in json.load(open(f"{work}/cga_1_1M.json"))["benchmarks"]
              if b.get("aggregate_name") == "median" and b["run_name"].startswith("skinning/random1M/positions/")]

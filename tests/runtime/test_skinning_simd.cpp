@@ -1,6 +1,7 @@
-// The SIMD skinning paths (the hand-written loops, 8 vertices per step, and every method's generated batch
-// kernels, a vector of lanes per step; remainders and block edges) against the portable loop and against a
-// plain per-vertex reference, for vertex counts around the step (8, 16) and block (256) sizes.
+// The batch path of CPU skinning (every method's generated SIMD batch kernels, a vector of lanes per step, on
+// every instruction set of the build and the CPU; remainders and block edges) against the generated scalar
+// loop and against a plain per-vertex reference, for vertex counts around the vector (4, 8, 16) and block
+// (256) sizes.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "cga/runtime/motor.hpp"
+#include "cga/runtime/simd_targets.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
@@ -37,16 +39,13 @@ Palettes make_palettes(const std::vector<Transform>& xs) {
   return p;
 }
 
-SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palettes& pal, bool simd,
-                   bool avx512 = true, bool hand_loops = true) {
+SkinnedOutput skin(SkinningMethod method, const SkinnedMesh& mesh, const Palettes& pal, bool simd) {
   SkinnedOutput out;
   SkinningJob job = make_skinning_job(method, mesh, out);
   job.matrices = pal.matrices;
   job.dual_quats = pal.dual_quats;
   job.motors = pal.motors;
   job.use_simd = simd;
-  job.use_avx512 = avx512;
-  job.use_hand_loops = hand_loops;
   REQUIRE(job.Run());
   return out;
 }
@@ -64,7 +63,7 @@ glm::vec3 reference_lbs(const SkinnedMesh& mesh, const std::vector<Transform>& x
 
 }  // namespace
 
-TEST_CASE("SIMD and portable skinning loops agree at every remainder and block edge", "[skinning][simd]") {
+TEST_CASE("the batch path and the scalar loop agree at every remainder and block edge", "[skinning][simd]") {
   const std::vector<Transform> rigid = make_random_transforms(24, 41, 2.0f);
   const std::vector<Transform> scaled = make_random_transforms(24, 42, 2.0f, 0.5f);
   const Palettes pal_rigid = make_palettes(rigid);
@@ -72,8 +71,9 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
   const float size = 3.0f * std::exp(0.5f);
   std::vector<std::size_t> counts;
   for (std::size_t n = 1; n <= 17; ++n) counts.push_back(n);
-  // 600 >= 24^2: cga-motors takes its pair-sign table (SkinningJob::Run) there.
   for (std::size_t n : {255u, 256u, 257u, 263u, 520u, 600u}) counts.push_back(n);
+  const std::vector<SimdTarget> targets = simd_targets();
+  REQUIRE(!targets.empty());
   for (const std::size_t n : counts) {
     INFO(n << " vertices");
     SkinnedMesh mesh = make_random_skinned_mesh(n, 24, static_cast<std::uint32_t>(1000 + n));
@@ -88,14 +88,10 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
         for (SkinningMethod method : kAllSkinningMethods) {
           INFO(to_string(method));
           const SkinnedOutput portable = skin(method, mesh, *pal, false);
-          const SkinnedOutput simd = skin(method, mesh, *pal, true);
-          // The widest loops the CPU has, the AVX2 ones (the same on a CPU without AVX-512), and the batch
-          // kernels (what every method without a hand-written loop runs).
-          for (const int path : {0, 1, 2}) {
-            INFO((path == 0 ? "widest SIMD loops" : path == 1 ? "AVX2 loops" : "batch kernels"));
-            const SkinnedOutput got = path == 0   ? simd
-                                      : path == 1 ? skin(method, mesh, *pal, true, false)
-                                                  : skin(method, mesh, *pal, true, true, false);
+          for (const SimdTarget& target : targets) {
+            INFO(target.name);
+            const ScopedSimdTarget pin(target);
+            const SkinnedOutput got = skin(method, mesh, *pal, true);
             for (std::size_t i = 0; i < n; ++i) {
               REQUIRE(std::hypot(got.px[i] - portable.px[i], got.py[i] - portable.py[i],
                                  got.pz[i] - portable.pz[i]) <= 1e-5f * size);
@@ -107,6 +103,7 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
             }
           }
           if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points) {
+            const SkinnedOutput simd = skin(method, mesh, *pal, true);
             const std::vector<Transform>& xs = pal == &pal_rigid ? rigid : scaled;
             for (std::size_t i = 0; i < n; ++i) {
               const glm::vec3 want = reference_lbs(mesh, xs, i);
@@ -119,39 +116,40 @@ TEST_CASE("SIMD and portable skinning loops agree at every remainder and block e
   }
 }
 
-TEST_CASE("cga-motors' pair-sign table gives the bits of the per-vertex rotor dot products", "[skinning][simd]") {
-  // Run() builds the table when palette^2 <= vertex count: 600 vertices with 24 joints do (576), their first
-  // 560 do not. 560 is 70 groups of 8 and 35 of 16, so both runs cut those vertices into the same SIMD groups
-  // on AVX2 and on AVX-512 (a partial group takes the scalar tail, whose rounding differs). Every other motor is negated (the same similarity), so
-  // half the pairs need the sign fix and a wrong table would misplace those vertices.
+TEST_CASE("the motor methods skin a palette with every other motor negated to the same vertices", "[skinning][simd]") {
+  // M and -M are the same similarity: the blends' sign fix (a select in the scripts) must make the batch
+  // kernels blind to the sign. Half of each vertex's pairs need the fix, so a missing or wrong one would
+  // misplace most vertices.
   const std::vector<Transform> xs = make_random_transforms(24, 43, 2.0f, 0.5f);
-  Palettes pal = make_palettes(xs);
-  for (std::size_t e = 1; e < pal.motors.size(); e += 2)
-    for (float& c : pal.motors[e].c) c = -c;
+  const Palettes pal = make_palettes(xs);
+  Palettes negated = pal;
+  for (std::size_t e = 1; e < negated.motors.size(); e += 2)
+    for (float& c : negated.motors[e].c) c = -c;
   const SkinnedMesh mesh = make_random_skinned_mesh(600, 24, 4242u);
-  SkinnedMesh head = mesh;
-  constexpr std::size_t kHead = 560;
-  for (auto* v : {&head.px, &head.py, &head.pz, &head.nx, &head.ny, &head.nz}) v->resize(kHead);
-  head.joints.resize(kHead);
-  head.weights.resize(kHead);
-  for (const bool avx512 : {true, false}) {
-    const SkinnedOutput with_table = skin(SkinningMethod::cga_motors, mesh, pal, true, avx512);
-    const SkinnedOutput without = skin(SkinningMethod::cga_motors, head, pal, true, avx512);
-    const SkinnedOutput portable = skin(SkinningMethod::cga_motors, mesh, pal, false);
-    std::size_t differ = 0;
-    for (std::size_t i = 0; i < kHead; ++i)
-      differ += with_table.px[i] != without.px[i] || with_table.py[i] != without.py[i] ||
-                with_table.pz[i] != without.pz[i] || with_table.nx[i] != without.nx[i] ||
-                with_table.ny[i] != without.ny[i] || with_table.nz[i] != without.nz[i];
-    CHECK(differ == 0);
-    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
-      REQUIRE(std::hypot(with_table.px[i] - portable.px[i], with_table.py[i] - portable.py[i],
-                         with_table.pz[i] - portable.pz[i]) <= 1e-5f * 3.0f * std::exp(0.5f));
+  const float size = 3.0f * std::exp(0.5f);
+  for (SkinningMethod method : kAllSkinningMethods) {
+    if (skinning_method_info(method).palette != PaletteKind::motors) continue;
+    for (const SimdTarget& target : simd_targets()) {
+      CAPTURE(to_string(method), target.name);
+      const ScopedSimdTarget pin(target);
+      const SkinnedOutput want = skin(method, mesh, pal, true);
+      const SkinnedOutput got = skin(method, mesh, negated, true);
+      std::size_t bad = 0;
+      for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+        bad += !(std::hypot(got.px[i] - want.px[i], got.py[i] - want.py[i], got.pz[i] - want.pz[i]) <= 1e-5f * size &&
+                 std::hypot(got.nx[i] - want.nx[i], got.ny[i] - want.ny[i], got.nz[i] - want.nz[i]) <= 1e-5f);
+      CHECK(bad == 0);
+    }
   }
 }
 
-TEST_CASE("large meshes (prefetching) skin as the portable loops, aligned outputs or not", "[skinning][simd]") {
-  // 2^17 + 13 vertices: past the size from which the SIMD loops prefetch their inputs, with a remainder.
+TEST_CASE("pinning an instruction set the build or the CPU lacks is refused", "[skinning][simd]") {
+  CHECK_THROWS_WITH(ScopedSimdTarget(SimdTarget{0, "none"}),
+                    Catch::Contains("not an instruction set of this build and CPU"));
+}
+
+TEST_CASE("large meshes skin as the scalar loop, aligned outputs or not", "[skinning][simd]") {
+  // 2^17 + 13 vertices: many blocks, the prefetches ahead reaching past the arrays, and a remainder.
   const std::size_t n = (std::size_t{1} << 17) + 13;
   const SkinnedMesh mesh = make_random_skinned_mesh(n, 64, 71);
   const Palettes pal = make_palettes(make_random_transforms(64, 72, 2.0f, 0.3f));
@@ -167,7 +165,6 @@ TEST_CASE("large meshes (prefetching) skin as the portable loops, aligned output
       job.matrices = pal.matrices;
       job.dual_quats = pal.dual_quats;
       job.motors = pal.motors;
-      job.use_hand_loops = offset == 0;  // the batch kernels of every method too
       std::span<float>* outs[6] = {&job.out_px, &job.out_py, &job.out_pz, &job.out_nx, &job.out_ny, &job.out_nz};
       for (int k = 0; k < 6; ++k) *outs[k] = std::span<float>(buf.data() + k * (n + 1) + offset, n);
       REQUIRE(job.Run());
@@ -186,7 +183,7 @@ TEST_CASE("large meshes (prefetching) skin as the portable loops, aligned output
   }
 }
 
-TEST_CASE("the SIMD loops leave outputs past the vertex count alone", "[skinning][simd]") {
+TEST_CASE("the batch path leaves outputs past the vertex count alone", "[skinning][simd]") {
   const Palettes pal = make_palettes(make_random_transforms(8, 51, 1.0f));
   const SkinnedMesh mesh = make_random_skinned_mesh(13, 8, 52);
   for (SkinningMethod method : kAllSkinningMethods) {
@@ -211,7 +208,7 @@ TEST_CASE("the SIMD loops leave outputs past the vertex count alone", "[skinning
   }
 }
 
-TEST_CASE("Run refuses a bad joint index or weight in any block, on the SIMD and the portable loops", "[skinning][simd]") {
+TEST_CASE("Run refuses a bad joint index or weight in any block, on the batch path and the scalar loop", "[skinning][simd]") {
   // The check runs inside each block function (integer max reductions over the block's joints and weight
   // exponents): a bad value at a block's first or last vertex, in any slot, in the first, a middle or the
   // last (partial) block must stop Run(); blocks before it may be written.
@@ -257,10 +254,11 @@ TEST_CASE("Run refuses a bad joint index or weight in any block, on the SIMD and
     }
 }
 
-TEST_CASE("a zero normal skins to 0 and a huge or tiny one to a unit vector on every loop", "[skinning][simd]") {
-  // The SIMD loops renormalize from a reciprocal square root estimate (avx2.cpp, inv_length8) where the
-  // portable ones divide by the square root: both must give 0, not NaN, for a zero normal, and a unit vector
-  // for normals far from unit length. 1000 vertices: whole groups of 8 in several blocks, and a tail.
+TEST_CASE("a zero normal skins to 0 and a huge or tiny one to a unit vector on every path", "[skinning][simd]") {
+  // The batch path renormalizes from a reciprocal square root estimate and one Newton step on x86 (batch.cpp,
+  // inv_length) where the scalar loop divides by the square root: both must give 0, not NaN, for a zero
+  // normal, and a unit vector for normals far from unit length. 1000 vertices: whole vectors in several
+  // blocks, and a tail.
   const std::vector<Transform> xs = make_random_transforms(24, 43, 2.0f, 0.5f);
   const Palettes pal = make_palettes(xs);
   SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 44u);
@@ -268,39 +266,48 @@ TEST_CASE("a zero normal skins to 0 and a huge or tiny one to a unit vector on e
     const float scale = i % 3 == 0 ? 0.0f : i % 3 == 1 ? 1e15f : 1e-12f;
     mesh.nx[i] *= scale, mesh.ny[i] *= scale, mesh.nz[i] *= scale;
   }
-  for (SkinningMethod method : kAllSkinningMethods)
-    for (const bool simd : {false, true})
-      for (const bool avx512 : {false, true}) {
-        CAPTURE(to_string(method), simd, avx512);
-        const SkinnedOutput got = skin(method, mesh, pal, simd, avx512);
-        std::size_t bad = 0;
-        for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-          const float len = std::hypot(got.nx[i], got.ny[i], got.nz[i]);
-          bad += i % 3 == 0 ? !(got.nx[i] == 0.0f && got.ny[i] == 0.0f && got.nz[i] == 0.0f)
-                            : !(std::abs(len - 1.0f) <= 1e-5f);
-        }
-        CHECK(bad == 0);
-      }
+  const auto check = [&](SkinningMethod method, bool simd) {
+    const SkinnedOutput got = skin(method, mesh, pal, simd);
+    std::size_t bad = 0;
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+      const float len = std::hypot(got.nx[i], got.ny[i], got.nz[i]);
+      bad += i % 3 == 0 ? !(got.nx[i] == 0.0f && got.ny[i] == 0.0f && got.nz[i] == 0.0f)
+                        : !(std::abs(len - 1.0f) <= 1e-5f);
+    }
+    CHECK(bad == 0);
+  };
+  for (SkinningMethod method : kAllSkinningMethods) {
+    CAPTURE(to_string(method));
+    check(method, false);
+    for (const SimdTarget& target : simd_targets()) {
+      CAPTURE(target.name);
+      const ScopedSimdTarget pin(target);
+      check(method, true);
+    }
+  }
 }
 
-TEST_CASE("SIMD normals agree with the portable loops within 1e-6 and are unit within 1e-6", "[skinning][simd]") {
-  // The bound docs/skinning.md states for the reciprocal square root step of the SIMD renormalization
-  // (avx2.cpp, inv_length8), on the methods that renormalize a blended linear part.
+TEST_CASE("batch normals agree with the scalar loop within 1e-6 and are unit within 1e-6", "[skinning][simd]") {
+  // The bound docs/skinning.md states for the reciprocal square root step of the batch renormalization
+  // (batch.cpp, inv_length), on every method and instruction set.
   const std::vector<Transform> xs = make_random_transforms(24, 45, 2.0f, 0.5f);
   const Palettes pal = make_palettes(xs);
   const SkinnedMesh mesh = make_random_skinned_mesh(1000, 24, 46u);
-  for (SkinningMethod method : {SkinningMethod::lbs, SkinningMethod::cga_points, SkinningMethod::cga_motors}) {
-    CAPTURE(to_string(method));
+  for (SkinningMethod method : kAllSkinningMethods) {
     const SkinnedOutput portable = skin(method, mesh, pal, false);
-    const SkinnedOutput simd = skin(method, mesh, pal, true, false);
-    double worst_diff = 0.0, worst_unit = 0.0;
-    for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-      worst_diff = std::max<double>(worst_diff, std::hypot(simd.nx[i] - portable.nx[i], simd.ny[i] - portable.ny[i],
-                                                           simd.nz[i] - portable.nz[i]));
-      worst_unit = std::max<double>(worst_unit, std::abs(std::hypot(simd.nx[i], simd.ny[i], simd.nz[i]) - 1.0f));
+    for (const SimdTarget& target : simd_targets()) {
+      CAPTURE(to_string(method), target.name);
+      const ScopedSimdTarget pin(target);
+      const SkinnedOutput simd = skin(method, mesh, pal, true);
+      double worst_diff = 0.0, worst_unit = 0.0;
+      for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+        worst_diff = std::max<double>(worst_diff, std::hypot(simd.nx[i] - portable.nx[i], simd.ny[i] - portable.ny[i],
+                                                             simd.nz[i] - portable.nz[i]));
+        worst_unit = std::max<double>(worst_unit, std::abs(std::hypot(simd.nx[i], simd.ny[i], simd.nz[i]) - 1.0f));
+      }
+      CAPTURE(worst_diff, worst_unit);
+      CHECK(worst_diff <= 1e-6);
+      CHECK(worst_unit <= 1e-6);
     }
-    CAPTURE(worst_diff, worst_unit);
-    CHECK(worst_diff <= 1e-6);
-    CHECK(worst_unit <= 1e-6);
   }
 }

@@ -1,7 +1,7 @@
 // SkinningJob on strided streams (ozz's in_positions_stride): an interleaved vertex buffer (position, normal
 // and a texture coordinate per vertex, 8 floats) skinned in place of the packed streams gives bit-identical
-// results to the packed run with every method and instruction set, including a partial last block, with
-// x y z as triples (the strided SIMD loops) and with x, y, z apart (staged through packed blocks), and so
+// results to the packed run with every method, on the scalar loop and every instruction set of the batch
+// path, including a partial last block, with x y z as triples and with x, y, z apart, and so
 // does a 48-byte engine vertex with its joints and weights interleaved too; the size rules for strided spans
 // are checked with clear errors.
 #include <catch2/catch.hpp>
@@ -9,8 +9,11 @@
 #include <array>
 #include <cstring>
 #include <limits>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "cga/runtime/simd_targets.hpp"
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/skinning_palettes.hpp"
 #include "cga/testing/skinning_test_meshes.hpp"
@@ -62,6 +65,18 @@ SkinningJob strided_job(SkinningMethod method, const SkinnedMesh& mesh, Interlea
   return job;
 }
 
+// Path 0: the scalar loop; path k > 0: the batch path pinned to the k-th instruction set of simd_targets().
+struct Pin {
+  std::string name = "scalar loop";
+  std::optional<ScopedSimdTarget> scope;
+  explicit Pin(int path) {
+    if (path == 0) return;
+    const SimdTarget t = simd_targets()[static_cast<std::size_t>(path - 1)];
+    name = t.name;
+    scope.emplace(t);
+  }
+};
+
 void set_palette(SkinningJob& job, const MatrixPalette& m, const DualQuatPalette& d, const MotorPalette& q) {
   job.matrices = m, job.dual_quats = d, job.motors = q;
 }
@@ -69,28 +84,29 @@ void set_palette(SkinningJob& job, const MatrixPalette& m, const DualQuatPalette
 }  // namespace
 
 TEST_CASE("an interleaved vertex buffer skins exactly as the packed streams do", "[skinning][strided]") {
-  // 1003 vertices: three whole blocks of 256 and a partial one, whose last 3 vertices are not a group of 8;
-  // 24^2 <= 1003, so cga-motors takes its pair-sign table, which 503 vertices do not.
+  // 1003 vertices: three whole blocks of 256 and a partial one, whose last 3 vertices are no whole vector of
+  // 4, 8 or 16 lanes; 503: one whole block and a partial one.
   const std::size_t count = GENERATE(1003u, 503u);
   const bool triples = GENERATE(true, false);
   const SkinnedMesh mesh = make_random_skinned_mesh(count, 24, 77u);
   const RandomPalettes pal = make_random_palettes(24, 1, 5u);
   for (SkinningMethod method : kAllSkinningMethods)
     for (bool normals : {false, true})
-      for (int isa = 0; isa < 3; ++isa) {
-        CAPTURE(to_string(method), normals, isa, triples);
+      for (int path = 0; path <= static_cast<int>(simd_targets().size()); ++path) {
+        const Pin pin(path);
+        CAPTURE(to_string(method), normals, pin.name, triples);
         SkinnedOutput packed;
         SkinningJob a = make_skinning_job(method, mesh, packed);
         if (!normals) a.in_nx = a.in_ny = a.in_nz = {}, a.out_nx = a.out_ny = a.out_nz = {};
         set_palette(a, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
-        a.use_simd = isa > 0, a.use_avx512 = isa > 1;
+        a.use_simd = path > 0;
         REQUIRE(a.ValidationError() == "");
         REQUIRE(a.Run());
 
         Interleaved buf = interleave(mesh, triples);
         SkinningJob b = strided_job(method, mesh, buf, normals);
         set_palette(b, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
-        b.use_simd = a.use_simd, b.use_avx512 = a.use_avx512;
+        b.use_simd = a.use_simd;
         REQUIRE(b.vertex_count() == mesh.vertex_count());
         REQUIRE(b.ValidationError() == "");
         REQUIRE(b.Run());
@@ -159,12 +175,13 @@ TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the
   const std::size_t n = mesh.vertex_count();
   const std::vector<EngineVertex> in = make_engine_vertices(mesh);
   for (SkinningMethod method : kAllSkinningMethods)
-    for (int isa = 0; isa < 3; ++isa) {
-      CAPTURE(to_string(method), isa);
+    for (int path = 0; path <= static_cast<int>(simd_targets().size()); ++path) {
+      const Pin pin(path);
+      CAPTURE(to_string(method), pin.name);
       SkinnedOutput packed;
       SkinningJob a = make_skinning_job(method, mesh, packed);
       set_palette(a, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
-      a.use_simd = isa > 0, a.use_avx512 = isa > 1;
+      a.use_simd = path > 0;
       REQUIRE(a.Run());
 
       std::vector<float> out(6 * n, -7.0f);
@@ -172,7 +189,7 @@ TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the
       REQUIRE(b.weights.size() == (n - 1) * 3 + 1);  // the shortest spans the size rules allow
       REQUIRE(b.joints.size() == (n - 1) * 6 + 1);
       set_palette(b, pal.matrices[0], pal.dual_quats[0], pal.motors[0]);
-      b.use_simd = a.use_simd, b.use_avx512 = a.use_avx512;
+      b.use_simd = a.use_simd;
       REQUIRE(b.vertex_count() == n);
       REQUIRE(b.ValidationError() == "");
       REQUIRE(b.Run());
@@ -183,7 +200,7 @@ TEST_CASE("skin data interleaved with the vertex (48 bytes) skins exactly as the
       }
       CHECK(mismatches == 0);
 
-      if (method == SkinningMethod::lbs) {  // every ISA: the SIMD ones have their own strided loop
+      if (method == SkinningMethod::lbs) {  // on every path
         INFO("a weight span one quadruple short, a bad joint and a NaN weight are refused with the vertex");
         SkinningJob c = b;
         c.weights = c.weights.first(c.weights.size() - 1);

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "batch.hpp"
 #endif
@@ -269,6 +270,9 @@ namespace cga::skinning_detail {
 HWY_EXPORT(blocks);
 
 const GeneratedBlocks& batch_blocks() { return HWY_DYNAMIC_DISPATCH(blocks)(); }
+
+// This file's instruction sets; ik_chain_batch.cpp is built for the same (runtime/CMakeLists.txt).
+std::vector<std::int64_t> batch_targets() { return hwy::SupportedAndGeneratedTargets(); }
 
 }  // namespace cga::skinning_detail
 #endif

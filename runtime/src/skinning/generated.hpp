@@ -1,8 +1,8 @@
 // The generated skinning path: every method of the table (skinning_methods.hpp) as its two generated kernels
 // (runtime/scripts/skin -> cga::kernels): the per-bone prepare fills the run's converted palette with
 // prepared entries (entry_vec4s vec4s each, one kEntry-float line per entry: prepare_palette_strided), and the
-// portable block loop calls the per-vertex blend on four of them. This is the loop every method runs on without SIMD (and dqs / cga_log always); the hand-written
-// AVX2 / AVX-512 loops of lbs, cga_points and cga_motors are checked against it (test_skinning_simd).
+// portable block loop calls the per-vertex blend on four of them. This is the loop every method runs on with
+// use_simd = false; the batch path (batch.cpp) is checked against it (test_skinning_simd).
 // Private to runtime/src/skinning/.
 #pragma once
 
@@ -14,7 +14,7 @@
 
 #include "cga/runtime/skinning_methods.hpp"
 
-#include "loops.hpp"
+#include "streams.hpp"
 
 namespace cga::skinning_detail {
 
@@ -71,7 +71,7 @@ CGA_ALWAYS_INLINE void generated_block(const float* __restrict pal, const Stream
                                        std::size_t end) {
   constexpr std::size_t kFloats = kEntry;
   // One vertex per iteration: GCC 12 vectorizes neither the four entry gathers nor (in cga-log) the libm
-  // calls, so this loop stays scalar (docs/skinning.md has the A/B against the SIMD loops).
+  // calls, so this loop stays scalar (docs/bench.md has the A/B against the batch path).
   const std::uint16_t* __restrict joints = s.joints[0].data();
   const float* __restrict weights = s.weights[0].data();
 #pragma GCC ivdep

@@ -1,14 +1,11 @@
-// SkinningJob: names, validation, the per-run palette conversion, strided streams and the dispatch: to one
-// instruction set's hand-written block functions (the table of loops.hpp, chosen once per process: avx512.cpp,
-// avx2.cpp) where it has them for the method, else to the method's generated SIMD batch kernels (batch.cpp),
-// or with use_simd = false to the generated scalar loop (generated.hpp, portable.cpp).
+// SkinningJob: names, validation, the per-run palette preparation, strided streams and the dispatch: every
+// method to its blend's generated SIMD batch kernels (batch.cpp, the CPU's best instruction set), or with
+// use_simd = false to the generated scalar loop (generated.hpp, portable.cpp). No method is named here.
 #include "cga/runtime/skinning.hpp"
 #include "cga/runtime/packed_palette.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 
 
@@ -174,25 +171,8 @@ std::string data_error(const SkinningJob& job) {
   return {};
 }
 
-// A matrix entry is column-major with padded columns: (m00 m10 m20 0)(m01 m11 m21 0)(m02 m12 m22 0)(t 0).
-void matrix_entry_from_rows(const float rows[12], float out[kEntry]) {
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 3; ++r) out[4 * c + r] = rows[4 * r + c];
-    out[4 * c + 3] = 0.0f;
-  }
-}
-
-// The best table this CPU runs, and the AVX2 one (for use_avx512 = false), chosen once per process.
-const SkinKernels& kernels_for(bool use_simd, bool use_avx512) {
-  static const SkinKernels* const avx512 = avx512_kernels();
-  static const SkinKernels* const avx2 = avx2_kernels();
-  if (use_simd && use_avx512 && avx512) return *avx512;
-  if (use_simd && avx2) return *avx2;
-  return portable_kernels();
-}
-
-// Strided streams without a strided block function run through one block of packed vertices on the stack
-// (stage_in, the packed loop, stage_out). The mesh is never copied; the staging costs two passes over 256
+// Strided streams run through one block of packed vertices on the stack (stage_in, the packed block
+// function, stage_out). The mesh is never copied; the staging costs two passes over 256
 // vertices that are in L1 anyway.
 bool run_strided(const Streams& s, std::size_t n, bool normals, BlockFn block, const float* pal,
                  std::size_t palette) {
@@ -203,14 +183,6 @@ bool run_strided(const Streams& s, std::size_t n, bool normals, BlockFn block, c
     stage_out(t, s, begin, count, normals);
   }
   return true;
-}
-
-// Every stream group stores a vertex's x y z as consecutive floats (y right after x, z after y), as interleaved
-// vertex buffers do: what the strided block functions (SkinKernels::matrix_strided, motor_strided) require.
-bool triples(const Streams& s, bool normals) {
-  const auto triple = [](const float* x, const float* y, const float* z) { return y == x + 1 && z == x + 2; };
-  return triple(s.px, s.py, s.pz) && triple(s.ox, s.oy, s.oz) &&
-         (!normals || (triple(s.nx, s.ny, s.nz) && triple(s.onx, s.ony, s.onz)));
 }
 
 }  // namespace
@@ -225,86 +197,24 @@ bool SkinningJob::Run() const {
   if (!shape_error(*this).empty()) return false;
   const std::size_t n = vertex_count();
   const bool normals = has_normals();
-  // A large mesh (kLargeVertices or more) streams from memory: the SIMD loops prefetch their inputs ahead
-  // (prefetch_ahead; the strided matrix loop prefetch_ahead_strided; staged blocks need none). Outputs are
-  // written with plain stores. Non-temporal stores were tried: they gained 10 % on one host and halved the
-  // throughput on another (docs/bench.md), and ozz-animation uses plain stores too.
-  const bool packed = is_packed();
-  const bool streaming = n >= kLargeVertices, large = packed && streaming;
-
-  // Per-run palette preparation, on the stack (Run() never allocates). The hand-written SIMD loops read their
-  // own layouts (loops.hpp): lbs transposes its matrices, cga_points its bone kernel's rows, cga_motors stores
-  // its motors in split form padded to 16 floats. The generated path prepares every entry with the method's
-  // bone kernel.
+  // Per-run palette preparation, on the stack (Run() never allocates): every entry by the method's bone
+  // kernel, one kEntry-float line each. Outputs are written with plain stores: non-temporal stores gained 10 %
+  // on one host and halved the throughput on another (docs/bench.md), and ozz-animation uses plain stores too.
   alignas(64) float converted[kMaxConvertedPalette * kEntry];
-  static_assert(kMaxPairSignPalette * (2 * kEntry * sizeof(float) + kMaxPairSignPalette) <= sizeof converted &&
-                    kMaxPairSignPalette <= 255,
-                "the pair-sign data must fit after the motor entries");
   static_assert([] {
     for (const SkinningMethodInfo& m : kSkinningMethods)
       if (4 * m.entry_vec4s > kEntry) return false;
     return true;
   }(), "a prepared entry must fit the converted palette's entry size");
-  const SkinKernels& k = kernels_for(use_simd && use_hand_loops, use_avx512);
-  BlockFn block = nullptr;
-  bool signed_motors = false;  // cga_motors with the pair-sign data after its palette
   const std::size_t palette = palette_size(*this);
-  switch (method) {
-    case SkinningMethod::lbs:
-      if (!k.matrix[normals][large]) break;
-      for (std::size_t e = 0; e < palette; ++e)
-        matrix_entry_from_rows(reinterpret_cast<const float*>(&matrices[e]), converted + kEntry * e);
-      block = k.matrix[normals][large];
-      break;
-    case SkinningMethod::cga_points:
-      if (!k.matrix[normals][large]) break;
-      // The method's own bone kernel (its prepared entry is the rows), so both paths blend the same maps.
-      for (std::size_t e = 0; e < palette; ++e) {
-        float rows[12];
-        prepare_palette(method, {}, {}, motors.subspan(e, 1), rows);
-        matrix_entry_from_rows(rows, converted + kEntry * e);
-      }
-      block = k.matrix[normals][large];
-      break;
-    case SkinningMethod::cga_motors:
-      if (!k.motor[normals][large]) break;
-      for (std::size_t e = 0; e < palette; ++e) {
-        float* entry = converted + kEntry * e;
-        rotor_sign::split(motors[e].c.data(), entry, entry + 8, entry + 4);
-        for (std::size_t r = 12; r < kEntry; ++r) entry[r] = 0.0f;
-      }
-      block = k.motor[normals][large];
-      // The pair-sign data costs palette^2 dot products: worth it when that is at most the vertex count.
-      signed_motors = k.pair_signs && palette <= kMaxPairSignPalette && palette * palette <= n;
-      if (signed_motors) {
-        k.pair_signs(converted, palette);
-        block = k.motor_signed[normals][large];
-      }
-      break;
-    default:
-      break;
-  }
-  const bool generated = block == nullptr;
-  if (generated) {
-    prepare_palette_strided(method, matrices, dual_quats, motors,
-                            std::span<float>(converted, sizeof converted / sizeof(float)), kEntry);
-    block = (use_simd ? batch_blocks() : generated_blocks())[static_cast<std::size_t>(method)][normals];
-  }
+  prepare_palette_strided(method, matrices, dual_quats, motors,
+                          std::span<float>(converted, sizeof converted / sizeof(float)), kEntry);
+  const BlockFn block = (use_simd ? batch_blocks() : generated_blocks())[static_cast<std::size_t>(method)][normals];
   const Streams s{in_px.data(),  in_py.data(),  in_pz.data(),  in_nx.data(),  in_ny.data(),
                   in_nz.data(),  joints.data(), weights.data(), out_px.data(), out_py.data(),
                   out_pz.data(), out_nx.data(), out_ny.data(), out_nz.data(), in_positions_stride,
                   in_normals_stride, out_positions_stride, out_normals_stride, joints_stride, weights_stride};
-  if (!packed) {
-    BlockFn strided = nullptr;
-    if (!generated && triples(s, normals)) {  // what the strided loops read and write; others are staged
-      if (method == SkinningMethod::lbs || method == SkinningMethod::cga_points)
-        strided = k.matrix_strided[normals][streaming];
-      else if (method == SkinningMethod::cga_motors)
-        strided = k.motor_strided[normals][streaming][signed_motors];
-    }
-    if (strided) block = strided;
-    else return run_strided(s, n, normals, block, converted, palette);
-  }
+  if (!is_packed()) return run_strided(s, n, normals, block, converted, palette);
   bool ok = true;
   for (std::size_t begin = 0; begin < n && ok; begin += kBlock)
     ok = block(converted, s, begin, std::min(n, begin + kBlock), palette);

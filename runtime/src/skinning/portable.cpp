@@ -1,6 +1,6 @@
 // The portable skinning block functions: the generated path of generated.hpp for every method of the table,
 // built twice with target_clones: x86-64-v3 (AVX2 + FMA, what GCC auto-vectorizes) and the baseline ISA.
-// The portable SkinKernels table has no hand-written loops: Run() takes the generated path for it.
+// SkinningJob runs it with use_simd = false; the tests check the batch path against it.
 #include "generated.hpp"
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
@@ -31,11 +31,6 @@ const GeneratedBlocks& generated_blocks() {
 #undef CGA_METHOD_BLOCKS
   }};
   return blocks;
-}
-
-const SkinKernels& portable_kernels() {
-  static const SkinKernels k{"portable", {}, {}, {}, nullptr, {}, {}};
-  return k;
 }
 
 }  // namespace cga::skinning_detail

@@ -1,6 +1,6 @@
-// The cga-motors rotor sign fix of the hand-written C++ loops: the SIMD skinning loops (skinning/) and the
-// pose jobs' nlerp blend. The skinning scripts (runtime/scripts/skin) write the same fix as a select, and the
-// tests compare the SIMD loops with the generated ones.
+// The motor rotor sign fix of the pose jobs' nlerp blend and additive layers, and of the split motor form the
+// jobs and the skinning palettes share. The skinning scripts (runtime/scripts/skin) write the same fix as a
+// select.
 //
 // A motor M and -M are the same similarity, but a blend of coefficients is not sign-blind: before adding a
 // motor into a blend it is negated when its rotor part points away from the first (reference) motor's. The

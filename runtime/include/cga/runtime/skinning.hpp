@@ -1,8 +1,8 @@
 // CPU skinning of positions (and optionally normals) with up to 4 influences per vertex, the methods of the
 // method table (skinning_methods.hpp) behind one ozz-style job (a struct of non-owning spans with Validate()
 // and Run()). Each method is two scripts (runtime/scripts/skin): a per-bone prepare and a per-vertex blend,
-// generated into the portable loop every method runs on; lbs, cga_points and cga_motors also have AVX2 /
-// AVX-512 loops (use_simd) that agree with it to float rounding.
+// generated into SIMD batch kernels (the simd target, dispatched to the CPU's best instruction set) and into
+// a scalar loop (use_simd = false) that agrees with them to float rounding. No blend is written by hand.
 //
 //   lbs         linear blend skinning with 3x4 matrices (GLM), the industry baseline: p' = sum_k w_k M_k p.
 //   dqs         dual-quaternion skinning (Kavan et al. 2008): blend the bones' unit dual quaternions with the
@@ -87,17 +87,10 @@ struct SkinningJob {
   // Entries of their own span (quadruples) from one vertex's joints / weights to the next; 1 = packed.
   std::size_t joints_stride = 1, weights_stride = 1;
 
-  // Run every method on SIMD code (the default): the blend's generated batch kernels (the simd target, the
-  // best instruction set of the CPU), or for lbs / cga_points / cga_motors the hand-written AVX2 + FMA loops
-  // when the CPU has them and use_hand_loops is set. false: the generated scalar loop, one vertex at a time,
-  // which agrees to float rounding; tests use it to check the others.
+  // Run the method on its blend's generated SIMD batch kernels (the default; the CPU's best instruction set,
+  // or the one a ScopedSimdTarget pins: cga/runtime/simd_targets.hpp). false: the generated scalar loop, one
+  // vertex at a time, which agrees to float rounding; tests use it to check the batch path.
   bool use_simd = true;
-  // With use_simd, take the hand-written loops of lbs / cga_points / cga_motors where the CPU has them (they
-  // are faster than those methods' batch kernels: docs/bench.md); false runs every method on its batch kernels.
-  bool use_hand_loops = true;
-  // With use_simd, take the AVX-512 loops where the CPU has them (cga_motors); false keeps the AVX2 ones, so
-  // tests and A/B benchmarks reach those on an AVX-512 machine too.
-  bool use_avx512 = true;
 
   // Checks sizes, the palette against every joint index and that every weight is finite and >= 0 with each
   // vertex's weights summing to 1 within kWeightSumTolerance (Run() itself checks only indices and finiteness).
