@@ -7,9 +7,11 @@
 // Types named mv_<hex> hold results that no declared type holds (the hex is the mask of their blades).
 // Operations (66 functions): for every type and ordered pair of types, each operation of the
 // library is one optimized kernel (detail::OP_A or detail::OP_A_B, float and double), wrapped as the function
-// OP(a) / OP(a, b) and, where one exists, an operator. Its result is the smallest declared type holding the
-// blades it can have. An operation whose result is always 0, or that the algebra does not have for a type, is
-// not generated (listed at the end). C++ gives ^ | & lower precedence than + - *: parenthesize them.
+// OP(a) / OP(a, b) and, where one exists, an operator; a binary one also as OP(a*, b*, r*, n) over n pairs and
+// OP(a, b*, r*, n) for one a with n elements (a loop over many elements should call these). Its result is the
+// smallest declared type holding the blades it can have. An operation whose result is always 0, or that the
+// algebra does not have for a type, is not generated (listed at the end). C++ gives ^ | & lower precedence
+// than + - *: parenthesize them.
 #pragma once
 
 #include <array>
@@ -3128,10 +3130,12 @@ inline void log_motor(const double a[8], double r[6]) {
   r[5] = 2.0 * a_e12 * t9 + a_e3inf * t10;  // e3^einf
 }
 
-// 4-wide float kernels of the bilinear products, where they take fewer operations than the scalar ones: the
-// result's coefficients 4 to a vector in storage order, each vector a sum of columns splat(a_i) * (signs *
-// shuffle of b). They need GCC >= 12 or Clang (vector extensions); elsewhere, or with CGAGEN_X4 defined to 0
-// before the include, the same names call the scalar float kernels. detail::OP_A_B stays the scalar kernel.
+// 4-wide float kernels that one call runs: the bilinear products where they take fewer operations than the
+// scalar ones, and the kernels linear in b with a result of one vector (the sandwiches of points and planes).
+// The result's coefficients 4 to a vector in storage order, each vector a sum of columns splat(x_i) * (signs
+// * shuffle). They need GCC >= 12 or Clang (vector extensions); elsewhere, or with CGAGEN_X4 defined to 0
+// before the include, the same names call the scalar float kernels. detail::OP_A_B stays the scalar kernel,
+// and the array forms OP(a*, b*, r*, n) run it.
 #ifndef CGAGEN_X4
 #if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
 #define CGAGEN_X4 1
@@ -3338,6 +3342,18 @@ inline motor_t<T> gp(const motor_t<T>& a, const motor_t<T>& b) {
     detail::gp_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void gp(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::gp_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void gp(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator*(const motor_t<T>& a, const motor_t<T>& b) { return gp(a, b); }
 // geometric product
@@ -3349,6 +3365,18 @@ inline motor_t<T> gp(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::gp_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void gp(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::gp_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void gp(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const motor_t<T>& a, const screw_t<T>& b) { return gp(a, b); }
@@ -3362,6 +3390,18 @@ inline motor_t<T> gp(const screw_t<T>& a, const motor_t<T>& b) {
     detail::gp_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void gp(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::gp_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void gp(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator*(const screw_t<T>& a, const motor_t<T>& b) { return gp(a, b); }
 // geometric product
@@ -3373,6 +3413,18 @@ inline motor_t<T> gp(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::gp_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void gp(const screw_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::gp_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void gp(const screw_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const screw_t<T>& a, const screw_t<T>& b) { return gp(a, b); }
@@ -3386,6 +3438,18 @@ inline motor_t<T> outer(const motor_t<T>& a, const motor_t<T>& b) {
     detail::outer_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void outer(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::outer_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void outer(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator^(const motor_t<T>& a, const motor_t<T>& b) { return outer(a, b); }
 // outer (wedge) product
@@ -3397,6 +3461,18 @@ inline motor_t<T> outer(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::outer_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void outer(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::outer_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void outer(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const motor_t<T>& a, const screw_t<T>& b) { return outer(a, b); }
@@ -3410,6 +3486,18 @@ inline motor_t<T> outer(const screw_t<T>& a, const motor_t<T>& b) {
     detail::outer_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void outer(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::outer_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void outer(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator^(const screw_t<T>& a, const motor_t<T>& b) { return outer(a, b); }
 // outer (wedge) product
@@ -3421,6 +3509,18 @@ inline motor_t<T> outer(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::outer_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void outer(const screw_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::outer_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void outer(const screw_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const screw_t<T>& a, const screw_t<T>& b) { return outer(a, b); }
@@ -3434,6 +3534,18 @@ inline motor_t<T> inner(const motor_t<T>& a, const motor_t<T>& b) {
     detail::inner_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void inner(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::inner_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void inner(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator|(const motor_t<T>& a, const motor_t<T>& b) { return inner(a, b); }
 // Hestenes inner product (Gaalop's '.')
@@ -3445,6 +3557,18 @@ inline motor_t<T> inner(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::inner_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void inner(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::inner_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void inner(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const motor_t<T>& a, const screw_t<T>& b) { return inner(a, b); }
@@ -3458,6 +3582,18 @@ inline motor_t<T> inner(const screw_t<T>& a, const motor_t<T>& b) {
     detail::inner_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void inner(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::inner_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void inner(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator|(const screw_t<T>& a, const motor_t<T>& b) { return inner(a, b); }
 // Hestenes inner product (Gaalop's '.')
@@ -3469,6 +3605,18 @@ inline scalar_t<T> inner(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::inner_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void inner(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::inner_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void inner(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
 }
 template <class T>
 inline scalar_t<T> operator|(const screw_t<T>& a, const screw_t<T>& b) { return inner(a, b); }
@@ -3482,6 +3630,18 @@ inline motor_t<T> dot(const motor_t<T>& a, const motor_t<T>& b) {
     detail::dot_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void dot(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::dot_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void dot(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+}
 // dot product (a scalar times b is that multiple of b)
 template <class T>
 inline motor_t<T> dot(const motor_t<T>& a, const screw_t<T>& b) {
@@ -3491,6 +3651,18 @@ inline motor_t<T> dot(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::dot_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void dot(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::dot_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void dot(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -3502,6 +3674,18 @@ inline motor_t<T> dot(const screw_t<T>& a, const motor_t<T>& b) {
     detail::dot_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void dot(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::dot_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void dot(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+}
 // dot product (a scalar times b is that multiple of b)
 template <class T>
 inline scalar_t<T> dot(const screw_t<T>& a, const screw_t<T>& b) {
@@ -3511,6 +3695,18 @@ inline scalar_t<T> dot(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::dot_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void dot(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::dot_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void dot(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
 }
 // left contraction
 template <class T>
@@ -3522,6 +3718,18 @@ inline motor_t<T> lcont(const motor_t<T>& a, const motor_t<T>& b) {
     detail::lcont_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void lcont(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void lcont(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+}
 // left contraction
 template <class T>
 inline motor_t<T> lcont(const motor_t<T>& a, const screw_t<T>& b) {
@@ -3531,6 +3739,18 @@ inline motor_t<T> lcont(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::lcont_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void lcont(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void lcont(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
 }
 // left contraction
 template <class T>
@@ -3542,6 +3762,18 @@ inline motor_t<T> lcont(const screw_t<T>& a, const motor_t<T>& b) {
     detail::lcont_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void lcont(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void lcont(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+}
 // left contraction
 template <class T>
 inline scalar_t<T> lcont(const screw_t<T>& a, const screw_t<T>& b) {
@@ -3551,6 +3783,18 @@ inline scalar_t<T> lcont(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::lcont_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void lcont(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void lcont(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
 }
 // right contraction
 template <class T>
@@ -3562,6 +3806,18 @@ inline motor_t<T> rcont(const motor_t<T>& a, const motor_t<T>& b) {
     detail::rcont_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void rcont(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void rcont(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+}
 // right contraction
 template <class T>
 inline motor_t<T> rcont(const motor_t<T>& a, const screw_t<T>& b) {
@@ -3571,6 +3827,18 @@ inline motor_t<T> rcont(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::rcont_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void rcont(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void rcont(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
 }
 // right contraction
 template <class T>
@@ -3582,6 +3850,18 @@ inline motor_t<T> rcont(const screw_t<T>& a, const motor_t<T>& b) {
     detail::rcont_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void rcont(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void rcont(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+}
 // right contraction
 template <class T>
 inline scalar_t<T> rcont(const screw_t<T>& a, const screw_t<T>& b) {
@@ -3591,6 +3871,18 @@ inline scalar_t<T> rcont(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::rcont_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void rcont(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void rcont(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -3602,6 +3894,18 @@ inline scalar_t<T> scp(const motor_t<T>& a, const motor_t<T>& b) {
     detail::scp_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void scp(const motor_t<T>* a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::scp_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void scp(const motor_t<T>& a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+}
 // scalar product <a b>_0
 template <class T>
 inline scalar_t<T> scp(const motor_t<T>& a, const screw_t<T>& b) {
@@ -3611,6 +3915,18 @@ inline scalar_t<T> scp(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::scp_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void scp(const motor_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::scp_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void scp(const motor_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -3622,6 +3938,18 @@ inline scalar_t<T> scp(const screw_t<T>& a, const motor_t<T>& b) {
     detail::scp_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void scp(const screw_t<T>* a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::scp_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void scp(const screw_t<T>& a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+}
 // scalar product <a b>_0
 template <class T>
 inline scalar_t<T> scp(const screw_t<T>& a, const screw_t<T>& b) {
@@ -3631,6 +3959,18 @@ inline scalar_t<T> scp(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::scp_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void scp(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::scp_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void scp(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -3642,6 +3982,18 @@ inline screw_t<T> cp(const motor_t<T>& a, const motor_t<T>& b) {
     detail::cp_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void cp(const motor_t<T>* a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::cp_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void cp(const motor_t<T>& a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+}
 // commutator product (a b - b a) / 2
 template <class T>
 inline screw_t<T> cp(const motor_t<T>& a, const screw_t<T>& b) {
@@ -3651,6 +4003,18 @@ inline screw_t<T> cp(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::cp_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void cp(const motor_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::cp_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void cp(const motor_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -3662,6 +4026,18 @@ inline screw_t<T> cp(const screw_t<T>& a, const motor_t<T>& b) {
     detail::cp_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void cp(const screw_t<T>* a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::cp_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void cp(const screw_t<T>& a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+}
 // commutator product (a b - b a) / 2
 template <class T>
 inline screw_t<T> cp(const screw_t<T>& a, const screw_t<T>& b) {
@@ -3672,6 +4048,18 @@ inline screw_t<T> cp(const screw_t<T>& a, const screw_t<T>& b) {
     detail::cp_screw_screw(a.v, b.v, r.v);
   return r;
 }
+// cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void cp(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::cp_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void cp(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+}
 // sum
 template <class T>
 inline motor_t<T> add(const motor_t<T>& a, const motor_t<T>& b) {
@@ -3681,6 +4069,18 @@ inline motor_t<T> add(const motor_t<T>& a, const motor_t<T>& b) {
   else
     detail::add_motor_motor(a.v, b.v, r.v);
   return r;
+}
+// add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void add(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::add_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void add(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const motor_t<T>& a, const motor_t<T>& b) { return add(a, b); }
@@ -3694,6 +4094,18 @@ inline motor_t<T> add(const motor_t<T>& a, const screw_t<T>& b) {
     detail::add_motor_screw(a.v, b.v, r.v);
   return r;
 }
+// add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void add(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::add_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void add(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator+(const motor_t<T>& a, const screw_t<T>& b) { return add(a, b); }
 // sum
@@ -3705,6 +4117,18 @@ inline motor_t<T> add(const screw_t<T>& a, const motor_t<T>& b) {
   else
     detail::add_screw_motor(a.v, b.v, r.v);
   return r;
+}
+// add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void add(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::add_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void add(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const screw_t<T>& a, const motor_t<T>& b) { return add(a, b); }
@@ -3718,6 +4142,18 @@ inline screw_t<T> add(const screw_t<T>& a, const screw_t<T>& b) {
     detail::add_screw_screw(a.v, b.v, r.v);
   return r;
 }
+// add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void add(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::add_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void add(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+}
 template <class T>
 inline screw_t<T> operator+(const screw_t<T>& a, const screw_t<T>& b) { return add(a, b); }
 // difference
@@ -3729,6 +4165,18 @@ inline motor_t<T> sub(const motor_t<T>& a, const motor_t<T>& b) {
   else
     detail::sub_motor_motor(a.v, b.v, r.v);
   return r;
+}
+// sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sub(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sub_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sub(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const motor_t<T>& a, const motor_t<T>& b) { return sub(a, b); }
@@ -3742,6 +4190,18 @@ inline motor_t<T> sub(const motor_t<T>& a, const screw_t<T>& b) {
     detail::sub_motor_screw(a.v, b.v, r.v);
   return r;
 }
+// sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sub(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sub_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sub(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+}
 template <class T>
 inline motor_t<T> operator-(const motor_t<T>& a, const screw_t<T>& b) { return sub(a, b); }
 // difference
@@ -3753,6 +4213,18 @@ inline motor_t<T> sub(const screw_t<T>& a, const motor_t<T>& b) {
   else
     detail::sub_screw_motor(a.v, b.v, r.v);
   return r;
+}
+// sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sub(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sub_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sub(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const screw_t<T>& a, const motor_t<T>& b) { return sub(a, b); }
@@ -3766,6 +4238,18 @@ inline screw_t<T> sub(const screw_t<T>& a, const screw_t<T>& b) {
     detail::sub_screw_screw(a.v, b.v, r.v);
   return r;
 }
+// sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sub(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sub_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sub(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+}
 template <class T>
 inline screw_t<T> operator-(const screw_t<T>& a, const screw_t<T>& b) { return sub(a, b); }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
@@ -3778,6 +4262,18 @@ inline motor_t<T> sandwich(const motor_t<T>& a, const motor_t<T>& b) {
     detail::sandwich_motor_motor(a.v, b.v, r.v);
   return r;
 }
+// sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sandwich(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_motor(a[k].v, b[k].v, r[k].v);
+}
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sandwich(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+}
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
 inline screw_t<T> sandwich(const motor_t<T>& a, const screw_t<T>& b) {
@@ -3787,6 +4283,18 @@ inline screw_t<T> sandwich(const motor_t<T>& a, const screw_t<T>& b) {
   else
     detail::sandwich_motor_screw(a.v, b.v, r.v);
   return r;
+}
+// sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sandwich(const motor_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_screw(a[k].v, b[k].v, r[k].v);
+}
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sandwich(const motor_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -3798,6 +4306,18 @@ inline motor_t<T> sandwich(const screw_t<T>& a, const motor_t<T>& b) {
     detail::sandwich_screw_motor(a.v, b.v, r.v);
   return r;
 }
+// sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sandwich(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_motor(a[k].v, b[k].v, r[k].v);
+}
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sandwich(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+}
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
 inline screw_t<T> sandwich(const screw_t<T>& a, const screw_t<T>& b) {
@@ -3807,6 +4327,18 @@ inline screw_t<T> sandwich(const screw_t<T>& a, const screw_t<T>& b) {
   else
     detail::sandwich_screw_screw(a.v, b.v, r.v);
   return r;
+}
+// sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
+// elements.
+template <class T>
+inline void sandwich(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_screw(a[k].v, b[k].v, r[k].v);
+}
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
+// compiler makes once.
+template <class T>
+inline void sandwich(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
 }
 // negation
 template <class T>

@@ -12,9 +12,9 @@
 //    loop-invariant. The result's full value is carried, every coefficient. exp and log have no such chain
 //    alone (their result is the other type), so they are timed as the pair x = log(exp(x)).
 //  - loop: out[i] = op(a[i], b[i]), the time per element, over 4096 elements (in cache: the arithmetic) and
-//    over N (default 2^20, arrays of 16-32 MB, in memory). Plus klein's batch form, one motor applied to an
-//    array of points (klein's motor::operator()(point*, point*, size_t)) against the generated sandwich in a
-//    loop.
+//    over N (default 2^20, arrays of 16-32 MB, in memory): klein's operation in a loop, the generated library's
+//    array form op(a, b, out, n). Plus each side's batch form of one motor applied to an array of points
+//    (klein's motor::operator()(point*, point*, size_t), the generated sandwich(m, points, out, n)).
 // Each figure is the median of --klein_repetitions runs; the two sides of an operation run back to back.
 //
 //   cga-klein-bench [--klein_check_only] [--klein_markdown=FILE] [--klein_repetitions=5] [--klein_n=1048576]
@@ -348,6 +348,19 @@ void loop(benchmark::State& s, const std::vector<A>& a, const std::vector<B>& b,
   }
 }
 
+// The generated library's array form of the same loop: f(a, b, out, n) over the first s.range(0) elements,
+// R the result's type.
+template <class R, class A, class B, class F>
+void array_loop(benchmark::State& s, const std::vector<A>& a, const std::vector<B>& b, F f) {
+  const auto n = static_cast<std::size_t>(s.range(0));
+  std::vector<R> out(n);
+  for (auto _ : s) {
+    f(a.data(), b.data(), out.data(), n);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+}
+
 // klein's mat3x4 has no value chain (the matrix is not a motor): the next motor's index depends on the previous
 // matrix instead (a comparison that never holds), so each conversion starts when the previous one ends.
 void chain_mat3x4(benchmark::State& s, const std::vector<kln::motor>& ring) {
@@ -373,6 +386,10 @@ constexpr auto klein_gp = [](const auto& a, const auto& b) { return a * b; };
 constexpr auto cgagen_gp = [](const auto& a, const auto& b) { return pga3::gp(a, b); };
 constexpr auto klein_apply = [](const auto& m, const auto& x) { return m(x); };
 constexpr auto cgagen_apply = [](const auto& m, const auto& x) { return pga3::sandwich(m, x); };
+constexpr auto cgagen_gp_n = [](const auto* a, const auto* b, auto* r, std::size_t n) { pga3::gp(a, b, r, n); };
+constexpr auto cgagen_apply_n = [](const auto* m, const auto* x, auto* r, std::size_t n) {
+  pga3::sandwich(m, x, r, n);
+};
 constexpr auto flip = [](auto f) { return [f](const auto& x, const auto& m) { return f(m, x); }; };
 constexpr auto klein_exp = [](const kln::line& l, const kln::line&) { return kln::exp(l); };
 constexpr auto cgagen_exp = [](const pga3::line& l, const pga3::line&) { return pga3::exp(l); };
@@ -384,13 +401,13 @@ constexpr auto klein_mat = [](const kln::motor& m, const kln::motor&) { return m
 
 // The four figures of a binary operation on sets a (the chained argument's first value, and the loop's first
 // argument) and b.
-template <class A, class B, class K, class C>
-Row binary(const char* op, const char* stats, const A& a, const B& b, K k, C c) {
+template <class A, class B, class K, class C, class N>
+Row binary(const char* op, const char* stats, const A& a, const B& b, K k, C c, N cn) {
   return {op, stats, "",
           [&a, &b, k](auto& s) { chain(s, a.k[0], b.k, k); },
           [&a, &b, c](auto& s) { chain(s, a.p[0], b.p, c); },
           [&a, &b, k](auto& s) { loop(s, a.k, b.k, k); },
-          [&a, &b, c](auto& s) { loop(s, a.p, b.p, c); }};
+          [&a, &b, c, cn](auto& s) { array_loop<decltype(c(a.p[0], b.p[0]))>(s, a.p, b.p, cn); }};
 }
 
 // A motor applied to the set x: chained through x, the loop over (motor, x) pairs.
@@ -401,13 +418,15 @@ Row apply(const char* op, const char* stats, const Inputs& in, const X& x) {
           [&m, &x](auto& s) { chain(s, x.k[0], m.k, flip(klein_apply)); },
           [&m, &x](auto& s) { chain(s, x.p[0], m.p, flip(cgagen_apply)); },
           [&m, &x](auto& s) { loop(s, m.k, x.k, klein_apply); },
-          [&m, &x](auto& s) { loop(s, m.p, x.p, cgagen_apply); }};
+          [&m, &x](auto& s) {
+            array_loop<decltype(cgagen_apply(m.p[0], x.p[0]))>(s, m.p, x.p, cgagen_apply_n);
+          }};
 }
 
 std::vector<Row> rows(const Inputs& in) {
   std::vector<Row> r;
-  r.push_back(binary("rotor * rotor", "gp(rotor, rotor)", in.rotors, in.rotors2, klein_gp, cgagen_gp));
-  r.push_back(binary("motor * motor", "gp(motor, motor)", in.motors, in.motors2, klein_gp, cgagen_gp));
+  r.push_back(binary("rotor * rotor", "gp(rotor, rotor)", in.rotors, in.rotors2, klein_gp, cgagen_gp, cgagen_gp_n));
+  r.push_back(binary("motor * motor", "gp(motor, motor)", in.motors, in.motors2, klein_gp, cgagen_gp, cgagen_gp_n));
   r.push_back(apply("motor(point)", "sandwich(motor, point)", in, in.points));
   r.push_back(apply("motor(line)", "sandwich(motor, line)", in, in.lines));
   r.push_back(apply("motor(plane)", "sandwich(motor, plane)", in, in.planes));
@@ -427,7 +446,7 @@ std::vector<Row> rows(const Inputs& in) {
                  std::vector<pga3::point> out(static_cast<std::size_t>(s.range(0)));
                  const pga3::motor m = p->motors.p[0];
                  for (auto _ : s) {
-                   for (std::size_t i = 0; i < out.size(); ++i) out[i] = pga3::sandwich(m, p->points.p[i]);
+                   pga3::sandwich(m, p->points.p.data(), out.data(), out.size());
                    benchmark::DoNotOptimize(out.data());
                    benchmark::ClobberMemory();
                  }

@@ -131,16 +131,25 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
 
   std::string functions, registry, skipped, lanes_kernels;
   for (const Function& f : lib.functions) {
-    // The float kernel the wrappers call: the 4-wide form where the target has one and it is cheaper.
+    // The float kernel one call runs: the 4-wide form where the target has one and it pays (lanes.hpp says
+    // when). The array forms of the templates run the scalar kernel, which the compiler vectorizes across
+    // elements, whatever this picks.
     std::string float_kernel = emit::spell(sx, f.program.name);
-    if (t.has("lanes_kernel") && f.op->arity == 2)
+    if (t.has("lanes_kernel") && f.op->arity == 2) {
+      const long scalar_ops = opt::program_stats(f.program).total.total();
+      std::optional<LaneCode> code;
       if (const auto form = lane_form(f.program)) {
-        const LaneCode code = lane_code(*form);
-        if (static_cast<long>(code.ops) < opt::program_stats(f.program).total.total()) {
-          lanes_kernels += fill("lanes_kernel", {{"library", lib.name}, {"kernel", float_kernel}, {"body", code.body}});
-          float_kernel = "x4::" + float_kernel;
-        }
+        code = lane_code(*form);
+        if (static_cast<long>(code->ops) >= scalar_ops) code.reset();
+      } else if (const auto linear = linear_form(f.program)) {
+        code = linear_code(*linear);
+        if (static_cast<long>(code->ops) >= scalar_ops && linear->out.size() > 4) code.reset();
       }
+      if (code) {
+        lanes_kernels += fill("lanes_kernel", {{"library", lib.name}, {"kernel", float_kernel}, {"body", code->body}});
+        float_kernel = "x4::" + float_kernel;
+      }
+    }
     const std::map<std::string, std::string> v = {
         {"library", lib.name},
         {"fn", f.op->name},

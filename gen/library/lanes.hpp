@@ -1,4 +1,4 @@
-// 4-wide forms of a library's bilinear kernels: a product of two types whose every result coefficient is
+// 4-wide forms of a library's kernels. First the bilinear ones: a product of two types whose every result coefficient is
 // Σ c · a_i · b_j (every product of the operator set on blade bases) printed as operations on vectors of 4
 // floats, the result's coefficients 4 to a vector in storage order, as klein writes its SSE by hand:
 //
@@ -10,7 +10,18 @@
 // balanced tree. The broadcast operand is a, or b where that takes fewer operations (then the roles swap): in
 // a chain x = x * y of one type, x is broadcast and the shuffles of y are off x's critical path.
 // The form is kept only where it costs fewer vector operations than the scalar kernel has operations.
+//
+// Then the kernels linear in b whose coefficients are polynomials of degree 2 or less in a, the sandwich
+// a b ~a above all: r = M(a) b, printed as
+//
+//   r[4g .. 4g+3] = Σ_j splat(b_j) · m_gj,   m_gj = Σ_p splat(a_p) · (c ⊙ perm_p(a)) (+ a constant vector)
+//
+// The vectors m_gj of M(a) depend on a alone, so b enters at the last product and its sum: in a chain
+// x = sandwich(m, x) the matrix of each m is off x's critical path, and in a loop of one versor over many
+// elements it is made once.
 #pragma once
+
+#include <cstddef>
 
 #include <optional>
 #include <string>
@@ -20,8 +31,10 @@
 
 namespace cgagen::library {
 
+inline constexpr size_t kNone = static_cast<size_t>(-1);  // no factor of that operand
+
 struct LaneTerm {
-  size_t i = 0, j = 0;  // a_i * b_j
+  size_t i = 0, j = 0;  // a_i * b_j (in the linear form's vectors, a_i * a_j; kNone: a missing factor)
   double c = 0;         // its coefficient
 };
 
@@ -40,5 +53,22 @@ struct LaneCode {
 };
 
 LaneCode lane_code(const LaneForm& form);
+
+struct LinearTerm {
+  size_t p = kNone, q = kNone;  // a_p * a_q, p <= q; kNone where the term has fewer factors of a
+  size_t j = 0;                 // times b_j
+  double c = 0;
+};
+
+struct LinearForm {
+  size_t na = 0, nb = 0;
+  std::vector<std::vector<LinearTerm>> out;  // per result coefficient, its terms
+};
+
+// The form r = M(a) b of a binary kernel, or nothing where some term is not c · b_j times at most two
+// coefficients of a.
+std::optional<LinearForm> linear_form(const opt::Program& program);
+
+LaneCode linear_code(const LinearForm& form);
 
 }  // namespace cgagen::library

@@ -10,6 +10,7 @@
 
 #include "cli_run.hpp"
 #include "library/build.hpp"
+#include "library/emit.hpp"
 #include "library/lanes.hpp"
 #include "library/spec.hpp"
 
@@ -144,6 +145,8 @@ TEST_CASE("library lanes: a bilinear product as 4-wide columns, other kernels le
   const library::LaneCode rv_code = library::lane_code(*rv);
   CHECK(rv_code.body.find("splat<0>(b0)") != std::string::npos);
   CHECK(rv_code.body.find("splat<3>(") == std::string::npos);
+  CHECK(rv_code.body.find("load<3>(b + 0)") != std::string::npos);  // b's 3 coefficients, not a's 4
+  CHECK(rv_code.body.find("load<4>(a + 0)") != std::string::npos);
   // In CGA's null basis a_i can meet several b_j in one lane (cga3's plane times its scaled motor, whose
   // einf^e0 blade is not a product of orthogonal vectors): the terms are sorted by (i, j), as GiNaC's order of a
   // sum's terms changes from run to run and the printed code may not.
@@ -165,6 +168,49 @@ TEST_CASE("library lanes: a bilinear product as 4-wide columns, other kernels le
   CHECK_FALSE(library::lane_form(find(lib, "sandwich", "rotor", "vector")->program));
   CHECK_FALSE(library::lane_form(find(lib, "reverse", "rotor")->program));
   CHECK_FALSE(library::lane_form(find(lib, "norm", "rotor")->program));
+}
+
+TEST_CASE("library lanes: a sandwich as r = M(a) b, M's columns made from a alone") {
+  const library::Library lib = library::build(spec_of("library l\nalgebra 3d\ntype vector e1 e2 e3\n"
+                                                      "type rotor 1 e1^e2 e1^e3 e2^e3\n"),
+                                              opt::Level::O2);
+  const auto& program = find(lib, "sandwich", "rotor", "vector")->program;
+  const auto form = library::linear_form(program);
+  REQUIRE(form);
+  CHECK(form->na == 4);
+  CHECK(form->nb == 3);
+  REQUIRE(form->out.size() == 3);
+  // R v ~R's e1 coefficient times b0 (e1): a0^2 - a1^2 - a2^2 + a3^2 (the e1^e2 and e1^e3 planes turn e1
+  // away, e2^e3 leaves it: e23 e1 e32 = e1), which for the normalized versor the library assumes is
+  // 2 a0^2 + 2 a3^2 - 1: the -1 is b0 with no factor of a.
+  std::map<std::pair<size_t, size_t>, double> m00;
+  for (const auto& t : form->out[0])
+    if (t.j == 0) m00[{t.p, t.q}] += t.c;
+  const size_t none = library::kNone;
+  CHECK(m00 == std::map<std::pair<size_t, size_t>, double>{{{0, 0}, 2}, {{3, 3}, 2}, {{none, none}, -1}});
+  for (const auto& terms : form->out)
+    for (const auto& t : terms) {
+      CHECK(t.p <= t.q);  // kNone, the missing factor, sorts last
+      CHECK(t.j < 3);
+    }
+  // b enters only at the end: one store of Σ_j splat(b_j) · m_j over b's 3 coefficients.
+  const library::LaneCode code = library::linear_code(*form);
+  CHECK(code.body.find("load<3>(b + 0)") != std::string::npos);
+  CHECK(code.body.find("store<3>(r + 0, ") != std::string::npos);
+  for (const char* column : {"splat<0>(b0) * m", "splat<1>(b0) * m", "splat<2>(b0) * m"}) {
+    INFO(column);
+    CHECK(code.body.find(column) != std::string::npos);
+  }
+  CHECK(code.body.find("splat<3>(b0)") == std::string::npos);
+  // Not linear in b: the product of two rotors has terms a_i b_j, fine, but the norm is no polynomial.
+  CHECK(library::linear_form(find(lib, "gp", "rotor", "rotor")->program));
+  CHECK_FALSE(library::linear_form(find(lib, "norm", "rotor")->program));
+  // The library's one call runs the 4-wide sandwich (the result is one vector), its array form the scalar
+  // kernel.
+  const std::string text = library::emit_library(lib, {}, "l.gal");
+  CHECK(text.find("detail::x4::sandwich_rotor_vector(a.v, b.v, r.v);") != std::string::npos);
+  CHECK(text.find("for (std::size_t k = 0; k < n; ++k) detail::sandwich_rotor_vector(a[k].v, b[k].v, r[k].v);") !=
+        std::string::npos);
 }
 
 TEST_CASE("cli: --library writes OpenCL C, JavaScript, GLSL ES, HLSL and WGSL the same every run") {
