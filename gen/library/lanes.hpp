@@ -18,7 +18,9 @@
 //
 // The vectors m_gj of M(a) depend on a alone, so b enters at the last product and its sum: in a chain
 // x = sandwich(m, x) the matrix of each m is off x's critical path, and in a loop of one versor over many
-// elements it is made once.
+// elements it is made once. The library keeps it where the result is one vector, whatever its operation
+// count (measured faster per call for a motor on a point or a plane), and elsewhere where it costs fewer
+// vector operations than the scalar kernel has operations.
 #pragma once
 
 #include <cstddef>
