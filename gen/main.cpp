@@ -445,6 +445,9 @@ int run_library(const Options& o) {
         out += std::string(f.op->name) + "(" + lib.types[f.a].name + (f.op->arity == 2 ? ", " + lib.types[f.b].name : "") +
                ") -> " + lib.types[f.result].name + ": " + opt::format_counts(opt::program_stats(f.program).total) + "\n";
       }
+      for (const auto& m : lib.matrices)
+        out += "matrix(" + lib.types[m.a].name + ", " + lib.types[m.b].name + ") -> " + lib.types[m.result].name + ": " +
+               opt::format_counts(opt::program_stats(m.program).total) + "\n";
       for (const auto& sk : lib.skipped)
         out += std::string(sk.op->name) + "(" + lib.types[sk.a].name + (sk.op->arity == 2 ? ", " + lib.types[sk.b].name : "") +
                "): not generated: " + sk.reason + "\n";

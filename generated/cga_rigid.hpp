@@ -3130,6 +3130,438 @@ inline void log_motor(const double a[8], double r[6]) {
   r[5] = 2.0 * a_e12 * t9 + a_e3inf * t10;  // e3^einf
 }
 
+inline void matrix_motor_motor(const float a[8], float c0[8], float c1[8], float c2[8], float c3[8], float c4[8], float c5[8], float c6[8], float c7[8]) {
+  const float a_s = a[0];
+  const float a_e12 = a[1];
+  const float a_e13 = a[2];
+  const float a_e23 = a[3];
+  const float a_e1inf = a[4];
+  const float a_e2inf = a[5];
+  const float a_e3inf = a[6];
+  const float a_e123inf = a[7];
+  const float t0 = a_e13 * a_e13;
+  const float t1 = a_e23 * a_e23;
+  const float t2 = t0 + t1;
+  const float t3 = 2.0f * t2 - 1.0f;
+  const float t4 = a_e12 * a_e13;
+  const float t5 = a_e23 * a_s;
+  const float t6 = a_e12 * a_e23;
+  const float t7 = a_e13 * a_s;
+  const float t8 = t6 + t7;
+  const float t9 = 2.0f * t8;
+  const float t10 = a_e12 * a_e1inf;
+  const float t11 = a_e123inf * a_e13;
+  const float t12 = a_e23 * a_e3inf;
+  const float t13 = a_e2inf * a_s;
+  const float t14 = a_e12 * a_e2inf;
+  const float t15 = a_e123inf * a_e23;
+  const float t16 = a_e13 * a_e3inf;
+  const float t17 = a_e1inf * a_s;
+  const float t18 = a_e13 * a_e2inf;
+  const float t19 = a_e1inf * a_e23;
+  const float t20 = a_s * a_s;
+  const float t21 = t0 + t20;
+  const float t22 = 2.0f * t21 - 1.0f;
+  const float t23 = a_e12 * a_s;
+  const float t24 = a_e13 * a_e23;
+  const float t25 = a_e12 * a_e123inf;
+  const float t26 = a_e13 * a_e1inf;
+  const float t27 = a_e23 * a_e2inf;
+  const float t28 = a_e3inf * a_s;
+  const float t29 = a_e12 * a_e3inf;
+  c0[0] = 1.0f;  // 1
+  c0[1] = 0.0f;  // e1^e2
+  c0[2] = 0.0f;  // e1^e3
+  c0[3] = 0.0f;  // e2^e3
+  c0[4] = 0.0f;  // e1^einf
+  c0[5] = 0.0f;  // e2^einf
+  c0[6] = 0.0f;  // e3^einf
+  c0[7] = 0.0f;  // e1^e2^e3^einf
+  c1[0] = 0.0f;  // 1
+  c1[1] = -t3;  // e1^e2
+  c1[3] = t9;  // e2^e3
+  c1[7] = 0.0f;  // e1^e2^e3^einf
+  c2[0] = 0.0f;  // 1
+  c2[2] = t22;  // e1^e3
+  c2[7] = 0.0f;  // e1^e2^e3^einf
+  c3[0] = 0.0f;  // 1
+  c3[7] = 0.0f;  // e1^e2^e3^einf
+  c4[0] = 0.0f;  // 1
+  c4[1] = 0.0f;  // e1^e2
+  c4[2] = 0.0f;  // e1^e3
+  c4[3] = 0.0f;  // e2^e3
+  c4[7] = 0.0f;  // e1^e2^e3^einf
+  c5[0] = 0.0f;  // 1
+  c5[1] = 0.0f;  // e1^e2
+  c5[2] = 0.0f;  // e1^e3
+  c5[3] = 0.0f;  // e2^e3
+  c5[5] = t22;  // e2^einf
+  c5[7] = 0.0f;  // e1^e2^e3^einf
+  c6[0] = 0.0f;  // 1
+  c6[1] = 0.0f;  // e1^e2
+  c6[2] = 0.0f;  // e1^e3
+  c6[3] = 0.0f;  // e2^e3
+  c6[4] = t9;  // e1^einf
+  c6[6] = -t3;  // e3^einf
+  c6[7] = 0.0f;  // e1^e2^e3^einf
+  c7[0] = 0.0f;  // 1
+  c7[1] = 0.0f;  // e1^e2
+  c7[2] = 0.0f;  // e1^e3
+  c7[3] = 0.0f;  // e2^e3
+  c7[4] = 0.0f;  // e1^einf
+  c7[5] = 0.0f;  // e2^einf
+  c7[6] = 0.0f;  // e3^einf
+  c7[7] = 1.0f;  // e1^e2^e3^einf
+  const float t30 = t6 - t7;
+  const float t31 = 2.0f * t30;
+  c3[1] = t31;  // e1^e2
+  c4[6] = t31;  // e3^einf
+  const float t32 = t1 + t20;
+  const float t33 = 2.0f * t32 - 1.0f;
+  c3[3] = t33;  // e2^e3
+  c4[4] = t33;  // e1^einf
+  const float t34 = t4 - t5;
+  c1[2] = 2.0f * t34;  // e1^e3
+  c6[5] = -2.0f * t34;  // e2^einf
+  const float t35 = t10 + t12 - t11 - t13;
+  c1[4] = 2.0f * t35;  // e1^einf
+  const float t36 = t14 + t17 - t15 - t16;
+  c1[5] = 2.0f * t36;  // e2^einf
+  const float t37 = t18 - t19;
+  c1[6] = 4.0f * t37;  // e3^einf
+  const float t38 = t4 + t5;
+  c2[1] = 2.0f * t38;  // e1^e2
+  c5[6] = -2.0f * t38;  // e3^einf
+  const float t39 = t23 - t24;
+  c2[3] = -2.0f * t39;  // e2^e3
+  c5[4] = 2.0f * t39;  // e1^einf
+  const float t40 = t25 + t26 - t27 - t28;
+  c2[4] = 2.0f * t40;  // e1^einf
+  const float t41 = t19 + t29;
+  c2[5] = 4.0f * t41;  // e2^einf
+  const float t42 = t14 + t15 - t16 - t17;
+  c2[6] = -2.0f * t42;  // e3^einf
+  const float t43 = t23 + t24;
+  c3[2] = 2.0f * t43;  // e1^e3
+  c4[5] = -2.0f * t43;  // e2^einf
+  const float t44 = t18 - t29;
+  c3[4] = 4.0f * t44;  // e1^einf
+  const float t45 = t25 + t27 - t26 - t28;
+  c3[5] = 2.0f * t45;  // e2^einf
+  const float t46 = t10 + t11 + t12 + t13;
+  c3[6] = 2.0f * t46;  // e3^einf
+}
+
+inline void matrix_motor_motor(const double a[8], double c0[8], double c1[8], double c2[8], double c3[8], double c4[8], double c5[8], double c6[8], double c7[8]) {
+  const double a_s = a[0];
+  const double a_e12 = a[1];
+  const double a_e13 = a[2];
+  const double a_e23 = a[3];
+  const double a_e1inf = a[4];
+  const double a_e2inf = a[5];
+  const double a_e3inf = a[6];
+  const double a_e123inf = a[7];
+  const double t0 = a_e13 * a_e13;
+  const double t1 = a_e23 * a_e23;
+  const double t2 = t0 + t1;
+  const double t3 = 2.0 * t2 - 1.0;
+  const double t4 = a_e12 * a_e13;
+  const double t5 = a_e23 * a_s;
+  const double t6 = a_e12 * a_e23;
+  const double t7 = a_e13 * a_s;
+  const double t8 = t6 + t7;
+  const double t9 = 2.0 * t8;
+  const double t10 = a_e12 * a_e1inf;
+  const double t11 = a_e123inf * a_e13;
+  const double t12 = a_e23 * a_e3inf;
+  const double t13 = a_e2inf * a_s;
+  const double t14 = a_e12 * a_e2inf;
+  const double t15 = a_e123inf * a_e23;
+  const double t16 = a_e13 * a_e3inf;
+  const double t17 = a_e1inf * a_s;
+  const double t18 = a_e13 * a_e2inf;
+  const double t19 = a_e1inf * a_e23;
+  const double t20 = a_s * a_s;
+  const double t21 = t0 + t20;
+  const double t22 = 2.0 * t21 - 1.0;
+  const double t23 = a_e12 * a_s;
+  const double t24 = a_e13 * a_e23;
+  const double t25 = a_e12 * a_e123inf;
+  const double t26 = a_e13 * a_e1inf;
+  const double t27 = a_e23 * a_e2inf;
+  const double t28 = a_e3inf * a_s;
+  const double t29 = a_e12 * a_e3inf;
+  c0[0] = 1.0;  // 1
+  c0[1] = 0.0;  // e1^e2
+  c0[2] = 0.0;  // e1^e3
+  c0[3] = 0.0;  // e2^e3
+  c0[4] = 0.0;  // e1^einf
+  c0[5] = 0.0;  // e2^einf
+  c0[6] = 0.0;  // e3^einf
+  c0[7] = 0.0;  // e1^e2^e3^einf
+  c1[0] = 0.0;  // 1
+  c1[1] = -t3;  // e1^e2
+  c1[3] = t9;  // e2^e3
+  c1[7] = 0.0;  // e1^e2^e3^einf
+  c2[0] = 0.0;  // 1
+  c2[2] = t22;  // e1^e3
+  c2[7] = 0.0;  // e1^e2^e3^einf
+  c3[0] = 0.0;  // 1
+  c3[7] = 0.0;  // e1^e2^e3^einf
+  c4[0] = 0.0;  // 1
+  c4[1] = 0.0;  // e1^e2
+  c4[2] = 0.0;  // e1^e3
+  c4[3] = 0.0;  // e2^e3
+  c4[7] = 0.0;  // e1^e2^e3^einf
+  c5[0] = 0.0;  // 1
+  c5[1] = 0.0;  // e1^e2
+  c5[2] = 0.0;  // e1^e3
+  c5[3] = 0.0;  // e2^e3
+  c5[5] = t22;  // e2^einf
+  c5[7] = 0.0;  // e1^e2^e3^einf
+  c6[0] = 0.0;  // 1
+  c6[1] = 0.0;  // e1^e2
+  c6[2] = 0.0;  // e1^e3
+  c6[3] = 0.0;  // e2^e3
+  c6[4] = t9;  // e1^einf
+  c6[6] = -t3;  // e3^einf
+  c6[7] = 0.0;  // e1^e2^e3^einf
+  c7[0] = 0.0;  // 1
+  c7[1] = 0.0;  // e1^e2
+  c7[2] = 0.0;  // e1^e3
+  c7[3] = 0.0;  // e2^e3
+  c7[4] = 0.0;  // e1^einf
+  c7[5] = 0.0;  // e2^einf
+  c7[6] = 0.0;  // e3^einf
+  c7[7] = 1.0;  // e1^e2^e3^einf
+  const double t30 = t6 - t7;
+  const double t31 = 2.0 * t30;
+  c3[1] = t31;  // e1^e2
+  c4[6] = t31;  // e3^einf
+  const double t32 = t1 + t20;
+  const double t33 = 2.0 * t32 - 1.0;
+  c3[3] = t33;  // e2^e3
+  c4[4] = t33;  // e1^einf
+  const double t34 = t4 - t5;
+  c1[2] = 2.0 * t34;  // e1^e3
+  c6[5] = -2.0 * t34;  // e2^einf
+  const double t35 = t10 + t12 - t11 - t13;
+  c1[4] = 2.0 * t35;  // e1^einf
+  const double t36 = t14 + t17 - t15 - t16;
+  c1[5] = 2.0 * t36;  // e2^einf
+  const double t37 = t18 - t19;
+  c1[6] = 4.0 * t37;  // e3^einf
+  const double t38 = t4 + t5;
+  c2[1] = 2.0 * t38;  // e1^e2
+  c5[6] = -2.0 * t38;  // e3^einf
+  const double t39 = t23 - t24;
+  c2[3] = -2.0 * t39;  // e2^e3
+  c5[4] = 2.0 * t39;  // e1^einf
+  const double t40 = t25 + t26 - t27 - t28;
+  c2[4] = 2.0 * t40;  // e1^einf
+  const double t41 = t19 + t29;
+  c2[5] = 4.0 * t41;  // e2^einf
+  const double t42 = t14 + t15 - t16 - t17;
+  c2[6] = -2.0 * t42;  // e3^einf
+  const double t43 = t23 + t24;
+  c3[2] = 2.0 * t43;  // e1^e3
+  c4[5] = -2.0 * t43;  // e2^einf
+  const double t44 = t18 - t29;
+  c3[4] = 4.0 * t44;  // e1^einf
+  const double t45 = t25 + t27 - t26 - t28;
+  c3[5] = 2.0 * t45;  // e2^einf
+  const double t46 = t10 + t11 + t12 + t13;
+  c3[6] = 2.0 * t46;  // e3^einf
+}
+
+inline void matrix_motor_screw(const float a[8], float c0[6], float c1[6], float c2[6], float c3[6], float c4[6], float c5[6]) {
+  const float a_s = a[0];
+  const float a_e12 = a[1];
+  const float a_e13 = a[2];
+  const float a_e23 = a[3];
+  const float a_e1inf = a[4];
+  const float a_e2inf = a[5];
+  const float a_e3inf = a[6];
+  const float a_e123inf = a[7];
+  const float t0 = a_e13 * a_e13;
+  const float t1 = a_e23 * a_e23;
+  const float t2 = t0 + t1;
+  const float t3 = 2.0f * t2 - 1.0f;
+  const float t4 = a_e12 * a_e13;
+  const float t5 = a_e23 * a_s;
+  const float t6 = a_e12 * a_e23;
+  const float t7 = a_e13 * a_s;
+  const float t8 = t6 + t7;
+  const float t9 = 2.0f * t8;
+  const float t10 = a_e12 * a_e1inf;
+  const float t11 = a_e123inf * a_e13;
+  const float t12 = a_e23 * a_e3inf;
+  const float t13 = a_e2inf * a_s;
+  const float t14 = a_e12 * a_e2inf;
+  const float t15 = a_e123inf * a_e23;
+  const float t16 = a_e13 * a_e3inf;
+  const float t17 = a_e1inf * a_s;
+  const float t18 = a_e13 * a_e2inf;
+  const float t19 = a_e1inf * a_e23;
+  const float t20 = a_s * a_s;
+  const float t21 = t0 + t20;
+  const float t22 = 2.0f * t21 - 1.0f;
+  const float t23 = a_e12 * a_s;
+  const float t24 = a_e13 * a_e23;
+  const float t25 = a_e12 * a_e123inf;
+  const float t26 = a_e13 * a_e1inf;
+  const float t27 = a_e23 * a_e2inf;
+  const float t28 = a_e3inf * a_s;
+  const float t29 = a_e12 * a_e3inf;
+  c0[0] = -t3;  // e1^e2
+  c0[2] = t9;  // e2^e3
+  c1[1] = t22;  // e1^e3
+  c3[0] = 0.0f;  // e1^e2
+  c3[1] = 0.0f;  // e1^e3
+  c3[2] = 0.0f;  // e2^e3
+  c4[0] = 0.0f;  // e1^e2
+  c4[1] = 0.0f;  // e1^e3
+  c4[2] = 0.0f;  // e2^e3
+  c4[4] = t22;  // e2^einf
+  c5[0] = 0.0f;  // e1^e2
+  c5[1] = 0.0f;  // e1^e3
+  c5[2] = 0.0f;  // e2^e3
+  c5[3] = t9;  // e1^einf
+  c5[5] = -t3;  // e3^einf
+  const float t30 = t6 - t7;
+  const float t31 = 2.0f * t30;
+  c2[0] = t31;  // e1^e2
+  c3[5] = t31;  // e3^einf
+  const float t32 = t1 + t20;
+  const float t33 = 2.0f * t32 - 1.0f;
+  c2[2] = t33;  // e2^e3
+  c3[3] = t33;  // e1^einf
+  const float t34 = t4 - t5;
+  c0[1] = 2.0f * t34;  // e1^e3
+  c5[4] = -2.0f * t34;  // e2^einf
+  const float t35 = t10 + t12 - t11 - t13;
+  c0[3] = 2.0f * t35;  // e1^einf
+  const float t36 = t14 + t17 - t15 - t16;
+  c0[4] = 2.0f * t36;  // e2^einf
+  const float t37 = t18 - t19;
+  c0[5] = 4.0f * t37;  // e3^einf
+  const float t38 = t4 + t5;
+  c1[0] = 2.0f * t38;  // e1^e2
+  c4[5] = -2.0f * t38;  // e3^einf
+  const float t39 = t23 - t24;
+  c1[2] = -2.0f * t39;  // e2^e3
+  c4[3] = 2.0f * t39;  // e1^einf
+  const float t40 = t25 + t26 - t27 - t28;
+  c1[3] = 2.0f * t40;  // e1^einf
+  const float t41 = t19 + t29;
+  c1[4] = 4.0f * t41;  // e2^einf
+  const float t42 = t14 + t15 - t16 - t17;
+  c1[5] = -2.0f * t42;  // e3^einf
+  const float t43 = t23 + t24;
+  c2[1] = 2.0f * t43;  // e1^e3
+  c3[4] = -2.0f * t43;  // e2^einf
+  const float t44 = t18 - t29;
+  c2[3] = 4.0f * t44;  // e1^einf
+  const float t45 = t25 + t27 - t26 - t28;
+  c2[4] = 2.0f * t45;  // e2^einf
+  const float t46 = t10 + t11 + t12 + t13;
+  c2[5] = 2.0f * t46;  // e3^einf
+}
+
+inline void matrix_motor_screw(const double a[8], double c0[6], double c1[6], double c2[6], double c3[6], double c4[6], double c5[6]) {
+  const double a_s = a[0];
+  const double a_e12 = a[1];
+  const double a_e13 = a[2];
+  const double a_e23 = a[3];
+  const double a_e1inf = a[4];
+  const double a_e2inf = a[5];
+  const double a_e3inf = a[6];
+  const double a_e123inf = a[7];
+  const double t0 = a_e13 * a_e13;
+  const double t1 = a_e23 * a_e23;
+  const double t2 = t0 + t1;
+  const double t3 = 2.0 * t2 - 1.0;
+  const double t4 = a_e12 * a_e13;
+  const double t5 = a_e23 * a_s;
+  const double t6 = a_e12 * a_e23;
+  const double t7 = a_e13 * a_s;
+  const double t8 = t6 + t7;
+  const double t9 = 2.0 * t8;
+  const double t10 = a_e12 * a_e1inf;
+  const double t11 = a_e123inf * a_e13;
+  const double t12 = a_e23 * a_e3inf;
+  const double t13 = a_e2inf * a_s;
+  const double t14 = a_e12 * a_e2inf;
+  const double t15 = a_e123inf * a_e23;
+  const double t16 = a_e13 * a_e3inf;
+  const double t17 = a_e1inf * a_s;
+  const double t18 = a_e13 * a_e2inf;
+  const double t19 = a_e1inf * a_e23;
+  const double t20 = a_s * a_s;
+  const double t21 = t0 + t20;
+  const double t22 = 2.0 * t21 - 1.0;
+  const double t23 = a_e12 * a_s;
+  const double t24 = a_e13 * a_e23;
+  const double t25 = a_e12 * a_e123inf;
+  const double t26 = a_e13 * a_e1inf;
+  const double t27 = a_e23 * a_e2inf;
+  const double t28 = a_e3inf * a_s;
+  const double t29 = a_e12 * a_e3inf;
+  c0[0] = -t3;  // e1^e2
+  c0[2] = t9;  // e2^e3
+  c1[1] = t22;  // e1^e3
+  c3[0] = 0.0;  // e1^e2
+  c3[1] = 0.0;  // e1^e3
+  c3[2] = 0.0;  // e2^e3
+  c4[0] = 0.0;  // e1^e2
+  c4[1] = 0.0;  // e1^e3
+  c4[2] = 0.0;  // e2^e3
+  c4[4] = t22;  // e2^einf
+  c5[0] = 0.0;  // e1^e2
+  c5[1] = 0.0;  // e1^e3
+  c5[2] = 0.0;  // e2^e3
+  c5[3] = t9;  // e1^einf
+  c5[5] = -t3;  // e3^einf
+  const double t30 = t6 - t7;
+  const double t31 = 2.0 * t30;
+  c2[0] = t31;  // e1^e2
+  c3[5] = t31;  // e3^einf
+  const double t32 = t1 + t20;
+  const double t33 = 2.0 * t32 - 1.0;
+  c2[2] = t33;  // e2^e3
+  c3[3] = t33;  // e1^einf
+  const double t34 = t4 - t5;
+  c0[1] = 2.0 * t34;  // e1^e3
+  c5[4] = -2.0 * t34;  // e2^einf
+  const double t35 = t10 + t12 - t11 - t13;
+  c0[3] = 2.0 * t35;  // e1^einf
+  const double t36 = t14 + t17 - t15 - t16;
+  c0[4] = 2.0 * t36;  // e2^einf
+  const double t37 = t18 - t19;
+  c0[5] = 4.0 * t37;  // e3^einf
+  const double t38 = t4 + t5;
+  c1[0] = 2.0 * t38;  // e1^e2
+  c4[5] = -2.0 * t38;  // e3^einf
+  const double t39 = t23 - t24;
+  c1[2] = -2.0 * t39;  // e2^e3
+  c4[3] = 2.0 * t39;  // e1^einf
+  const double t40 = t25 + t26 - t27 - t28;
+  c1[3] = 2.0 * t40;  // e1^einf
+  const double t41 = t19 + t29;
+  c1[4] = 4.0 * t41;  // e2^einf
+  const double t42 = t14 + t15 - t16 - t17;
+  c1[5] = -2.0 * t42;  // e3^einf
+  const double t43 = t23 + t24;
+  c2[1] = 2.0 * t43;  // e1^e3
+  c3[4] = -2.0 * t43;  // e2^einf
+  const double t44 = t18 - t29;
+  c2[3] = 4.0 * t44;  // e1^einf
+  const double t45 = t25 + t27 - t26 - t28;
+  c2[4] = 2.0 * t45;  // e2^einf
+  const double t46 = t10 + t11 + t12 + t13;
+  c2[5] = 2.0 * t46;  // e3^einf
+}
+
 // 4-wide float kernels that one call runs: the bilinear products where they take fewer operations than the
 // scalar ones, and the kernels linear in b with a result of one vector (the sandwiches of points and planes).
 // The result's coefficients 4 to a vector in storage order, each vector a sum of columns splat(x_i) * (signs
@@ -3331,6 +3763,26 @@ constexpr mv_16006800_t<T> operator*(T s, const mv_16006800_t<T>& x) {
 template <class T>
 constexpr mv_16006800_t<T> operator*(const mv_16006800_t<T>& x, T s) { return s * x; }
 
+
+// The matrix of a linear map from type B to type R (matrix(a, of<B>) gives a sandwich's): m[j] is the image
+// of B's j-th blade, so the layout is column-major, one R per column, and M(b) = sum_j b.v[j] m[j]. Made
+// once, it moves many elements at cols x rows products each (a motor's on points: klein's mat4x4).
+template <template <class> class B>
+struct of_t {};
+template <template <class> class B>
+inline constexpr of_t<B> of{};
+template <class T, template <class> class B, template <class> class R>
+struct matrix_t {
+  static constexpr std::size_t cols = std::tuple_size_v<std::remove_const_t<decltype(B<T>::blades)>>;
+  static constexpr std::size_t rows = std::tuple_size_v<std::remove_const_t<decltype(R<T>::blades)>>;
+  R<T> m[cols];
+  constexpr R<T> operator()(const B<T>& b) const {
+    R<T> r{};
+    for (std::size_t j = 0; j < cols; ++j)
+      for (std::size_t k = 0; k < rows; ++k) r.v[k] += b.v[j] * m[j].v[k];
+    return r;
+  }
+};
 
 // geometric product
 template <class T>
@@ -4507,6 +4959,23 @@ inline screw_t<T> log(const motor_t<T>& a) {
   return r;
 }
 
+// The matrix of sandwich(a, b) for a normalized motor a on motors: column j is a applied to motor's j-th
+// blade, so M(b) == sandwich(a, b) at 8 x 8 products.
+template <class T>
+inline matrix_t<T, motor_t, motor_t> matrix(const motor_t<T>& a, of_t<motor_t>) {
+  matrix_t<T, motor_t, motor_t> r;
+  detail::matrix_motor_motor(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v, r.m[6].v, r.m[7].v);
+  return r;
+}
+// The matrix of sandwich(a, b) for a normalized motor a on screws: column j is a applied to screw's j-th
+// blade, so M(b) == sandwich(a, b) at 6 x 6 products.
+template <class T>
+inline matrix_t<T, screw_t, screw_t> matrix(const motor_t<T>& a, of_t<screw_t>) {
+  matrix_t<T, screw_t, screw_t> r;
+  detail::matrix_motor_screw(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v);
+  return r;
+}
+
 // Every type as data: name, blades (the algebra's spelling, "1" for the scalar), count.
 struct type_info {
   std::string_view name;
@@ -4596,6 +5065,18 @@ inline constexpr function_info functions[] = {
     {"normalize", 1, "screw", "", "screw", &detail::normalize_screw, nullptr},
     {"exp", 1, "screw", "", "motor", &detail::exp_screw, nullptr},
     {"log", 1, "motor", "", "screw", &detail::log_motor, nullptr},
+};
+
+// Every matrix as data, in float (tests): the versor's type, the moved type, the result type, the column count
+// and length, and the kernel writing the columns one after another.
+struct matrix_info {
+  std::string_view a, b, result;
+  std::size_t cols, rows;
+  void (*columns)(const float* a, float* m);
+};
+inline constexpr std::array<matrix_info, 2> matrices = {
+    matrix_info{"motor", "motor", "motor", 8, 8, [](const float* a, float* m) { detail::matrix_motor_motor(a, m + 0, m + 8, m + 16, m + 24, m + 32, m + 40, m + 48, m + 56); }},
+    matrix_info{"motor", "screw", "screw", 6, 6, [](const float* a, float* m) { detail::matrix_motor_screw(a, m + 0, m + 6, m + 12, m + 18, m + 24, m + 30); }},
 };
 
 // Not generated (6):

@@ -53,8 +53,8 @@ count() {
     }
     END { if (n) printf "%d / %d / %d / %d", n, a, s, c; else printf "—" }'
 }
-row() {  # operation, function suffix
-  echo "| $1 | $(count "kb_klein_$2") | $(count "kb_cgagen_$2") |"
+row() {  # operation, function suffix (klein's, and cgagen's where it differs)
+  echo "| $1 | $(count "kb_klein_$2") | $(count "kb_cgagen_${3:-$2}") |"
 }
 
 model=$(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | head -1)
@@ -86,7 +86,7 @@ klein_rev=$(git -C "$klein" rev-parse --short HEAD 2>/dev/null ||
   row "motor(point)" sandwich_motor_point
   row "motor(line)" sandwich_motor_line
   row "motor(plane)" sandwich_motor_plane
-  row "motor -> mat3x4" motor_to_mat3x4
+  row "motor -> mat3x4" motor_to_mat3x4 motor_to_matrix
   row "exp(line)" exp_line
   row "log(motor)" log_motor
 } | tee "$BUILD_DIR/klein-bench.md"

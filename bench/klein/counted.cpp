@@ -20,6 +20,9 @@ void kb_cgagen_sandwich_motor_plane(const pga3::motor* m, const pga3::plane* x, 
 }
 
 void kb_klein_motor_to_mat3x4(const kln::motor* m, kln::mat3x4* r) { *r = m->as_mat3x4(); }
+void kb_cgagen_motor_to_matrix(const pga3::motor* m, pga3::matrix_t<float, pga3::point_t, pga3::point_t>* r) {
+  *r = pga3::matrix(*m, pga3::of<pga3::point_t>);
+}
 
 void kb_klein_exp_line(const kln::line* l, kln::motor* r) { *r = kln::exp(*l); }
 void kb_cgagen_exp_line(const pga3::line* l, pga3::motor* r) { *r = pga3::exp(*l); }

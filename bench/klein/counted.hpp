@@ -18,6 +18,7 @@ KB_COUNTED void kb_cgagen_sandwich_motor_line(const pga3::motor* m, const pga3::
 KB_COUNTED void kb_klein_sandwich_motor_plane(const kln::motor* m, const kln::plane* x, kln::plane* r);
 KB_COUNTED void kb_cgagen_sandwich_motor_plane(const pga3::motor* m, const pga3::plane* x, pga3::plane* r);
 KB_COUNTED void kb_klein_motor_to_mat3x4(const kln::motor* m, kln::mat3x4* r);
+KB_COUNTED void kb_cgagen_motor_to_matrix(const pga3::motor* m, pga3::matrix_t<float, pga3::point_t, pga3::point_t>* r);
 KB_COUNTED void kb_klein_exp_line(const kln::line* l, kln::motor* r);
 KB_COUNTED void kb_cgagen_exp_line(const pga3::line* l, pga3::motor* r);
 KB_COUNTED void kb_klein_log_motor(const kln::motor* m, kln::line* r);

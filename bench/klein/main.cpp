@@ -291,8 +291,8 @@ int check(const Inputs& in) {
                kb_cgagen_sandwich_motor_line);
   check_binary(c, "sandwich(motor, plane)", in.motors, in.planes, kb_klein_sandwich_motor_plane,
                kb_cgagen_sandwich_motor_plane);
-  // klein's matrix has no generated counterpart; it is checked to move points as the generated sandwich does,
-  // so that its row times the same motion.
+  // The matrices differ in layout (klein's acts on x y z 1, the generated one on the point's blade
+  // coefficients): each is checked by the points it moves.
   c.run("motor -> mat3x4 (applied)", n,
         [&](std::size_t i) {
           kln::mat3x4 m;
@@ -306,7 +306,9 @@ int check(const Inputs& in) {
         [&](std::size_t i) {
           const pga3::point p = in.points.p[i];
           const pga3::point unit{{p.v[0] / p.v[3], p.v[1] / p.v[3], p.v[2] / p.v[3], 1.f}};
-          return pga3::sandwich(in.motors.p[i], unit);
+          pga3::matrix_t<float, pga3::point_t, pga3::point_t> m;
+          kb_cgagen_motor_to_matrix(&in.motors.p[i], &m);
+          return m(unit);
         },
         [&](std::size_t i) { return show(in.motors.p[i]) + " | " + show(in.points.p[i]); });
   c.run("exp(line)", n,
@@ -361,14 +363,24 @@ void array_loop(benchmark::State& s, const std::vector<A>& a, const std::vector<
   }
 }
 
-// klein's mat3x4 has no value chain (the matrix is not a motor): the next motor's index depends on the previous
-// matrix instead (a comparison that never holds), so each conversion starts when the previous one ends.
+// A matrix has no value chain (it is not a motor): the next motor's index depends on the previous matrix
+// instead (a comparison of its last column's first entry that never holds), so each conversion starts when the
+// previous one ends.
 void chain_mat3x4(benchmark::State& s, const std::vector<kln::motor>& ring) {
   kln::mat3x4 m = ring[0].as_mat3x4();
   std::size_t i = 0;
   for (auto _ : s) {
     const std::size_t j = (i++ + (_mm_cvtss_f32(m.cols[3]) > 1e30f)) & (kRing - 1);
     m = ring[j].as_mat3x4();
+  }
+  benchmark::DoNotOptimize(m);
+}
+void chain_matrix(benchmark::State& s, const std::vector<pga3::motor>& ring) {
+  auto m = pga3::matrix(ring[0], pga3::of<pga3::point_t>);
+  std::size_t i = 0;
+  for (auto _ : s) {
+    const std::size_t j = (i++ + (m.m[3].v[0] > 1e30f)) & (kRing - 1);
+    m = pga3::matrix(ring[j], pga3::of<pga3::point_t>);
   }
   benchmark::DoNotOptimize(m);
 }
@@ -398,6 +410,7 @@ constexpr auto cgagen_log = [](const pga3::motor& m, const pga3::motor&) { retur
 constexpr auto klein_exp_log = [](const kln::line& l, const kln::line&) { return kln::log(kln::exp(l)); };
 constexpr auto cgagen_exp_log = [](const pga3::line& l, const pga3::line&) { return pga3::log(pga3::exp(l)); };
 constexpr auto klein_mat = [](const kln::motor& m, const kln::motor&) { return m.as_mat3x4(); };
+constexpr auto cgagen_mat = [](const pga3::motor& m, const pga3::motor&) { return pga3::matrix(m, pga3::of<pga3::point_t>); };
 
 // The four figures of a binary operation on sets a (the chained argument's first value, and the loop's first
 // argument) and b.
@@ -451,8 +464,10 @@ std::vector<Row> rows(const Inputs& in) {
                    benchmark::ClobberMemory();
                  }
                }});
-  r.push_back({"motor -> mat3x4", "", "not in the library", [p](auto& s) { chain_mat3x4(s, p->motors.k); },
-               nullptr, [p](auto& s) { loop(s, p->motors.k, p->motors.k, klein_mat); }, nullptr});
+  r.push_back({"motor -> mat3x4", "matrix(motor, point)", "", [p](auto& s) { chain_mat3x4(s, p->motors.k); },
+               [p](auto& s) { chain_matrix(s, p->motors.p); },
+               [p](auto& s) { loop(s, p->motors.k, p->motors.k, klein_mat); },
+               [p](auto& s) { loop(s, p->motors.p, p->motors.p, cgagen_mat); }});
   r.push_back({"log(exp(line)), chained", "", "",
                [p](auto& s) { chain(s, p->bivectors.k[0], p->bivectors.k, klein_exp_log); },
                [p](auto& s) { chain(s, p->bivectors.p[0], p->bivectors.p, cgagen_exp_log); }, nullptr, nullptr});

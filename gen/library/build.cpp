@@ -50,19 +50,49 @@ bool negative_norm(const Type& t, const algebra::Algebra& alg) {
 
 }  // namespace
 
+namespace {
+
+// The sandwich's rules for a versor a of type t: a b ~a with `#pragma normalized a` (a ~a = 1), or -a b ~a
+// for a type whose <a ~a>_0 is never positive (normalized to -1). Returns the pragma lines and the wrapper of
+// the product's text.
+std::pair<std::string, std::string> sandwich_rule(const Type& t, const algebra::Algebra& alg) {
+  if (negative_norm(t, alg)) return {"", "-(%)"};
+  return {"#pragma normalized a\n", "%"};
+}
+
+std::string wrap(const std::string& pattern, const std::string& text) {
+  const size_t at = pattern.find('%');
+  return pattern.substr(0, at) + text + pattern.substr(at + 1);
+}
+
+// " grade(m, g1) + grade(m, g2) ..." over the grades of type t's blades.
+std::string grades_text(const std::string& m, const Type& t, const algebra::Algebra& alg) {
+  const std::vector<int> g = grades_of(alg, t.blades);
+  std::string s;
+  for (size_t i = 0; i < g.size(); ++i) s += std::string(i ? " +" : "") + " grade(" + m + ", " + std::to_string(g[i]) + ")";
+  return s;
+}
+
+}  // namespace
+
 std::string operation_script(const Operation& op, const Type& a, const Type* b, const algebra::Algebra& alg) {
   std::string s = "#pragma input a" + blade_words(alg, a.blades) + "\n";
   if (b) s += "#pragma input b" + blade_words(alg, b->blades) + "\n";
   if (!op.sandwich) return s + "?r = " + op.expression + ";\n";
-  // Versor application keeps grades: the result is the grades of b's type, of a b a^-1 for a normalized a:
-  // a b ~a with a ~a = 1, or -a b ~a for a type whose <a ~a>_0 is never positive (normalized to -1).
-  if (negative_norm(a, alg))
-    s += "m = -(" + std::string(op.expression) + ");\n?r =";
-  else
-    s += "#pragma normalized a\nm = " + std::string(op.expression) + ";\n?r =";
-  const std::vector<int> g = grades_of(alg, b->blades);
-  for (size_t i = 0; i < g.size(); ++i) s += std::string(i ? " +" : "") + " grade(m, " + std::to_string(g[i]) + ")";
-  return s + ";\n";
+  // Versor application keeps grades: the result is the grades of b's type, of a b a^-1 for a normalized a.
+  const auto [pragma, pattern] = sandwich_rule(a, alg);
+  return s + pragma + "m = " + wrap(pattern, op.expression) + ";\n?r =" + grades_text("m", *b, alg) + ";\n";
+}
+
+std::string matrix_script(const Type& a, const Type& b, const algebra::Algebra& alg) {
+  const auto [pragma, pattern] = sandwich_rule(a, alg);
+  std::string s = "#pragma input a" + blade_words(alg, a.blades) + "\n" + pragma;
+  for (size_t j = 0; j < b.blades.size(); ++j) {
+    const std::string m = "m" + std::to_string(j);
+    const std::string blade = b.blades[j] == 0 ? "1" : alg.blade_name(b.blades[j]);
+    s += m + " = " + wrap(pattern, "a * (" + blade + ") * ~a") + ";\n?c" + std::to_string(j) + " =" + grades_text(m, b, alg) + ";\n";
+  }
+  return s;
 }
 
 size_t result_type(Library& lib, const std::vector<algebra::BladeIndex>& support) {
@@ -134,6 +164,19 @@ Library build(const Spec& spec, opt::Level level) {
           lib.skipped.push_back({&op, a, b, e.what()});
         }
       }
+  }
+  for (const Function& f : lib.functions) {
+    const Type& ta = lib.types[f.a];
+    if (!f.op->sandwich || std::find(ta.blades.begin(), ta.blades.end(), 0) == ta.blades.end()) continue;
+    const std::string name = "matrix_" + ta.name + "_" + lib.types[f.b].name;
+    symbolic::NodeCacheScope caches;
+    front::SourceFile file(name + ".clu", matrix_script(ta, lib.types[f.b], *spec.algebra));
+    Kernel kernel = expand(front::parse(file), name, spec.algebra);
+    for (KernelOutput& out : kernel.outputs) {  // every column in the sandwich's result type
+      out.blades = lib.types[f.result].blades;
+      out.from_pragma = true;
+    }
+    lib.matrices.push_back({f.a, f.b, f.result, opt::optimize(kernel, level)});
   }
   return lib;
 }

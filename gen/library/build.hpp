@@ -28,6 +28,15 @@ struct Skipped {
   std::string reason;
 };
 
+// The matrix of a versor's sandwich on a type: the kernel of a alone whose output cJ is sandwich(a, B_J) for
+// B_J the J-th blade of type b, in the sandwich's result type, so that sandwich(a, x) = sum_J x_J cJ (a
+// motor's 3x4 or 4x4 matrix on points or planes, made once for many elements). For every versor type with the
+// scalar blade (rotors, translators, motors) and every type.
+struct Matrix {
+  size_t a = 0, b = 0, result = 0;  // the versor's type, the type it moves, and the sandwich's result type
+  opt::Program program;             // named matrix_A_B, outputs c0 .. c(n-1) for b's n blades
+};
+
 struct Library {
   std::string name;
   std::string algebra;                 // as the spec spells it
@@ -36,6 +45,7 @@ struct Library {
   std::vector<Type> types;             // "scalar" first, then the spec's, then the generated ones
   std::vector<Function> functions;     // operations in table order; per operation, types in order
   std::vector<Skipped> skipped;
+  std::vector<Matrix> matrices;        // per sandwich(a, b) of a type a with the scalar blade, in that order
   size_t declared = 0;                 // types[0 .. declared) are the scalar and the spec's types
 };
 
@@ -47,6 +57,9 @@ size_t result_type(Library& lib, const std::vector<algebra::BladeIndex>& support
 // Builds every kernel at `level`. Throws only for faults of the generator itself; an operation a type does not
 // have is a Skipped entry.
 Library build(const Spec& spec, opt::Level level);
+
+// The script of matrix(a, b): n outputs, the sandwiches of b's blades, under the sandwich's rules.
+std::string matrix_script(const Type& a, const Type& b, const algebra::Algebra& alg);
 
 // The script of one operation (what build() expands), for `cgagen --library` diagnostics and the docs.
 std::string operation_script(const Operation& op, const Type& a, const Type* b, const algebra::Algebra& alg);

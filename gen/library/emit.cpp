@@ -29,7 +29,7 @@ struct Templates {
 };
 
 // Every target has the required templates. A target with `lanes_kernel.in` gets the 4-wide float forms of
-// its bilinear kernels (library/lanes.hpp) as well.
+// its bilinear kernels (library/lanes.hpp) as well, and one with `matrix.in` the sandwiches' matrices.
 Templates load(const std::string& dir) {
   Templates t{dir, {}};
   auto read = [&](const char* name, bool required) {
@@ -45,6 +45,8 @@ Templates load(const std::string& dir) {
   for (const char* name : {"file", "type", "unary", "binary", "unary_operator", "binary_operator", "unary_registry", "binary_registry", "skipped", "alias", "type_registry"})
     read(name, true);
   read("lanes_kernel", false);
+  read("matrix", false);  // with matrix_registry: the sandwiches' matrices (build.hpp's Matrix)
+  read("matrix_registry", false);
   return t;
 }
 
@@ -102,6 +104,9 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
 
   std::vector<const opt::Program*> programs;
   for (const Function& f : lib.functions) programs.push_back(&f.program);
+  const bool matrices = t.has("matrix") && t.has("matrix_registry");
+  if (matrices)
+    for (const Matrix& m : lib.matrices) programs.push_back(&m.program);
   const std::string kernels = emit::emit_functions(programs, options);
 
   std::string types, type_registry;
@@ -169,6 +174,26 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     if (*f.op->symbol) functions += fill(kind + "_operator", v);
     registry += fill(kind + "_registry", v);
   }
+  std::string matrix_functions, matrix_registry;
+  for (const Matrix& m : matrices ? lib.matrices : std::vector<Matrix>{}) {
+    const size_t cols = lib.types[m.b].blades.size(), rows = lib.types[m.result].blades.size();
+    std::string columns, flat;
+    for (size_t j = 0; j < cols; ++j) {
+      columns += std::string(j ? ", " : "") + "r.m[" + std::to_string(j) + "].v";
+      flat += std::string(j ? ", " : "") + "m + " + std::to_string(j * rows);
+    }
+    const std::map<std::string, std::string> v = {{"library", lib.name},
+                                                  {"kernel", emit::spell(sx, m.program.name)},
+                                                  {"a", type_name(m.a)},
+                                                  {"b", type_name(m.b)},
+                                                  {"result", type_name(m.result)},
+                                                  {"cols", std::to_string(cols)},
+                                                  {"rows", std::to_string(rows)},
+                                                  {"columns", columns},
+                                                  {"flat_columns", flat}};
+    matrix_functions += fill("matrix", v);
+    matrix_registry += fill("matrix_registry", v);
+  }
   for (const Skipped& s : lib.skipped) {
     std::string reason = s.reason;
     for (char& c : reason)
@@ -192,6 +217,9 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
                        {"type_registry", type_registry},
                        {"functions", functions},
                        {"registry", registry},
+                       {"matrices", matrix_functions},
+                       {"matrix_registry", matrix_registry},
+                       {"matrix_count", std::to_string(matrices ? lib.matrices.size() : 0)},
                        {"skipped", skipped}});
 }
 

@@ -81,8 +81,11 @@ std::vector<float> random_values(std::mt19937& rng, size_t n, double s) {
   return v;
 }
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-void check_library(const std::string& algebra_name, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF]) {
+// With `matrices` (the C++ target's registry): each matrix(a, of<B>) against the oracle's sandwich, column by
+// column (M(b) = sum_j b_j m[j] for random b), on the same normalized versors.
+template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF, class... Matrices>
+void check_library(const std::string& algebra_name, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF],
+                   const Matrices&... matrices) {
   const og::Algebra alg = oracle_algebra(algebra_name);
   std::map<std::string, TypeView> tv;
   for (const auto& t : types) {
@@ -215,15 +218,53 @@ void check_library(const std::string& algebra_name, const TypeInfo (&types)[NT],
                     << " compared with the oracle; no versor operand of the type to draw for:" << list);
   CHECK(checked == static_cast<int>(NF));
   CHECK(not_run.size() < NF / 10);
+  if constexpr (sizeof...(Matrices) == 1) {
+    size_t compared = 0;
+    for (const auto& m : (matrices, ...)) {
+      const TypeView &ta = tv.at(std::string(m.a)), &tb = tv.at(std::string(m.b)), &tr = tv.at(std::string(m.result));
+      INFO(algebra_name << ": matrix(" << m.a << ", of<" << m.b << ">) -> " << m.result);
+      REQUIRE(m.cols == tb.blades.size());
+      REQUIRE(m.rows == tr.blades.size());
+      const std::vector<float> a = versor(ta);
+      if (a.empty()) continue;
+      std::vector<float> cols(m.cols * m.rows, std::nanf(""));
+      m.columns(a.data(), cols.data());
+      const og::MV A = oracle_of(alg, ta, a);
+      const og::MV inv = og::scaled(og::reverse(A), 1.0 / og::reverse_norm_squared(alg, A));
+      for (int draw = 0; draw < 3; ++draw) {
+        const std::vector<float> b = random_values(rng, m.cols, 1.0);
+        std::vector<float> r(m.rows, 0.0f);
+        for (size_t j = 0; j < m.cols; ++j)
+          for (size_t k = 0; k < m.rows; ++k) r[k] += b[j] * cols[j * m.rows + k];
+        const og::MV full = og::product(alg, og::product(alg, A, oracle_of(alg, tb, b), og::Op::Geometric), inv, og::Op::Geometric);
+        og::MV expect;
+        for (int k : grades(alg, tb)) expect = og::sum(expect, og::grade(full, k));
+        const Named want = from_oracle(alg, og::clean(expect, 1e-12)), got = named_of(tr, r);
+        CHECK(max_diff(got, want) <= 1e-4 * (1 + max_abs(want)));
+      }
+      ++compared;
+    }
+    WARN(algebra_name << ": " << (matrices, ...).size() << " matrices, " << compared << " compared with the oracle");
+    CHECK(compared == (matrices, ...).size());
+  }
 }
 
 }  // namespace
 
-TEST_CASE("library pga3: every function agrees with the oracle") { check_library(std::string(pga3::algebra), pga3::types, pga3::functions); }
-TEST_CASE("library cga3: every function agrees with the oracle") { check_library(std::string(cga3::algebra), cga3::types, cga3::functions); }
-TEST_CASE("library e3: every function agrees with the oracle") { check_library(std::string(e3::algebra), e3::types, e3::functions); }
+#ifdef CGA_LIBRARY_CUDA  // the sandwiches' matrices are the C++ target's
+#define CGA_MATRICES(lib)
+#else
+#define CGA_MATRICES(lib) , lib::matrices
+#endif
+TEST_CASE("library pga3: every function agrees with the oracle") {
+  check_library(std::string(pga3::algebra), pga3::types, pga3::functions CGA_MATRICES(pga3));
+}
+TEST_CASE("library cga3: every function agrees with the oracle") {
+  check_library(std::string(cga3::algebra), cga3::types, cga3::functions CGA_MATRICES(cga3));
+}
+TEST_CASE("library e3: every function agrees with the oracle") { check_library(std::string(e3::algebra), e3::types, e3::functions CGA_MATRICES(e3)); }
 TEST_CASE("library cga_rigid (the runtime's): every function agrees with the oracle") {
-  check_library(std::string(cga_rigid::algebra), cga_rigid::types, cga_rigid::functions);
+  check_library(std::string(cga_rigid::algebra), cga_rigid::types, cga_rigid::functions CGA_MATRICES(cga_rigid));
 }
 
 #ifndef CGA_LIBRARY_CUDA
