@@ -4964,7 +4964,10 @@ inline screw_t<T> log(const motor_t<T>& a) {
 template <class T>
 inline matrix_t<T, motor_t, motor_t> matrix(const motor_t<T>& a, of_t<motor_t>) {
   matrix_t<T, motor_t, motor_t> r;
-  detail::matrix_motor_motor(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v, r.m[6].v, r.m[7].v);
+  if constexpr (std::is_same_v<T, float>)
+    detail::matrix_motor_motor(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v, r.m[6].v, r.m[7].v);
+  else
+    detail::matrix_motor_motor(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v, r.m[6].v, r.m[7].v);
   return r;
 }
 // The matrix of sandwich(a, b) for a normalized motor a on screws: column j is a applied to screw's j-th
@@ -4972,7 +4975,10 @@ inline matrix_t<T, motor_t, motor_t> matrix(const motor_t<T>& a, of_t<motor_t>) 
 template <class T>
 inline matrix_t<T, screw_t, screw_t> matrix(const motor_t<T>& a, of_t<screw_t>) {
   matrix_t<T, screw_t, screw_t> r;
-  detail::matrix_motor_screw(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v);
+  if constexpr (std::is_same_v<T, float>)
+    detail::matrix_motor_screw(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v);
+  else
+    detail::matrix_motor_screw(a.v, r.m[0].v, r.m[1].v, r.m[2].v, r.m[3].v, r.m[4].v, r.m[5].v);
   return r;
 }
 

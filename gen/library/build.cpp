@@ -165,10 +165,12 @@ Library build(const Spec& spec, opt::Level level) {
         }
       }
   }
-  for (const Function& f : lib.functions) {
+  for (size_t i = 0; i < lib.functions.size(); ++i) {
+    const Function& f = lib.functions[i];
     const Type& ta = lib.types[f.a];
     if (!f.op->sandwich || std::find(ta.blades.begin(), ta.blades.end(), 0) == ta.blades.end()) continue;
-    const std::string name = "matrix_" + ta.name + "_" + lib.types[f.b].name;
+    std::string name = "matrix_" + ta.name + "_" + lib.types[f.b].name;
+    for (int k = 2; !kernel_names.insert(name).second; ++k) name += "_" + std::to_string(k);
     symbolic::NodeCacheScope caches;
     front::SourceFile file(name + ".clu", matrix_script(ta, lib.types[f.b], *spec.algebra));
     Kernel kernel = expand(front::parse(file), name, spec.algebra);
@@ -176,7 +178,7 @@ Library build(const Spec& spec, opt::Level level) {
       out.blades = lib.types[f.result].blades;
       out.from_pragma = true;
     }
-    lib.matrices.push_back({f.a, f.b, f.result, opt::optimize(kernel, level)});
+    lib.matrices.push_back({f.a, f.b, f.result, i, opt::optimize(kernel, level)});
   }
   return lib;
 }

@@ -34,6 +34,7 @@ struct Skipped {
 // scalar blade (rotors, translators, motors) and every type.
 struct Matrix {
   size_t a = 0, b = 0, result = 0;  // the versor's type, the type it moves, and the sandwich's result type
+  size_t sandwich = 0;              // the sandwich's index in Library::functions
   opt::Program program;             // named matrix_A_B, outputs c0 .. c(n-1) for b's n blades
 };
 

@@ -151,7 +151,11 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
         if (static_cast<long>(code->ops) >= scalar_ops && linear->out.size() > 4) code.reset();
       }
       if (code) {
-        lanes_kernels += fill("lanes_kernel", {{"library", lib.name}, {"kernel", float_kernel}, {"body", code->body}});
+        lanes_kernels += fill("lanes_kernel", {{"library", lib.name},
+                                               {"kernel", float_kernel},
+                                               {"params", "const float* a, const float* b, float* r"},
+                                               {"args", "a, b, r"},
+                                               {"body", code->body}});
         float_kernel = "x4::" + float_kernel;
       }
     }
@@ -177,13 +181,28 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
   std::string matrix_functions, matrix_registry;
   for (const Matrix& m : matrices ? lib.matrices : std::vector<Matrix>{}) {
     const size_t cols = lib.types[m.b].blades.size(), rows = lib.types[m.result].blades.size();
-    std::string columns, flat;
+    std::string columns, flat, params = "const float* a", args = "a";
     for (size_t j = 0; j < cols; ++j) {
       columns += std::string(j ? ", " : "") + "r.m[" + std::to_string(j) + "].v";
       flat += std::string(j ? ", " : "") + "m + " + std::to_string(j * rows);
+      params += ", float* c" + std::to_string(j);
+      args += ", c" + std::to_string(j);
     }
+    // The float matrix one call makes: the 4-wide columns of the sandwich's form r = M(a) b (lanes.hpp)
+    // where the target has them and they take fewer operations than the scalar kernel, or M(a) is one vector
+    // a column (a point's or a plane's: four stores, not sixteen).
+    std::string float_kernel = emit::spell(sx, m.program.name);
+    if (t.has("lanes_kernel"))
+      if (const auto linear = linear_form(lib.functions[m.sandwich].program)) {
+        const LaneCode code = matrix_code(*linear);
+        if (static_cast<long>(code.ops) < opt::program_stats(m.program).total.total() || rows <= 4) {
+          lanes_kernels += fill("lanes_kernel", {{"library", lib.name}, {"kernel", float_kernel}, {"params", params}, {"args", args}, {"body", code.body}});
+          float_kernel = "x4::" + float_kernel;
+        }
+      }
     const std::map<std::string, std::string> v = {{"library", lib.name},
                                                   {"kernel", emit::spell(sx, m.program.name)},
+                                                  {"float_kernel", float_kernel},
                                                   {"a", type_name(m.a)},
                                                   {"b", type_name(m.b)},
                                                   {"result", type_name(m.result)},

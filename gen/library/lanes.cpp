@@ -103,15 +103,21 @@ class Builder {
   // A vector whose lane l is Σ over lanes[l] of t.c · x_{t.i} · y_{t.j}, as an expression (a balanced sum).
   // Each lane's terms are divided by the magnitude of its first coefficient, and the sum is scaled back by
   // one product at the end, so that ±2 (a sandwich's usual coefficient) costs a sign in a shuffle, not a
-  // product per column.
+  // product per column. A lane without a term of y (0, or a constant) is scaled by 0 instead: the columns may
+  // hold anything there, so a column that is a shuffle of y with signs in its other lanes needs no product.
   std::string vector(const std::array<std::vector<LaneTerm>, 4>& lanes, size_t used) {
     std::array<double, 4> kappa{1, 1, 1, 1};
-    for (size_t l = 0; l < used; ++l)
+    std::array<bool, 4> free{false, false, false, false};
+    for (size_t l = 0; l < used; ++l) {
+      free[l] = true;
       for (const LaneTerm& t : lanes[l])
         if (t.j != kNone) {
           kappa[l] = std::fabs(t.c);
+          free[l] = false;
           break;
         }
+      if (free[l]) kappa[l] = 0;
+    }
     std::map<size_t, std::array<std::vector<LaneTerm>, 4>> by_x;  // i -> lane -> terms with y, over kappa
     std::array<double, 4> constant{};                              // the terms without y
     bool any_constant = false;
@@ -131,7 +137,9 @@ class Builder {
       for (size_t d = 0; d < depth; ++d) {
         Operand op{std::vector<long>(4, -1), std::vector<double>(4, 0.0)};
         for (size_t l = 0; l < 4; ++l)
-          if (d < per_lane[l].size()) {
+          if (free[l]) {
+            op.first[l] = kFree;
+          } else if (d < per_lane[l].size()) {
             op.first[l] = static_cast<long>(per_lane[l][d].j);
             op.second[l] = per_lane[l][d].c;
           }
@@ -204,8 +212,10 @@ class Builder {
   void set_width(const std::string& v, size_t n) { widths_[v] = n; }
 
  private:
-  // y's coefficients lane by lane (-1: the lane has no term) times their coefficients.
+  // y's coefficients lane by lane (-1: the lane has no term, kFree: it may hold anything) times their
+  // coefficients.
   using Operand = std::pair<std::vector<long>, std::vector<double>>;
+  static constexpr long kFree = -2;
 
   std::string constant_vector(const std::array<double, 4>& c) const {
     std::string e = "v4{";
@@ -229,14 +239,14 @@ class Builder {
     for (size_t l = 0; l < 4 && identity; ++l) identity = op.first[l] < 0 || op.first[l] == first * 4 + static_cast<long>(l);
     bool unit = true, positive = true;
     for (size_t l = 0; l < 4; ++l) {
-      unit = unit && (l >= lanes || (op.first[l] >= 0 && std::fabs(op.second[l]) == 1.0));
+      unit = unit && (l >= lanes || op.first[l] == kFree || (op.first[l] >= 0 && std::fabs(op.second[l]) == 1.0));
       positive = positive && (op.first[l] < 0 || op.second[l] == 1.0);
     }
     // A two-vector shuffle: lane l takes index j % 4 of the first vector, or of the second (+4).
     auto shuffle = [&](auto from_second, const std::string& second_vector) {
       e = "perm<";
       for (size_t l = 0; l < 4; ++l) {
-        const long j = op.first[l] < 0 ? first * 4 : op.first[l];
+        const long j = op.first[l] == kFree ? first * 4 + static_cast<long>(l) : op.first[l] < 0 ? first * 4 : op.first[l];
         e += std::string(l ? ", " : "") + std::to_string(j % 4 + (from_second(l, j) ? 4 : 0));
       }
       e += ">(" + y_ + std::to_string(first) + ", " + second_vector + ")";
@@ -357,14 +367,12 @@ std::optional<LinearForm> linear_form(const opt::Program& program) {
 
 namespace {
 
-// The linear form's statements, each a's product a_p a_q broadcasting a_p (`low`: the lower index of the two)
-// or a_q.
-LaneCode linear_columns_code(const LinearForm& form, bool low) {
-  Builder b("a", form.na, "a", form.na);
-  b.set_width("b", form.nb);
-  // The vectors of M(a) made so far, each with its lanes' polynomials: one per pattern, as b_j and b_k can
-  // meet the same polynomials (a rotation's columns in a line's two halves).
-  std::vector<std::pair<std::array<std::vector<LaneTerm>, 4>, std::string>> columns;
+// The vectors m_gj of M(a) for each group g, made by `b` (identical ones once), with their names: per group,
+// per j with a term. `low`: each a's product a_p a_q broadcasts a_p (the lower index of the two), else a_q.
+std::vector<std::map<size_t, std::string>> matrix_columns(Builder& b, const LinearForm& form, bool low) {
+  // Each vector made so far with its lanes' polynomials: b_j and b_k can meet the same polynomials (a
+  // rotation's columns in a line's two halves).
+  std::vector<std::pair<std::array<std::vector<LaneTerm>, 4>, std::string>> made;
   auto same = [](const std::array<std::vector<LaneTerm>, 4>& u, const std::array<std::vector<LaneTerm>, 4>& v) {
     for (size_t l = 0; l < 4; ++l) {
       if (u[l].size() != v[l].size()) return false;
@@ -373,6 +381,7 @@ LaneCode linear_columns_code(const LinearForm& form, bool low) {
     }
     return true;
   };
+  std::vector<std::map<size_t, std::string>> groups;
   for (size_t g = 0; g < (form.out.size() + 3) / 4; ++g) {
     const size_t lanes = width(form.out.size(), g);
     std::map<size_t, std::array<std::vector<LaneTerm>, 4>> by_b;  // j -> lane -> the polynomial in a
@@ -383,21 +392,48 @@ LaneCode linear_columns_code(const LinearForm& form, bool low) {
         else if (!low) u = {t.q, t.p, t.c};
         by_b[t.j][l].push_back(u);
       }
-    std::vector<std::string> terms;
+    groups.emplace_back();
     for (const auto& [j, per_lane] : by_b) {
-      auto it = std::find_if(columns.begin(), columns.end(), [&](const auto& c) { return same(c.first, per_lane); });
-      if (it == columns.end()) {
-        const std::string name = "m" + std::to_string(columns.size());
+      auto it = std::find_if(made.begin(), made.end(), [&](const auto& c) { return same(c.first, per_lane); });
+      if (it == made.end()) {
+        const std::string name = "m" + std::to_string(made.size());
         b.statement("  const v4 " + name + " = " + b.vector(per_lane, lanes) + ";\n");
-        columns.emplace_back(per_lane, name);
-        it = columns.end() - 1;
+        made.emplace_back(per_lane, name);
+        it = made.end() - 1;
       }
-      terms.push_back(b.splat("b", j) + " * " + it->second);
+      groups.back()[j] = it->second;
+    }
+  }
+  return groups;
+}
+
+// The linear form's statements: r's group g is the sum of splat(b_j) * m_gj.
+LaneCode linear_columns_code(const LinearForm& form, bool low) {
+  Builder b("a", form.na, "a", form.na);
+  b.set_width("b", form.nb);
+  const auto groups = matrix_columns(b, form, low);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::string> terms;
+    for (const auto& [j, column] : groups[g]) {
+      terms.push_back(b.splat("b", j) + " * " + column);
       b.count(1);
     }
-    b.statement("  store<" + std::to_string(lanes) + ">(r + " + std::to_string(4 * g) + ", " + b.sum(terms) + ");\n");
+    b.statement("  store<" + std::to_string(width(form.out.size(), g)) + ">(r + " + std::to_string(4 * g) + ", " + b.sum(terms) + ");\n");
   }
   return b.code({"a", "b"});
+}
+
+// M(a)'s statements: each column stored.
+LaneCode matrix_columns_code(const LinearForm& form, bool low) {
+  Builder b("a", form.na, "a", form.na);
+  const auto groups = matrix_columns(b, form, low);
+  for (size_t j = 0; j < form.nb; ++j)
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const auto it = groups[g].find(j);
+      b.statement("  store<" + std::to_string(width(form.out.size(), g)) + ">(c" + std::to_string(j) + " + " + std::to_string(4 * g) + ", " +
+                  (it == groups[g].end() ? std::string("v4{}") : it->second) + ");\n");
+    }
+  return b.code({"a"});
 }
 
 }  // namespace
@@ -405,6 +441,12 @@ LaneCode linear_columns_code(const LinearForm& form, bool low) {
 LaneCode linear_code(const LinearForm& form) {
   LaneCode low = linear_columns_code(form, true);
   LaneCode high = linear_columns_code(form, false);
+  return high.ops < low.ops ? high : low;
+}
+
+LaneCode matrix_code(const LinearForm& form) {
+  LaneCode low = matrix_columns_code(form, true);
+  LaneCode high = matrix_columns_code(form, false);
   return high.ops < low.ops ? high : low;
 }
 

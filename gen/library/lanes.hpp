@@ -73,4 +73,8 @@ std::optional<LinearForm> linear_form(const opt::Program& program);
 
 LaneCode linear_code(const LinearForm& form);
 
+// The matrix of the same form, M(a) alone: column j (the vectors m_gj above) stored at c<j> + 4g, a column
+// without terms as zeros; the statements of a kernel (const float* a, float* c0, ..., float* c<nb-1>).
+LaneCode matrix_code(const LinearForm& form);
+
 }  // namespace cgagen::library

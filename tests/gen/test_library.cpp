@@ -213,6 +213,38 @@ TEST_CASE("library lanes: a sandwich as r = M(a) b, M's columns made from a alon
         std::string::npos);
 }
 
+TEST_CASE("library matrices: matrix(a, of<B>) for each versor with the scalar blade, its columns the sandwiches of B's blades") {
+  const library::Library lib = library::build(spec_of("library l\nalgebra 3d\ntype vector e1 e2 e3\n"
+                                                      "type rotor 1 e1^e2 e1^e3 e2^e3\n"),
+                                              opt::Level::O2);
+  // The rotor is the only type with the scalar blade: one matrix per type it moves.
+  REQUIRE(lib.matrices.size() == 2);
+  const library::Matrix& m = lib.matrices[0];
+  CHECK(lib.types[m.a].name == "rotor");
+  CHECK(lib.types[m.b].name == "vector");
+  CHECK(lib.types[m.result].name == "vector");
+  CHECK(lib.functions[m.sandwich].op->sandwich);
+  // Column j is the sandwich of the j-th blade, under the sandwich's promise a ~a = 1.
+  CHECK(library::matrix_script(lib.types[m.a], lib.types[m.b], *lib.algebra_ptr) ==
+        "#pragma input a 1 e1^e2 e1^e3 e2^e3\n#pragma normalized a\n"
+        "m0 = a * (e1) * ~a;\n?c0 = grade(m0, 1);\nm1 = a * (e2) * ~a;\n?c1 = grade(m1, 1);\n"
+        "m2 = a * (e3) * ~a;\n?c2 = grade(m2, 1);\n");
+  REQUIRE(m.program.outputs.size() == 3);
+  for (const auto& out : m.program.outputs) CHECK(out.slots.size() == 3);
+  // The 4-wide form stores the columns M(a) of the sandwich's linear form, b nowhere.
+  const auto form = library::linear_form(lib.functions[m.sandwich].program);
+  REQUIRE(form);
+  const library::LaneCode code = library::matrix_code(*form);
+  for (const char* store : {"store<3>(c0 + 0, m", "store<3>(c1 + 0, m", "store<3>(c2 + 0, m"}) {
+    INFO(store);
+    CHECK(code.body.find(store) != std::string::npos);
+  }
+  CHECK(code.body.find("b0") == std::string::npos);
+  const std::string text = library::emit_library(lib, {}, "l.gal");
+  CHECK(text.find("inline matrix_t<T, vector_t, vector_t> matrix(const rotor_t<T>& a, of_t<vector_t>)") != std::string::npos);
+  CHECK(text.find("detail::x4::matrix_rotor_vector(a.v, r.m[0].v, r.m[1].v, r.m[2].v);") != std::string::npos);
+}
+
 TEST_CASE("cli: --library writes OpenCL C, JavaScript, GLSL ES, HLSL and WGSL the same every run") {
   const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
   const std::vector<std::pair<std::string, std::string>> targets = {

@@ -11,7 +11,7 @@ __global__ void use_libraries(const pga3::motor* m, const pga3::point* p, pga3::
                               const cga_rigid::motor* g, cga_rigid::motor* h, float* n, int count) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= count) return;
-  q[i] = pga3::sandwich(m[i], p[i]);
+  q[i] = pga3::matrix(m[i], pga3::of<pga3::point_t>)(pga3::sandwich(m[i], p[i]));
   r[i] = e3::exp(0.5f * b[i]) * ~e3::normalize(e3::exp(b[i]));
   y[i] = cga3::sandwich(s[i], x[i]);
   h[i] = cga_rigid::exp(0.5f * cga_rigid::log(g[i]));
