@@ -45,7 +45,7 @@ Templates load(const std::string& dir) {
   for (const char* name : {"file", "type", "unary", "binary", "unary_operator", "binary_operator", "unary_registry", "binary_registry", "skipped", "alias", "type_registry"})
     read(name, true);
   read("lanes_kernel", false);
-  read("matrix", false);  // with matrix_registry: the sandwiches' matrices (build.hpp's Matrix)
+  read("matrix", false);  // the sandwiches' matrices (build.hpp's Matrix), listed by matrix_registry
   read("matrix_registry", false);
   return t;
 }
@@ -104,7 +104,7 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
 
   std::vector<const opt::Program*> programs;
   for (const Function& f : lib.functions) programs.push_back(&f.program);
-  const bool matrices = t.has("matrix") && t.has("matrix_registry");
+  const bool matrices = t.has("matrix");
   if (matrices)
     for (const Matrix& m : lib.matrices) programs.push_back(&m.program);
   const std::string kernels = emit::emit_functions(programs, options);
@@ -155,6 +155,8 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
                                                {"kernel", float_kernel},
                                                {"params", "const float* a, const float* b, float* r"},
                                                {"args", "a, b, r"},
+                                               {"ops", std::to_string(code->ops)},
+                                               {"scalar_ops", std::to_string(scalar_ops)},
                                                {"body", code->body}});
         float_kernel = "x4::" + float_kernel;
       }
@@ -195,8 +197,15 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     if (t.has("lanes_kernel"))
       if (const auto linear = linear_form(lib.functions[m.sandwich].program)) {
         const LaneCode code = matrix_code(*linear);
-        if (static_cast<long>(code.ops) < opt::program_stats(m.program).total.total() || rows <= 4) {
-          lanes_kernels += fill("lanes_kernel", {{"library", lib.name}, {"kernel", float_kernel}, {"params", params}, {"args", args}, {"body", code.body}});
+        const long scalar_ops = opt::program_stats(m.program).total.total();
+        if (static_cast<long>(code.ops) < scalar_ops || rows <= 4) {
+          lanes_kernels += fill("lanes_kernel", {{"library", lib.name},
+                                                 {"kernel", float_kernel},
+                                                 {"params", params},
+                                                 {"args", args},
+                                                 {"ops", std::to_string(code.ops)},
+                                                 {"scalar_ops", std::to_string(scalar_ops)},
+                                                 {"body", code.body}});
           float_kernel = "x4::" + float_kernel;
         }
       }
@@ -211,7 +220,7 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
                                                   {"columns", columns},
                                                   {"flat_columns", flat}};
     matrix_functions += fill("matrix", v);
-    matrix_registry += fill("matrix_registry", v);
+    if (t.has("matrix_registry")) matrix_registry += fill("matrix_registry", v);
   }
   for (const Skipped& s : lib.skipped) {
     std::string reason = s.reason;

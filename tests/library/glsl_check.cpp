@@ -5,7 +5,8 @@
 // C++ (which tests/library checks against the oracle). COUNT functions (default 150; 0: every function) are
 // drawn with a fixed seed; each becomes one row of a compute shader that builds its operands from the input
 // row, calls LIBRARY_OP(a, b) and writes the result's coefficients. The sample, the operands and the
-// comparison are check_sample.hpp's, as for the Rust and Python checks. Exit status 0 when every coefficient
+// comparison are check_sample.hpp's, as for the Rust and Python checks. In GLSL and GLSL ES every matrix of the
+// library too (LIBRARY_apply(LIBRARY_matrix_B(a), b) against the C++ scalar matrix kernel's M(b)). Exit status 0 when every coefficient
 // agrees within 1e-4 (1 + |value|).
 #include <algorithm>
 #include <cmath>
@@ -33,17 +34,46 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& glsl,
-          const std::string& runner, const std::string& work, size_t count, const std::vector<std::string>& mode) {
+// Every matrix of the C++ registry as a case "matrix": M(b) for M = matrix(a, of<B>), random a and b (the scalar
+// kernel's columns, which is what the other targets print; it is a polynomial in a, so any a will do).
+template <class TypeInfo, class Matrices, size_t NT>
+std::vector<library_check::Case> matrix_cases(const TypeInfo (&types)[NT], const Matrices& matrices) {
+  std::mt19937 rng(20261203u);
+  std::uniform_int_distribution<int> d(-256, 256);
+  std::vector<library_check::Case> out;
+  for (const auto& m : matrices) {
+    library_check::Case c;
+    c.name = "matrix", c.a = m.a, c.b = m.b, c.result = m.result, c.arity = 2;
+    c.nb = m.cols, c.nr = m.rows;
+    for (const auto& t : types)
+      if (t.name == m.a) c.na = t.size;
+    c.x.resize(c.na + c.nb);
+    for (float& v : c.x) v = static_cast<float>(d(rng) / 256.0);
+    std::vector<float> cols(m.cols * m.rows);
+    m.scalar_columns(c.x.data(), cols.data());
+    c.want.assign(c.nr, 0.0f);
+    for (size_t j = 0; j < m.cols; ++j)
+      for (size_t k = 0; k < m.rows; ++k) c.want[k] += c.x[c.na + j] * cols[j * m.rows + k];
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
+int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
+          const std::string& glsl, const std::string& runner, const std::string& work, size_t count,
+          const std::vector<std::string>& mode) {
   const std::string& kind = mode[0];
   const std::string library = read(glsl);
   // A type's name as the file spells it: HLSL's reserved words (line) get a trailing _.
   auto type = [&](const std::string& t) {
     return library.find("struct " + lib + "_" + t + " {") != std::string::npos ? lib + "_" + t : lib + "_" + t + "_";
   };
-  const std::vector<library_check::Case> picked = library_check::sample("glsl_check", types, fns, count, 1);
+  std::vector<library_check::Case> picked = library_check::sample("glsl_check", types, fns, count, 1);
   if (picked.empty()) return 1;
+  const size_t sampled = picked.size();
+  if (kind != "hlsl")  // the HLSL library has no matrices
+    for (auto& c : matrix_cases(types, matrices)) picked.push_back(std::move(c));
   size_t nin = 1, nout = 1;
   for (const auto& c : picked) nin = std::max(nin, c.na + c.nb), nout = std::max(nout, c.nr);
   // One row per function: its operands in the input row, its result in the output row.
@@ -58,7 +88,10 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
       c += "      " + type(f.b) + " b;\n";
       for (size_t k = 0; k < f.nb; ++k) c += "      b.v[" + std::to_string(k) + "] = X(" + std::to_string(f.na + k) + ");\n";
     }
-    c += "      " + type(f.result) + " r = " + lib + "_" + f.name + (f.arity == 2 ? "(a, b);\n" : "(a);\n");
+    if (f.name == "matrix")
+      c += "      " + type(f.result) + " r = " + lib + "_apply(" + lib + "_matrix_" + f.b + "(a), b);\n";
+    else
+      c += "      " + type(f.result) + " r = " + lib + "_" + f.name + (f.arity == 2 ? "(a, b);\n" : "(a);\n");
     c += "      for (int k = 0; k < " + std::to_string(f.nr) + "; ++k) Y(k) = r.v[k];\n";
     cases.push_back(c);
   }
@@ -122,8 +155,8 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
     forms.push_back({"GLSL"});
   }
   const int bad = library_check::compare("glsl_check", lib, picked, per_case, forms, 1);
-  std::printf("glsl_check: %s: %zu of %zu functions run in %s, %d coefficients off\n", lib.c_str(), picked.size(), NF,
-              kind == "glsl" ? "GLSL" : kind == "es" ? "GLSL ES" : "HLSL", bad);
+  std::printf("glsl_check: %s: %zu of %zu functions and %zu matrices run in %s, %d coefficients off\n", lib.c_str(),
+              sampled, NF, picked.size() - sampled, kind == "glsl" ? "GLSL" : kind == "es" ? "GLSL ES" : "HLSL", bad);
   return bad ? 1 : 0;
 }
 
@@ -142,11 +175,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: glsl_check LIBRARY GLSL GL_RUNNER WORK_DIR [COUNT [es | hlsl GLSLANG SPIRV_CROSS]]\n");
     return 2;
   }
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], count, mode);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], count, mode);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], count, mode);
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, pga3::matrices, argv[2], argv[3], argv[4], count, mode);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, cga3::matrices, argv[2], argv[3], argv[4], count, mode);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, e3::matrices, argv[2], argv[3], argv[4], count, mode);
   if (lib == "cga_rigid")
-    return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], count, mode);
+    return check(lib, cga_rigid::types, cga_rigid::functions, cga_rigid::matrices, argv[2], argv[3], argv[4], count, mode);
   std::fprintf(stderr, "glsl_check: unknown library %s\n", lib.c_str());
   return 2;
 }
