@@ -48,10 +48,6 @@ bool negative_norm(const Type& t, const algebra::Algebra& alg) {
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 // The sandwich's rules for a versor a of type t: a b ~a with `#pragma normalized a` (a ~a = 1), or -a b ~a
 // for a type whose <a ~a>_0 is never positive (normalized to -1). Returns the pragma lines and the wrapper of
 // the product's text.
