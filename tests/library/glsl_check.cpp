@@ -5,9 +5,9 @@
 // C++ (which tests/library checks against the oracle). COUNT functions (default 150; 0: every function) are
 // drawn with a fixed seed; each becomes one row of a compute shader that builds its operands from the input
 // row, calls LIBRARY_OP(a, b) and writes the result's coefficients. The sample, the operands and the
-// comparison are check_sample.hpp's, as for the Rust and Python checks. In GLSL and GLSL ES every matrix of the
-// library too (LIBRARY_apply(LIBRARY_matrix_B(a), b) against the C++ scalar matrix kernel's M(b)). Exit status 0 when every coefficient
-// agrees within 1e-4 (1 + |value|).
+// comparison are check_sample.hpp's, as for the Rust and Python checks. Every matrix of the library too
+// (LIBRARY_apply(LIBRARY_matrix_B(a), b) against the C++ scalar matrix kernel's M(b)). Exit status 0 when
+// every coefficient agrees within 1e-4 (1 + |value|).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -72,8 +72,7 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
   std::vector<library_check::Case> picked = library_check::sample("glsl_check", types, fns, count, 1);
   if (picked.empty()) return 1;
   const size_t sampled = picked.size();
-  if (kind != "hlsl")  // the HLSL library has no matrices
-    for (auto& c : matrix_cases(types, matrices)) picked.push_back(std::move(c));
+  for (auto& c : matrix_cases(types, matrices)) picked.push_back(std::move(c));
   size_t nin = 1, nout = 1;
   for (const auto& c : picked) nin = std::max(nin, c.na + c.nb), nout = std::max(nout, c.nr);
   // One row per function: its operands in the input row, its result in the output row.
@@ -89,7 +88,7 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
       for (size_t k = 0; k < f.nb; ++k) c += "      b.v[" + std::to_string(k) + "] = X(" + std::to_string(f.na + k) + ");\n";
     }
     if (f.name == "matrix")
-      c += "      " + type(f.result) + " r = " + lib + "_apply(" + lib + "_matrix_" + f.b + "(a), b);\n";
+      c += "      " + type(f.result) + " r = " + lib + "_apply(" + lib + "_matrix_" + type(f.b).substr(lib.size() + 1) + "(a), b);\n";
     else
       c += "      " + type(f.result) + " r = " + lib + "_" + f.name + (f.arity == 2 ? "(a, b);\n" : "(a);\n");
     c += "      for (int k = 0; k < " + std::to_string(f.nr) + "; ++k) Y(k) = r.v[k];\n";
