@@ -181,7 +181,8 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     registry += fill(kind + "_registry", v);
   }
   std::string matrix_functions, matrix_registry;
-  for (const Matrix& m : matrices ? lib.matrices : std::vector<Matrix>{}) {
+  for (const Matrix& m : lib.matrices) {
+    if (!matrices) break;
     const size_t cols = lib.types[m.b].blades.size(), rows = lib.types[m.result].blades.size();
     std::string columns, flat, params = "const float* a", args = "a";
     for (size_t j = 0; j < cols; ++j) {
