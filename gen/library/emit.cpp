@@ -47,6 +47,15 @@ Templates load(const std::string& dir) {
   read("lanes_kernel", false);
   read("matrix", false);  // the sandwiches' matrices (build.hpp's Matrix), listed by matrix_registry
   read("matrix_registry", false);
+  // matrix_column_NAME.in: one column's piece of a matrix, joined over the columns as {{column_NAME}}.
+  std::set<std::string> columns;  // sorted: the same templates read in the same order on every run
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string file = e.path().filename().string();
+    if (file.rfind("matrix_column_", 0) == 0 && file.size() > 3 && file.compare(file.size() - 3, 3, ".in") == 0)
+      columns.insert(file.substr(0, file.size() - 3));
+  }
+  for (const std::string& name : columns) read(name.c_str(), true);
   return t;
 }
 
@@ -184,9 +193,10 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
   for (const Matrix& m : lib.matrices) {
     if (!matrices) break;
     const size_t cols = lib.types[m.b].blades.size(), rows = lib.types[m.result].blades.size();
-    std::string columns, flat, params = "const float* a", args = "a";
+    std::string columns, names, flat, params = "const float* a", args = "a";
     for (size_t j = 0; j < cols; ++j) {
       columns += std::string(j ? ", " : "") + "r.m[" + std::to_string(j) + "].v";
+      names += std::string(j ? ", " : "") + "c" + std::to_string(j);
       flat += std::string(j ? ", " : "") + "m + " + std::to_string(j * rows);
       params += ", float* c" + std::to_string(j);
       args += ", c" + std::to_string(j);
@@ -210,16 +220,33 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
           float_kernel = "x4::" + float_kernel;
         }
       }
-    const std::map<std::string, std::string> v = {{"library", lib.name},
-                                                  {"kernel", emit::spell(sx, m.program.name)},
-                                                  {"float_kernel", float_kernel},
-                                                  {"a", type_name(m.a)},
-                                                  {"b", type_name(m.b)},
-                                                  {"result", type_name(m.result)},
-                                                  {"cols", std::to_string(cols)},
-                                                  {"rows", std::to_string(rows)},
-                                                  {"columns", columns},
-                                                  {"flat_columns", flat}};
+    std::map<std::string, std::string> v = {{"library", lib.name},
+                                            {"kernel", emit::spell(sx, m.program.name)},
+                                            {"float_kernel", float_kernel},
+                                            {"a", type_name(m.a)},
+                                            {"b", type_name(m.b)},
+                                            {"result", type_name(m.result)},
+                                            {"A", Type_name(m.a)},
+                                            {"B", Type_name(m.b)},
+                                            {"Result", Type_name(m.result)},
+                                            {"cols", std::to_string(cols)},
+                                            {"rows", std::to_string(rows)},
+                                            {"columns", columns},
+                                            {"column_names", names},
+                                            {"flat_columns", flat}};
+    // Each matrix_column_NAME template, filled per column (its j and the matrix's names) and joined: a list
+    // piece ends in ", ", which the last column drops.
+    for (const auto& [name, text] : t.text) {
+      if (name.rfind("matrix_column_", 0) != 0) continue;
+      std::string joined;
+      for (size_t j = 0; j < cols; ++j) {
+        std::map<std::string, std::string> column = v;
+        column["j"] = std::to_string(j);
+        joined += fill(name, column);
+      }
+      if (joined.size() >= 2 && joined.compare(joined.size() - 2, 2, ", ") == 0) joined.resize(joined.size() - 2);
+      v["column_" + name.substr(std::string("matrix_column_").size())] = joined;
+    }
     matrix_functions += fill("matrix", v);
     if (t.has("matrix_registry")) matrix_registry += fill("matrix_registry", v);
   }

@@ -95,6 +95,35 @@ std::vector<Case> sample(const std::string& tool, const TypeInfo (&types)[NT], c
   return cases;
 }
 
+// Every matrix of the C++ registry (LIBRARY::matrices) as a case "matrix" with `rows` rows: M(b) for M =
+// matrix(a, of<B>), random a and b, M(b) from the scalar matrix kernel's columns (the kernel the other targets
+// print; it is a polynomial in a, so any a will do).
+template <class TypeInfo, class Matrices, size_t NT>
+std::vector<Case> matrix_cases(const TypeInfo (&types)[NT], const Matrices& matrices, size_t rows) {
+  std::mt19937 rng(20261203u);
+  std::uniform_int_distribution<int> d(-256, 256);
+  std::vector<Case> out;
+  for (const auto& m : matrices) {
+    Case c;
+    c.name = "matrix", c.a = m.a, c.b = m.b, c.result = m.result, c.arity = 2;
+    c.nb = m.cols, c.nr = m.rows;
+    for (const auto& t : types)
+      if (t.name == m.a) c.na = t.size;
+    c.x.resize(rows * (c.na + c.nb));
+    for (float& v : c.x) v = static_cast<float>(d(rng) / 256.0);
+    c.want.assign(rows * c.nr, 0.0f);
+    std::vector<float> cols(m.cols * m.rows);
+    for (size_t row = 0; row < rows; ++row) {
+      const float* x = &c.x[row * (c.na + c.nb)];
+      m.scalar_columns(x, cols.data());
+      for (size_t j = 0; j < m.cols; ++j)
+        for (size_t k = 0; k < m.rows; ++k) c.want[row * c.nr + k] += x[c.na + j] * cols[j * m.rows + k];
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 // Compares `got` (per case, per row: `forms` results of nr values each, every form the same function called
 // another way) with the C++ values within 1e-4 (1 + |value|); prints the first mismatches, returns their count.
 inline int compare(const std::string& tool, const std::string& lib, const std::vector<Case>& cases,

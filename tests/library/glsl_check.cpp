@@ -34,31 +34,6 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-// Every matrix of the C++ registry as a case "matrix": M(b) for M = matrix(a, of<B>), random a and b (the scalar
-// kernel's columns, which is what the other targets print; it is a polynomial in a, so any a will do).
-template <class TypeInfo, class Matrices, size_t NT>
-std::vector<library_check::Case> matrix_cases(const TypeInfo (&types)[NT], const Matrices& matrices) {
-  std::mt19937 rng(20261203u);
-  std::uniform_int_distribution<int> d(-256, 256);
-  std::vector<library_check::Case> out;
-  for (const auto& m : matrices) {
-    library_check::Case c;
-    c.name = "matrix", c.a = m.a, c.b = m.b, c.result = m.result, c.arity = 2;
-    c.nb = m.cols, c.nr = m.rows;
-    for (const auto& t : types)
-      if (t.name == m.a) c.na = t.size;
-    c.x.resize(c.na + c.nb);
-    for (float& v : c.x) v = static_cast<float>(d(rng) / 256.0);
-    std::vector<float> cols(m.cols * m.rows);
-    m.scalar_columns(c.x.data(), cols.data());
-    c.want.assign(c.nr, 0.0f);
-    for (size_t j = 0; j < m.cols; ++j)
-      for (size_t k = 0; k < m.rows; ++k) c.want[k] += c.x[c.na + j] * cols[j * m.rows + k];
-    out.push_back(std::move(c));
-  }
-  return out;
-}
-
 template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
 int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
           const std::string& glsl, const std::string& runner, const std::string& work, size_t count,
@@ -72,7 +47,7 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
   std::vector<library_check::Case> picked = library_check::sample("glsl_check", types, fns, count, 1);
   if (picked.empty()) return 1;
   const size_t sampled = picked.size();
-  for (auto& c : matrix_cases(types, matrices)) picked.push_back(std::move(c));
+  for (auto& c : library_check::matrix_cases(types, matrices, 1)) picked.push_back(std::move(c));
   size_t nin = 1, nout = 1;
   for (const auto& c : picked) nin = std::max(nin, c.na + c.nb), nout = std::max(nout, c.nr);
   // One row per function: its operands in the input row, its result in the output row.

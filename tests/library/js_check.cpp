@@ -24,11 +24,14 @@ namespace {
 
 constexpr size_t kRows = 16;
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& mjs,
+template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
+int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
+          const std::string& mjs,
           const std::string& node, const std::string& runner, const std::string& work, size_t count) {
-  const std::vector<library_check::Case> cases = library_check::sample("js_check", types, fns, count, kRows);
+  std::vector<library_check::Case> cases = library_check::sample("js_check", types, fns, count, kRows);
   if (cases.empty()) return 1;
+  const size_t sampled = cases.size();
+  for (auto& c : library_check::matrix_cases(types, matrices, kRows)) cases.push_back(std::move(c));
   const std::string base = work + "/" + lib;
   {
     std::ofstream in(base + ".in");
@@ -75,9 +78,9 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
       const double w = cases[i].want[(k / (forms[i].size() * cases[i].nr)) * cases[i].nr + k % cases[i].nr];
       worst = std::max(worst, std::abs(got[i][k] - w) / (1 + std::abs(w)));
     }
-  std::printf("js_check: %s: %zu of %zu functions run in JavaScript (%zu rows each), %d values off, largest "
-              "difference %.3g (1 + |value|)\n",
-              lib.c_str(), cases.size(), NF, kRows, bad, worst);
+  std::printf("js_check: %s: %zu of %zu functions and %zu matrices run in JavaScript (%zu rows each), %d values "
+              "off, largest difference %.3g (1 + |value|)\n",
+              lib.c_str(), sampled, NF, cases.size() - sampled, kRows, bad, worst);
   return bad ? 1 : 0;
 }
 
@@ -90,11 +93,11 @@ int main(int argc, char** argv) {
   }
   const std::string lib = argv[1];
   const size_t count = argc > 6 ? std::strtoul(argv[6], nullptr, 10) : 150;
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], argv[5], count);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], argv[5], count);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], argv[5], count);
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, pga3::matrices, argv[2], argv[3], argv[4], argv[5], count);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, cga3::matrices, argv[2], argv[3], argv[4], argv[5], count);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, e3::matrices, argv[2], argv[3], argv[4], argv[5], count);
   if (lib == "cga_rigid")
-    return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], argv[5], count);
+    return check(lib, cga_rigid::types, cga_rigid::functions, cga_rigid::matrices, argv[2], argv[3], argv[4], argv[5], count);
   std::fprintf(stderr, "js_check: unknown library %s\n", lib.c_str());
   return 2;
 }

@@ -30,6 +30,8 @@ constexpr size_t kRows = 16;
 std::string wrapper(const std::string& lib, const library_check::Case& c, const std::string& name,
                     const std::string& real, const std::string& suffix) {
   const std::string fn = lib + "_" + c.name + "_" + c.a + (c.arity == 2 ? "_" + c.b : "") + suffix;
+  const std::string call = c.name == "matrix" ? lib + "_apply_" + c.a + "_" + c.b + suffix + "(" + fn + "(a), b);\n"
+                                              : fn + (c.arity == 2 ? "(a, b);\n" : "(a);\n");
   const size_t n = c.na + c.nb;
   std::ostringstream s;
   s << "__kernel void run_" << name << (suffix.empty() ? "_f32" : suffix) << "(__global const " << real
@@ -40,7 +42,7 @@ std::string wrapper(const std::string& lib, const library_check::Case& c, const 
     s << "  " << lib << "_" << c.b << suffix << " b;\n";
     s << "  for (int k = 0; k < " << c.nb << "; ++k) b.v[k] = in[i * " << n << " + " << c.na << " + k];\n";
   }
-  s << "  const " << lib << "_" << c.result << suffix << " r = " << fn << (c.arity == 2 ? "(a, b);\n" : "(a);\n");
+  s << "  const " << lib << "_" << c.result << suffix << " r = " << call;
   s << "  for (int k = 0; k < " << c.nr << "; ++k) out[i * " << c.nr << " + k] = r.v[k];\n}\n";
   return s.str();
 }
@@ -52,11 +54,14 @@ std::vector<double> read_values(const std::string& path) {
   return v;
 }
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& cl,
+template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
+int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
+          const std::string& cl,
           const std::string& host, const std::string& work, size_t count) {
-  const std::vector<library_check::Case> cases = library_check::sample("opencl_check", types, fns, count, kRows);
+  std::vector<library_check::Case> cases = library_check::sample("opencl_check", types, fns, count, kRows);
   if (cases.empty()) return 1;
+  const size_t sampled = cases.size();
+  for (auto& c : library_check::matrix_cases(types, matrices, kRows)) cases.push_back(std::move(c));
   const std::string base = work + "/" + lib;
   std::ostringstream program;
   program << std::ifstream(cl).rdbuf() << "\n// opencl_check's kernels\n";
@@ -105,9 +110,9 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
         }
   }
   const int bad = library_check::compare("opencl_check", lib, cases, got, forms, kRows);
-  std::printf("opencl_check: %s: %zu of %zu functions run in OpenCL C (%zu rows each, float and double), %d values "
-              "off, largest difference %.3g (1 + |value|)\n",
-              lib.c_str(), cases.size(), NF, kRows, bad, worst);
+  std::printf("opencl_check: %s: %zu of %zu functions and %zu matrices run in OpenCL C (%zu rows each, float and "
+              "double), %d values off, largest difference %.3g (1 + |value|)\n",
+              lib.c_str(), sampled, NF, cases.size() - sampled, kRows, bad, worst);
   return bad ? 1 : 0;
 }
 
@@ -120,10 +125,10 @@ int main(int argc, char** argv) {
   }
   const std::string lib = argv[1];
   const size_t count = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 150;
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "cga_rigid") return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], count);
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, pga3::matrices, argv[2], argv[3], argv[4], count);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, cga3::matrices, argv[2], argv[3], argv[4], count);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, e3::matrices, argv[2], argv[3], argv[4], count);
+  if (lib == "cga_rigid") return check(lib, cga_rigid::types, cga_rigid::functions, cga_rigid::matrices, argv[2], argv[3], argv[4], count);
   std::fprintf(stderr, "opencl_check: unknown library %s\n", lib.c_str());
   return 2;
 }

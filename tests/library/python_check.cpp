@@ -23,11 +23,14 @@ namespace {
 
 constexpr size_t kRows = 16;
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& py,
+template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
+int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
+          const std::string& py,
           const std::string& python, const std::string& runner, const std::string& work, size_t count) {
-  const std::vector<library_check::Case> cases = library_check::sample("python_check", types, fns, count, kRows);
+  std::vector<library_check::Case> cases = library_check::sample("python_check", types, fns, count, kRows);
   if (cases.empty()) return 1;
+  const size_t sampled = cases.size();
+  for (auto& c : library_check::matrix_cases(types, matrices, kRows)) cases.push_back(std::move(c));
   const std::string base = work + "/" + lib;
   {
     std::ofstream in(base + ".in");
@@ -69,8 +72,8 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
     }
   }
   const int bad = library_check::compare("python_check", lib, cases, got, forms, kRows);
-  std::printf("python_check: %s: %zu of %zu functions run in Python (%zu rows each), %d values off\n", lib.c_str(),
-              cases.size(), NF, kRows, bad);
+  std::printf("python_check: %s: %zu of %zu functions and %zu matrices run in Python (%zu rows each), %d values "
+              "off\n", lib.c_str(), sampled, NF, cases.size() - sampled, kRows, bad);
   return bad ? 1 : 0;
 }
 
@@ -83,11 +86,11 @@ int main(int argc, char** argv) {
   }
   const std::string lib = argv[1];
   const size_t count = argc > 6 ? std::strtoul(argv[6], nullptr, 10) : 150;
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], argv[5], count);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], argv[5], count);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], argv[5], count);
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, pga3::matrices, argv[2], argv[3], argv[4], argv[5], count);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, cga3::matrices, argv[2], argv[3], argv[4], argv[5], count);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, e3::matrices, argv[2], argv[3], argv[4], argv[5], count);
   if (lib == "cga_rigid")
-    return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], argv[5], count);
+    return check(lib, cga_rigid::types, cga_rigid::functions, cga_rigid::matrices, argv[2], argv[3], argv[4], argv[5], count);
   std::fprintf(stderr, "python_check: unknown library %s\n", lib.c_str());
   return 2;
 }

@@ -3,7 +3,7 @@ library (cgagen --library --target python) and writes their values to OUT.
 
 IN, per case: a line `case OP A B RESULT ROWS` (B is - for a unary operation), then ROWS lines of operand
 coefficients (a's, then b's). OUT, per case: a line `forms F1 F2 ...`, then per row the values of every form
-in that order. The forms: the module function OP(a, b) on all rows at once (float32 arrays of shape (N, ROWS)),
+in that order. The forms: the module function OP(a, b) (for OP `matrix`, matrix(a, B)(b)) on all rows at once (float32 arrays of shape (N, ROWS)),
 the method a.OP() of a unary operation, the operator where the library gives the operation one (also all rows
 at once), and the module function on each row alone in float64 (`single`: the unbatched path). A result of
 another class or dtype than the registry's fails the run.
@@ -46,7 +46,12 @@ def main():
         na = len(ta.blades)
         operands = [ta(x[:, :na].T)] + ([lib.TYPES[b](x[:, na:].T)] if b != "-" else [])
         what = f"{op}({a}{', ' + b if b != '-' else ''})"
-        forms, values = ["function"], [getattr(lib, op)(*operands)]
+        if op == "matrix":  # the matrix of a's sandwich on b's class, applied to b
+            def call(x, y):
+                return lib.matrix(x, type(y))(y)
+        else:
+            call = getattr(lib, op)
+        forms, values = ["function"], [call(*operands)]
         if len(operands) == 1:
             forms.append("method")
             values.append(getattr(operands[0], op)())
@@ -58,7 +63,7 @@ def main():
         out.append("forms " + " ".join(forms))
         for row in range(rows):
             alone = [type(o)(o.v[:, row].astype(np.float64)) for o in operands]
-            single = checked(getattr(lib, op)(*alone), tr, np.float64, what + " single").v
+            single = checked(call(*alone), tr, np.float64, what + " single").v
             row_values = [w[:, row] for w in values] + [single]
             out.append(" ".join(repr(float(c)) for w in row_values for c in w))
     open(sys.argv[3], "w").write("\n".join(out) + "\n")

@@ -44,6 +44,7 @@ std::string rust_operator(const std::string& op) {
 
 // The forms a case is called in, in the order the driver writes them.
 std::vector<std::string> forms(const library_check::Case& c) {
+  if (c.name == "matrix") return {"apply", "operator *"};
   std::vector<std::string> f = {"function"};
   if (c.arity == 1) f.push_back("method");
   if (!rust_operator(c.name).empty()) f.push_back("operator " + rust_operator(c.name));
@@ -58,6 +59,13 @@ std::string driver(const std::string& lib, const std::string& rs, const std::vec
     const std::string fn = lib + "::" + c.name + "_" + c.a + (c.arity == 2 ? "_" + c.b : "");
     src += "\nfn c" + std::to_string(i) + "(x: &[f32], y: &mut Vec<f32>) {\n";
     src += "    let a = " + lib + "::" + camel(c.a) + " { v: x[0.." + std::to_string(c.na) + "].try_into().unwrap() };\n";
+    if (c.name == "matrix") {  // the matrix of a's sandwich on b's type, applied to b
+      src += "    let b = " + lib + "::" + camel(c.b) + " { v: x[" + std::to_string(c.na) + ".." +
+             std::to_string(c.na + c.nb) + "].try_into().unwrap() };\n";
+      src += "    y.extend_from_slice(&" + fn + "(&a).apply(&b).v);\n";
+      src += "    y.extend_from_slice(&(" + fn + "(&a) * b).v);\n}\n";
+      continue;
+    }
     if (c.arity == 2) {
       src += "    let b = " + lib + "::" + camel(c.b) + " { v: x[" + std::to_string(c.na) + ".." +
              std::to_string(c.na + c.nb) + "].try_into().unwrap() };\n";
@@ -91,11 +99,14 @@ std::string driver(const std::string& lib, const std::string& rs, const std::vec
   return src;
 }
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& rs,
+template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
+int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
+          const std::string& rs,
           const std::string& rustc, const std::string& work, size_t count) {
-  const std::vector<library_check::Case> cases = library_check::sample("rust_check", types, fns, count, kRows);
+  std::vector<library_check::Case> cases = library_check::sample("rust_check", types, fns, count, kRows);
   if (cases.empty()) return 1;
+  const size_t sampled = cases.size();
+  for (auto& c : library_check::matrix_cases(types, matrices, kRows)) cases.push_back(std::move(c));
   const std::string base = work + "/" + lib;
   std::ofstream(base + "_check.rs") << driver(lib, rs, cases);
   {
@@ -140,8 +151,8 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
     }
   }
   const int bad = library_check::compare("rust_check", lib, cases, got, form, kRows);
-  std::printf("rust_check: %s: %zu of %zu functions run in Rust (%zu rows each), %d values off\n", lib.c_str(),
-              cases.size(), NF, kRows, bad);
+  std::printf("rust_check: %s: %zu of %zu functions and %zu matrices run in Rust (%zu rows each), %d values off\n",
+              lib.c_str(), sampled, NF, cases.size() - sampled, kRows, bad);
   return bad ? 1 : 0;
 }
 
@@ -154,10 +165,10 @@ int main(int argc, char** argv) {
   }
   const std::string lib = argv[1];
   const size_t count = argc > 5 ? std::strtoul(argv[5], nullptr, 10) : 150;
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], count);
-  if (lib == "cga_rigid") return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], count);
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, pga3::matrices, argv[2], argv[3], argv[4], count);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, cga3::matrices, argv[2], argv[3], argv[4], count);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, e3::matrices, argv[2], argv[3], argv[4], count);
+  if (lib == "cga_rigid") return check(lib, cga_rigid::types, cga_rigid::functions, cga_rigid::matrices, argv[2], argv[3], argv[4], count);
   std::fprintf(stderr, "rust_check: unknown library %s\n", lib.c_str());
   return 2;
 }

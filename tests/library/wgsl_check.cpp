@@ -103,8 +103,9 @@ std::string js_string(const std::string& s) {
   return out + "\"";
 }
 
-template <class TypeInfo, class FunctionInfo, size_t NT, size_t NF>
-int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const std::string& wgsl,
+template <class TypeInfo, class FunctionInfo, class Matrices, size_t NT, size_t NF>
+int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInfo (&fns)[NF], const Matrices& matrices,
+          const std::string& wgsl,
           const std::string& python, const std::string& targets_dir, const std::string& chromium,
           const std::string& work, size_t count) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -113,8 +114,10 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
   auto type = [&](const std::string& t) {
     return library.find("struct " + lib + "_" + t + " {") != std::string::npos ? lib + "_" + t : lib + "_" + t + "_";
   };
-  const std::vector<library_check::Case> picked = library_check::sample("wgsl_check", types, fns, count, kRows);
+  std::vector<library_check::Case> picked = library_check::sample("wgsl_check", types, fns, count, kRows);
   if (picked.empty()) return 1;
+  const size_t sampled = picked.size();
+  for (auto& c : library_check::matrix_cases(types, matrices, kRows)) picked.push_back(std::move(c));
   size_t nin = 1, nout = 1;
   for (const auto& c : picked) nin = std::max(nin, c.na + c.nb), nout = std::max(nout, c.nr);
   const std::string NIN = std::to_string(nin) + "u", NOUT = std::to_string(nout) + "u", R = std::to_string(kRows) + "u";
@@ -136,7 +139,10 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
       if (c.arity == 2)
         body += "      var b: " + type(c.b) + ";\n      for (var k = 0u; k < " + std::to_string(c.nb) +
                 "u; k++) { b.v[k] = cgagen_in[i + " + std::to_string(c.na) + "u + k]; }\n";
-      body += "      let r = " + lib + "_" + c.name + "_" + c.a + (c.arity == 2 ? "_" + c.b + "(a, b);\n" : "(a);\n");
+      if (c.name == "matrix")
+        body += "      let r = " + lib + "_apply_" + c.a + "_" + c.b + "(" + lib + "_matrix_" + c.a + "_" + c.b + "(a), b);\n";
+      else
+        body += "      let r = " + lib + "_" + c.name + "_" + c.a + (c.arity == 2 ? "_" + c.b + "(a, b);\n" : "(a);\n");
       body += "      for (var k = 0u; k < " + std::to_string(c.nr) + "u; k++) { cgagen_out[o + k] = r.v[k]; }\n    }\n";
     }
     const std::string shader =
@@ -191,8 +197,9 @@ int check(const std::string& lib, const TypeInfo (&types)[NT], const FunctionInf
   }
   const int bad = library_check::compare("wgsl_check", lib, picked, got, forms, kRows);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("wgsl_check: %s: %zu of %zu functions run in WGSL on %s (%zu shaders, page %s ms, %.1f s in all), %d "
-              "coefficients off\n", lib.c_str(), picked.size(), NF, device.c_str(), ids.size(), total.c_str(), wall, bad);
+  std::printf("wgsl_check: %s: %zu of %zu functions and %zu matrices run in WGSL on %s (%zu shaders, page %s ms, %.1f s "
+              "in all), %d coefficients off\n", lib.c_str(), sampled, NF, picked.size() - sampled, device.c_str(),
+              ids.size(), total.c_str(), wall, bad);
   return bad ? 1 : 0;
 }
 
@@ -207,11 +214,11 @@ int main(int argc, char** argv) {
   const size_t count = argc > 7 ? std::strtoul(argv[7], nullptr, 10) : 150;
   // CGA_TEST_CHROMIUM overrides the configured path, as in tests/targets.
   const std::string chromium = std::getenv("CGA_TEST_CHROMIUM") ? std::getenv("CGA_TEST_CHROMIUM") : argv[5];
-  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, argv[2], argv[3], argv[4], chromium, argv[6], count);
-  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, argv[2], argv[3], argv[4], chromium, argv[6], count);
-  if (lib == "e3") return check(lib, e3::types, e3::functions, argv[2], argv[3], argv[4], chromium, argv[6], count);
+  if (lib == "pga3") return check(lib, pga3::types, pga3::functions, pga3::matrices, argv[2], argv[3], argv[4], chromium, argv[6], count);
+  if (lib == "cga3") return check(lib, cga3::types, cga3::functions, cga3::matrices, argv[2], argv[3], argv[4], chromium, argv[6], count);
+  if (lib == "e3") return check(lib, e3::types, e3::functions, e3::matrices, argv[2], argv[3], argv[4], chromium, argv[6], count);
   if (lib == "cga_rigid")
-    return check(lib, cga_rigid::types, cga_rigid::functions, argv[2], argv[3], argv[4], chromium, argv[6], count);
+    return check(lib, cga_rigid::types, cga_rigid::functions, cga_rigid::matrices, argv[2], argv[3], argv[4], chromium, argv[6], count);
   std::fprintf(stderr, "wgsl_check: unknown library %s\n", lib.c_str());
   return 2;
 }
