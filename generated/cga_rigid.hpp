@@ -8,7 +8,8 @@
 // Operations (66 functions): for every type and ordered pair of types, each operation of the
 // library is one optimized kernel (detail::OP_A or detail::OP_A_B, float and double), wrapped as the function
 // OP(a) / OP(a, b) and, where one exists, an operator; a binary one also as OP(a*, b*, r*, n) over n pairs and
-// OP(a, b*, r*, n) for one a with n elements (a loop over many elements should call these). Its result is the
+// OP(a, b*, r*, n) for one a with n elements (a loop over many elements should call these; a costly kernel's
+// run blocks of elements through structure-of-arrays scratch, detail::staged_pairs). Its result is the
 // smallest declared type holding the blades it can have. An operation whose result is always 0, or that the
 // algebra does not have for a type, is not generated (listed at the end). C++ gives ^ | & lower precedence
 // than + - *: parenthesize them.
@@ -3684,6 +3685,59 @@ inline void gp_screw_screw(const float* a, const float* b, float* r) {
 inline void gp_screw_screw(const float* a, const float* b, float* r) { ::cga_rigid::detail::gp_screw_screw(a, b, r); }
 #endif
 }  // namespace x4
+
+// The array forms of a costly kernel (its staged form, below): blocks of kBlock elements are copied into
+// structure-of-arrays scratch, the scalar kernel runs across the block, which the compiler vectorizes with
+// one element per lane (work on a alone, for one a, done once), and the results are copied back. A direct
+// loop over the elements leaves the compiler coefficients interleaved by the types' sizes (6 for a line),
+// which it vectorizes poorly or not at all. The operands are arrays of T, NA, NB and NR to an element. A block
+// is 64 elements, fewer for large types, so that the scratch stays within about 8 KB (in L1).
+constexpr std::size_t block_of(std::size_t bytes) {
+  std::size_t b = 64;
+  while (b > 8 && b * bytes > 8192) b /= 2;
+  return b;
+}
+template <std::size_t NA, std::size_t NB, std::size_t NR, class T, class K>
+inline void staged_pairs(const T* a, const T* b, T* r, std::size_t n, K kernel) {
+  constexpr std::size_t kBlock = block_of((NA + NB + NR) * sizeof(T));
+  alignas(64) T as[NA][kBlock], bs[NB][kBlock], rs[NR][kBlock];
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t m = n - first < kBlock ? n - first : kBlock;
+    for (std::size_t k = 0; k < m; ++k) {
+      for (std::size_t c = 0; c < NA; ++c) as[c][k] = a[(first + k) * NA + c];
+      for (std::size_t c = 0; c < NB; ++c) bs[c][k] = b[(first + k) * NB + c];
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      T x[NA], y[NB], z[NR];
+      for (std::size_t c = 0; c < NA; ++c) x[c] = as[c][k];
+      for (std::size_t c = 0; c < NB; ++c) y[c] = bs[c][k];
+      kernel(x, y, z);
+      for (std::size_t c = 0; c < NR; ++c) rs[c][k] = z[c];
+    }
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t c = 0; c < NR; ++c) r[(first + k) * NR + c] = rs[c][k];
+  }
+}
+template <std::size_t NA, std::size_t NB, std::size_t NR, class T, class K>
+inline void staged_one_to_many(const T* a, const T* b, T* r, std::size_t n, K kernel) {
+  T x[NA];  // a local copy: no store to r can change it, so its work is hoisted out of the loop
+  for (std::size_t c = 0; c < NA; ++c) x[c] = a[c];
+  constexpr std::size_t kBlock = block_of((NB + NR) * sizeof(T));
+  alignas(64) T bs[NB][kBlock], rs[NR][kBlock];
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t m = n - first < kBlock ? n - first : kBlock;
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t c = 0; c < NB; ++c) bs[c][k] = b[(first + k) * NB + c];
+    for (std::size_t k = 0; k < m; ++k) {
+      T y[NB], z[NR];
+      for (std::size_t c = 0; c < NB; ++c) y[c] = bs[c][k];
+      kernel(x, y, z);
+      for (std::size_t c = 0; c < NR; ++c) rs[c][k] = z[c];
+    }
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t c = 0; c < NR; ++c) r[(first + k) * NR + c] = rs[c][k];
+  }
+}
 }  // namespace detail
 
 // The scalar blade: the result of norm, norm_sqr, scp and of products that can only be a scalar.
@@ -3799,16 +3853,25 @@ inline motor_t<T> gp(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 88 operations an element).
 template <class T>
 inline void gp(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::gp_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::gp_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 88 operations an element).
 template <class T>
 inline void gp(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const motor_t<T>& a, const motor_t<T>& b) { return gp(a, b); }
@@ -3823,16 +3886,25 @@ inline motor_t<T> gp(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 64 operations an element).
 template <class T>
 inline void gp(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::gp_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::gp_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 64 operations an element).
 template <class T>
 inline void gp(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const motor_t<T>& a, const screw_t<T>& b) { return gp(a, b); }
@@ -3847,16 +3919,25 @@ inline motor_t<T> gp(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 64 operations an element).
 template <class T>
 inline void gp(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::gp_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::gp_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 64 operations an element).
 template <class T>
 inline void gp(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const screw_t<T>& a, const motor_t<T>& b) { return gp(a, b); }
@@ -3871,16 +3952,25 @@ inline motor_t<T> gp(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 46 operations an element).
 template <class T>
 inline void gp(const screw_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::gp_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<6, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::gp_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 46 operations an element).
 template <class T>
 inline void gp(const screw_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<6, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::gp_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const screw_t<T>& a, const screw_t<T>& b) { return gp(a, b); }
@@ -3895,16 +3985,25 @@ inline motor_t<T> outer(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 34 operations an element).
 template <class T>
 inline void outer(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::outer_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::outer_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 34 operations an element).
 template <class T>
 inline void outer(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const motor_t<T>& a, const motor_t<T>& b) { return outer(a, b); }
@@ -3919,16 +4018,25 @@ inline motor_t<T> outer(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 17 operations an element).
 template <class T>
 inline void outer(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::outer_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::outer_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 17 operations an element).
 template <class T>
 inline void outer(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const motor_t<T>& a, const screw_t<T>& b) { return outer(a, b); }
@@ -3943,16 +4051,25 @@ inline motor_t<T> outer(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 17 operations an element).
 template <class T>
 inline void outer(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::outer_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::outer_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 17 operations an element).
 template <class T>
 inline void outer(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const screw_t<T>& a, const motor_t<T>& b) { return outer(a, b); }
@@ -3967,16 +4084,25 @@ inline motor_t<T> outer(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // outer over n pairs, r[k] = outer(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 11 operations an element).
 template <class T>
 inline void outer(const screw_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::outer_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::outer_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 11 operations an element).
 template <class T>
 inline void outer(const screw_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::outer_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const screw_t<T>& a, const screw_t<T>& b) { return outer(a, b); }
@@ -3991,16 +4117,25 @@ inline motor_t<T> inner(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 14 operations an element).
 template <class T>
 inline void inner(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::inner_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::inner_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 14 operations an element).
 template <class T>
 inline void inner(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const motor_t<T>& a, const motor_t<T>& b) { return inner(a, b); }
@@ -4015,16 +4150,25 @@ inline motor_t<T> inner(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 8 operations an element).
 template <class T>
 inline void inner(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::inner_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::inner_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 8 operations an element).
 template <class T>
 inline void inner(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const motor_t<T>& a, const screw_t<T>& b) { return inner(a, b); }
@@ -4039,16 +4183,25 @@ inline motor_t<T> inner(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 8 operations an element).
 template <class T>
 inline void inner(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::inner_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::inner_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 8 operations an element).
 template <class T>
 inline void inner(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const screw_t<T>& a, const motor_t<T>& b) { return inner(a, b); }
@@ -4063,16 +4216,25 @@ inline scalar_t<T> inner(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // inner over n pairs, r[k] = inner(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void inner(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::inner_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::inner_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void inner(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::inner_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
 }
 template <class T>
 inline scalar_t<T> operator|(const screw_t<T>& a, const screw_t<T>& b) { return inner(a, b); }
@@ -4087,16 +4249,25 @@ inline motor_t<T> dot(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 40 operations an element).
 template <class T>
 inline void dot(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::dot_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::dot_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (staged: 40 operations an element).
 template <class T>
 inline void dot(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -4109,16 +4280,25 @@ inline motor_t<T> dot(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 17 operations an element).
 template <class T>
 inline void dot(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::dot_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::dot_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (direct: 17 operations an element).
 template <class T>
 inline void dot(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -4131,16 +4311,25 @@ inline motor_t<T> dot(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 17 operations an element).
 template <class T>
 inline void dot(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::dot_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::dot_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (direct: 17 operations an element).
 template <class T>
 inline void dot(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -4153,16 +4342,25 @@ inline scalar_t<T> dot(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void dot(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::dot_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::dot_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void dot(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::dot_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
 }
 // left contraction
 template <class T>
@@ -4175,16 +4373,25 @@ inline motor_t<T> lcont(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 20 operations an element).
 template <class T>
 inline void lcont(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 20 operations an element).
 template <class T>
 inline void lcont(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
 }
 // left contraction
 template <class T>
@@ -4197,16 +4404,25 @@ inline motor_t<T> lcont(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 11 operations an element).
 template <class T>
 inline void lcont(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 11 operations an element).
 template <class T>
 inline void lcont(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
 }
 // left contraction
 template <class T>
@@ -4219,16 +4435,25 @@ inline motor_t<T> lcont(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 8 operations an element).
 template <class T>
 inline void lcont(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 8 operations an element).
 template <class T>
 inline void lcont(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
 }
 // left contraction
 template <class T>
@@ -4241,16 +4466,25 @@ inline scalar_t<T> lcont(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // lcont over n pairs, r[k] = lcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void lcont(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void lcont(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::lcont_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
 }
 // right contraction
 template <class T>
@@ -4263,16 +4497,25 @@ inline motor_t<T> rcont(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 20 operations an element).
 template <class T>
 inline void rcont(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 20 operations an element).
 template <class T>
 inline void rcont(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
 }
 // right contraction
 template <class T>
@@ -4285,16 +4528,25 @@ inline motor_t<T> rcont(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 8 operations an element).
 template <class T>
 inline void rcont(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 8 operations an element).
 template <class T>
 inline void rcont(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
 }
 // right contraction
 template <class T>
@@ -4307,16 +4559,25 @@ inline motor_t<T> rcont(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 11 operations an element).
 template <class T>
 inline void rcont(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 11 operations an element).
 template <class T>
 inline void rcont(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
 }
 // right contraction
 template <class T>
@@ -4329,16 +4590,25 @@ inline scalar_t<T> rcont(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // rcont over n pairs, r[k] = rcont(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void rcont(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void rcont(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::rcont_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4351,16 +4621,25 @@ inline scalar_t<T> scp(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 7 operations an element).
 template <class T>
 inline void scp(const motor_t<T>* a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::scp_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::scp_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 7 operations an element).
 template <class T>
 inline void scp(const motor_t<T>& a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4373,16 +4652,25 @@ inline scalar_t<T> scp(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void scp(const motor_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::scp_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::scp_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void scp(const motor_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4395,16 +4683,25 @@ inline scalar_t<T> scp(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void scp(const screw_t<T>* a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::scp_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::scp_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void scp(const screw_t<T>& a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4417,16 +4714,25 @@ inline scalar_t<T> scp(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // scp over n pairs, r[k] = scp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 5 operations an element).
 template <class T>
 inline void scp(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::scp_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 1>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::scp_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 5 operations an element).
 template <class T>
 inline void scp(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 1>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::scp_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4439,16 +4745,25 @@ inline screw_t<T> cp(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 30 operations an element).
 template <class T>
 inline void cp(const motor_t<T>* a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::cp_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::cp_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
 template <class T>
 inline void cp(const motor_t<T>& a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4461,16 +4776,25 @@ inline screw_t<T> cp(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 30 operations an element).
 template <class T>
 inline void cp(const motor_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::cp_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::cp_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
 template <class T>
 inline void cp(const motor_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4483,16 +4807,25 @@ inline screw_t<T> cp(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 30 operations an element).
 template <class T>
 inline void cp(const screw_t<T>* a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::cp_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::cp_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
 template <class T>
 inline void cp(const screw_t<T>& a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4505,16 +4838,25 @@ inline screw_t<T> cp(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // cp over n pairs, r[k] = cp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 30 operations an element).
 template <class T>
 inline void cp(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::cp_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::cp_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
 template <class T>
 inline void cp(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::cp_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
 }
 // sum
 template <class T>
@@ -4527,16 +4869,25 @@ inline motor_t<T> add(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 8 operations an element).
 template <class T>
 inline void add(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::add_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::add_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 8 operations an element).
 template <class T>
 inline void add(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const motor_t<T>& a, const motor_t<T>& b) { return add(a, b); }
@@ -4551,16 +4902,25 @@ inline motor_t<T> add(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 6 operations an element).
 template <class T>
 inline void add(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::add_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::add_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 6 operations an element).
 template <class T>
 inline void add(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const motor_t<T>& a, const screw_t<T>& b) { return add(a, b); }
@@ -4575,16 +4935,25 @@ inline motor_t<T> add(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 6 operations an element).
 template <class T>
 inline void add(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::add_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::add_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 6 operations an element).
 template <class T>
 inline void add(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const screw_t<T>& a, const motor_t<T>& b) { return add(a, b); }
@@ -4599,16 +4968,25 @@ inline screw_t<T> add(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // add over n pairs, r[k] = add(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 6 operations an element).
 template <class T>
 inline void add(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::add_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::add_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 6 operations an element).
 template <class T>
 inline void add(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::add_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
 }
 template <class T>
 inline screw_t<T> operator+(const screw_t<T>& a, const screw_t<T>& b) { return add(a, b); }
@@ -4623,16 +5001,25 @@ inline motor_t<T> sub(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 8 operations an element).
 template <class T>
 inline void sub(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sub_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sub_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 8 operations an element).
 template <class T>
 inline void sub(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const motor_t<T>& a, const motor_t<T>& b) { return sub(a, b); }
@@ -4647,16 +5034,25 @@ inline motor_t<T> sub(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 6 operations an element).
 template <class T>
 inline void sub(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sub_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<8, 6, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sub_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 6 operations an element).
 template <class T>
 inline void sub(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<8, 6, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const motor_t<T>& a, const screw_t<T>& b) { return sub(a, b); }
@@ -4671,16 +5067,25 @@ inline motor_t<T> sub(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 6 operations an element).
 template <class T>
 inline void sub(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sub_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sub_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 6 operations an element).
 template <class T>
 inline void sub(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const screw_t<T>& a, const motor_t<T>& b) { return sub(a, b); }
@@ -4695,16 +5100,25 @@ inline screw_t<T> sub(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // sub over n pairs, r[k] = sub(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (direct: 6 operations an element).
 template <class T>
 inline void sub(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sub_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (false)
+    detail::staged_pairs<6, 6, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sub_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 6 operations an element).
 template <class T>
 inline void sub(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  if constexpr (false)
+    detail::staged_one_to_many<6, 6, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sub_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
 }
 template <class T>
 inline screw_t<T> operator-(const screw_t<T>& a, const screw_t<T>& b) { return sub(a, b); }
@@ -4719,16 +5133,25 @@ inline motor_t<T> sandwich(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 117 operations an element).
 template <class T>
 inline void sandwich(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<8, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 117 operations an element).
 template <class T>
 inline void sandwich(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<8, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_motor_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -4741,16 +5164,25 @@ inline screw_t<T> sandwich(const motor_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 114 operations an element).
 template <class T>
 inline void sandwich(const motor_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<8, 6, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 114 operations an element).
 template <class T>
 inline void sandwich(const motor_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<8, 6, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_motor_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -4763,16 +5195,25 @@ inline motor_t<T> sandwich(const screw_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 81 operations an element).
 template <class T>
 inline void sandwich(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_motor(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<6, 8, 8>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 81 operations an element).
 template <class T>
 inline void sandwich(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<6, 8, 8>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_screw_motor(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -4785,16 +5226,25 @@ inline screw_t<T> sandwich(const screw_t<T>& a, const screw_t<T>& b) {
   return r;
 }
 // sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements.
+// elements (staged: 80 operations an element).
 template <class T>
 inline void sandwich(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_screw(a[k].v, b[k].v, r[k].v);
+  if constexpr (true)
+    detail::staged_pairs<6, 6, 6>(
+        reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel, whose work on a alone the
-// compiler makes once.
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 80 operations an element).
 template <class T>
 inline void sandwich(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  if constexpr (true)
+    detail::staged_one_to_many<6, 6, 6>(
+        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
+        [](const T* x, const T* y, T* z) { detail::sandwich_screw_screw(x, y, z); });
+  else
+    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
 }
 // negation
 template <class T>

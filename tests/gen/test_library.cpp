@@ -245,6 +245,34 @@ TEST_CASE("library matrices: matrix(a, of<B>) for each versor with the scalar bl
   CHECK(text.find("detail::x4::matrix_rotor_vector(a.v, r.m[0].v, r.m[1].v, r.m[2].v);") != std::string::npos);
 }
 
+TEST_CASE("library array forms: a kernel of at least 40 operations staged through blocks, a cheaper one direct") {
+  const library::Library lib = library::build(spec_of("library l\nalgebra 3d\n"
+                                                      "type rotor 1 e1^e2 e1^e3 e2^e3\n"
+                                                      "type mv 1 e1 e2 e3 e1^e2 e1^e3 e2^e3 e1^e2^e3\n"),
+                                              opt::Level::O2);
+  const std::string text = library::emit_library(lib, {}, "l.gal");
+  // The form the pairs' array form takes: the `if constexpr` of its body.
+  auto form_of = [&](const std::string& signature) {
+    const size_t at = text.find(signature);
+    REQUIRE(at != std::string::npos);
+    const size_t body = text.find("if constexpr (", at);
+    REQUIRE(body != std::string::npos);
+    return text.substr(body, text.find(')', body) - body + 1);
+  };
+  const library::Function* rr = find(lib, "gp", "rotor", "rotor");
+  const library::Function* mm = find(lib, "gp", "mv", "mv");
+  REQUIRE(rr);
+  REQUIRE(mm);
+  CHECK(opt::program_stats(rr->program).total.total() == 28);  // 12 add, 16 mul
+  CHECK(opt::program_stats(mm->program).total.total() == 120);  // 56 add, 64 mul
+  CHECK(form_of("inline void gp(const rotor_t<T>* a, const rotor_t<T>* b, rotor_t<T>* r, std::size_t n)") ==
+        "if constexpr (false)");
+  CHECK(form_of("inline void gp(const mv_t<T>* a, const mv_t<T>* b, mv_t<T>* r, std::size_t n)") ==
+        "if constexpr (true)");
+  CHECK(text.find("detail::staged_pairs<8, 8, 8>(") != std::string::npos);
+  CHECK(text.find("detail::staged_one_to_many<8, 8, 8>(") != std::string::npos);
+}
+
 TEST_CASE("cli: --library writes OpenCL C, JavaScript, GLSL ES, HLSL and WGSL the same every run") {
   const std::string spec = std::string(CGA_SOURCE_DIR) + "/libraries/e3.gal";
   const std::vector<std::pair<std::string, std::string>> targets = {
