@@ -3686,9 +3686,9 @@ inline void gp_screw_screw(const float* a, const float* b, float* r) { ::cga_rig
 #endif
 }  // namespace x4
 
-// The array forms of a costly kernel (its staged form, below): blocks of kBlock elements are copied into
+// The pairs' array form of a costly kernel (its staged form): blocks of kBlock elements are copied into
 // structure-of-arrays scratch, the scalar kernel runs across the block, which the compiler vectorizes with
-// one element per lane (work on a alone, for one a, done once), and the results are copied back. A direct
+// one element per lane, and the results are copied back. A direct
 // loop over the elements leaves the compiler coefficients interleaved by the types' sizes (6 for a line),
 // which it vectorizes poorly or not at all. The operands are arrays of T, NA, NB and NR to an element. A block
 // is 64 elements, fewer for large types, so that the scratch stays within about 8 KB (in L1).
@@ -3710,26 +3710,6 @@ inline void staged_pairs(const T* a, const T* b, T* r, std::size_t n, K kernel) 
     for (std::size_t k = 0; k < m; ++k) {
       T x[NA], y[NB], z[NR];
       for (std::size_t c = 0; c < NA; ++c) x[c] = as[c][k];
-      for (std::size_t c = 0; c < NB; ++c) y[c] = bs[c][k];
-      kernel(x, y, z);
-      for (std::size_t c = 0; c < NR; ++c) rs[c][k] = z[c];
-    }
-    for (std::size_t k = 0; k < m; ++k)
-      for (std::size_t c = 0; c < NR; ++c) r[(first + k) * NR + c] = rs[c][k];
-  }
-}
-template <std::size_t NA, std::size_t NB, std::size_t NR, class T, class K>
-inline void staged_one_to_many(const T* a, const T* b, T* r, std::size_t n, K kernel) {
-  T x[NA];  // a local copy: no store to r can change it, so its work is hoisted out of the loop
-  for (std::size_t c = 0; c < NA; ++c) x[c] = a[c];
-  constexpr std::size_t kBlock = block_of((NB + NR) * sizeof(T));
-  alignas(64) T bs[NB][kBlock], rs[NR][kBlock];
-  for (std::size_t first = 0; first < n; first += kBlock) {
-    const std::size_t m = n - first < kBlock ? n - first : kBlock;
-    for (std::size_t k = 0; k < m; ++k)
-      for (std::size_t c = 0; c < NB; ++c) bs[c][k] = b[(first + k) * NB + c];
-    for (std::size_t k = 0; k < m; ++k) {
-      T y[NB], z[NR];
       for (std::size_t c = 0; c < NB; ++c) y[c] = bs[c][k];
       kernel(x, y, z);
       for (std::size_t c = 0; c < NR; ++c) rs[c][k] = z[c];
@@ -3863,15 +3843,12 @@ inline void gp(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::gp_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 88 operations an element).
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void gp(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::gp_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const motor_t<T>& a, const motor_t<T>& b) { return gp(a, b); }
@@ -3896,15 +3873,12 @@ inline void gp(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::gp_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 64 operations an element).
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void gp(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::gp_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const motor_t<T>& a, const screw_t<T>& b) { return gp(a, b); }
@@ -3929,15 +3903,12 @@ inline void gp(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::gp_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 64 operations an element).
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void gp(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::gp_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const screw_t<T>& a, const motor_t<T>& b) { return gp(a, b); }
@@ -3962,15 +3933,12 @@ inline void gp(const screw_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::gp_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// gp of one a with n elements, r[k] = gp(a, b[k]), its work on a alone made once (staged: 46 operations an element).
+// gp of one a with n elements, r[k] = gp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void gp(const screw_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<6, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::gp_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = gp(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = gp(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator*(const screw_t<T>& a, const screw_t<T>& b) { return gp(a, b); }
@@ -3995,15 +3963,12 @@ inline void outer(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::outer_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 34 operations an element).
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void outer(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::outer_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const motor_t<T>& a, const motor_t<T>& b) { return outer(a, b); }
@@ -4028,15 +3993,12 @@ inline void outer(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::outer_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 17 operations an element).
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void outer(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::outer_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const motor_t<T>& a, const screw_t<T>& b) { return outer(a, b); }
@@ -4061,15 +4023,12 @@ inline void outer(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::outer_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 17 operations an element).
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void outer(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::outer_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const screw_t<T>& a, const motor_t<T>& b) { return outer(a, b); }
@@ -4094,15 +4053,12 @@ inline void outer(const screw_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::outer_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// outer of one a with n elements, r[k] = outer(a, b[k]), its work on a alone made once (direct: 11 operations an element).
+// outer of one a with n elements, r[k] = outer(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void outer(const screw_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::outer_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = outer(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = outer(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator^(const screw_t<T>& a, const screw_t<T>& b) { return outer(a, b); }
@@ -4127,15 +4083,12 @@ inline void inner(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::inner_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 14 operations an element).
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void inner(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::inner_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const motor_t<T>& a, const motor_t<T>& b) { return inner(a, b); }
@@ -4160,15 +4113,12 @@ inline void inner(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::inner_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 8 operations an element).
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void inner(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::inner_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const motor_t<T>& a, const screw_t<T>& b) { return inner(a, b); }
@@ -4193,15 +4143,12 @@ inline void inner(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::inner_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 8 operations an element).
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void inner(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::inner_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator|(const screw_t<T>& a, const motor_t<T>& b) { return inner(a, b); }
@@ -4226,15 +4173,12 @@ inline void inner(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std:
   else
     for (std::size_t k = 0; k < n; ++k) detail::inner_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// inner of one a with n elements, r[k] = inner(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// inner of one a with n elements, r[k] = inner(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void inner(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::inner_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = inner(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = inner(x, b[k]);
 }
 template <class T>
 inline scalar_t<T> operator|(const screw_t<T>& a, const screw_t<T>& b) { return inner(a, b); }
@@ -4259,15 +4203,12 @@ inline void dot(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::dot_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (staged: 40 operations an element).
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void dot(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::dot_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(x, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -4290,15 +4231,12 @@ inline void dot(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::dot_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (direct: 17 operations an element).
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void dot(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::dot_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(x, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -4321,15 +4259,12 @@ inline void dot(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::dot_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (direct: 17 operations an element).
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void dot(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::dot_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(x, b[k]);
 }
 // dot product (a scalar times b is that multiple of b)
 template <class T>
@@ -4352,15 +4287,12 @@ inline void dot(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::s
   else
     for (std::size_t k = 0; k < n; ++k) detail::dot_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// dot of one a with n elements, r[k] = dot(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// dot of one a with n elements, r[k] = dot(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void dot(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::dot_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = dot(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = dot(x, b[k]);
 }
 // left contraction
 template <class T>
@@ -4383,15 +4315,12 @@ inline void lcont(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 20 operations an element).
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void lcont(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::lcont_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(x, b[k]);
 }
 // left contraction
 template <class T>
@@ -4414,15 +4343,12 @@ inline void lcont(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::lcont_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 11 operations an element).
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void lcont(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::lcont_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(x, b[k]);
 }
 // left contraction
 template <class T>
@@ -4445,15 +4371,12 @@ inline void lcont(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 8 operations an element).
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void lcont(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::lcont_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(x, b[k]);
 }
 // left contraction
 template <class T>
@@ -4476,15 +4399,12 @@ inline void lcont(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std:
   else
     for (std::size_t k = 0; k < n; ++k) detail::lcont_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// lcont of one a with n elements, r[k] = lcont(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// lcont of one a with n elements, r[k] = lcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void lcont(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::lcont_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = lcont(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = lcont(x, b[k]);
 }
 // right contraction
 template <class T>
@@ -4507,15 +4427,12 @@ inline void rcont(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 20 operations an element).
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void rcont(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::rcont_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(x, b[k]);
 }
 // right contraction
 template <class T>
@@ -4538,15 +4455,12 @@ inline void rcont(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::rcont_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 8 operations an element).
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void rcont(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::rcont_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(x, b[k]);
 }
 // right contraction
 template <class T>
@@ -4569,15 +4483,12 @@ inline void rcont(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::
   else
     for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 11 operations an element).
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void rcont(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::rcont_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(x, b[k]);
 }
 // right contraction
 template <class T>
@@ -4600,15 +4511,12 @@ inline void rcont(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std:
   else
     for (std::size_t k = 0; k < n; ++k) detail::rcont_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// rcont of one a with n elements, r[k] = rcont(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// rcont of one a with n elements, r[k] = rcont(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void rcont(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::rcont_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = rcont(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = rcont(x, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4631,15 +4539,12 @@ inline void scp(const motor_t<T>* a, const motor_t<T>* b, scalar_t<T>* r, std::s
   else
     for (std::size_t k = 0; k < n; ++k) detail::scp_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 7 operations an element).
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void scp(const motor_t<T>& a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::scp_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(x, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4662,15 +4567,12 @@ inline void scp(const motor_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::s
   else
     for (std::size_t k = 0; k < n; ++k) detail::scp_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void scp(const motor_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::scp_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(x, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4693,15 +4595,12 @@ inline void scp(const screw_t<T>* a, const motor_t<T>* b, scalar_t<T>* r, std::s
   else
     for (std::size_t k = 0; k < n; ++k) detail::scp_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void scp(const screw_t<T>& a, const motor_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::scp_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(x, b[k]);
 }
 // scalar product <a b>_0
 template <class T>
@@ -4724,15 +4623,12 @@ inline void scp(const screw_t<T>* a, const screw_t<T>* b, scalar_t<T>* r, std::s
   else
     for (std::size_t k = 0; k < n; ++k) detail::scp_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// scp of one a with n elements, r[k] = scp(a, b[k]), its work on a alone made once (direct: 5 operations an element).
+// scp of one a with n elements, r[k] = scp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void scp(const screw_t<T>& a, const screw_t<T>* b, scalar_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 1>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::scp_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = scp(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = scp(x, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4755,15 +4651,12 @@ inline void cp(const motor_t<T>* a, const motor_t<T>* b, screw_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::cp_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void cp(const motor_t<T>& a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::cp_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(x, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4786,15 +4679,12 @@ inline void cp(const motor_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::cp_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void cp(const motor_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::cp_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(x, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4817,15 +4707,12 @@ inline void cp(const screw_t<T>* a, const motor_t<T>* b, screw_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::cp_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void cp(const screw_t<T>& a, const motor_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::cp_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(x, b[k]);
 }
 // commutator product (a b - b a) / 2
 template <class T>
@@ -4848,15 +4735,12 @@ inline void cp(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::siz
   else
     for (std::size_t k = 0; k < n; ++k) detail::cp_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// cp of one a with n elements, r[k] = cp(a, b[k]), its work on a alone made once (direct: 30 operations an element).
+// cp of one a with n elements, r[k] = cp(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void cp(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::cp_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = cp(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = cp(x, b[k]);
 }
 // sum
 template <class T>
@@ -4879,15 +4763,12 @@ inline void add(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::add_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 8 operations an element).
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void add(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::add_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const motor_t<T>& a, const motor_t<T>& b) { return add(a, b); }
@@ -4912,15 +4793,12 @@ inline void add(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::add_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 6 operations an element).
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void add(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::add_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const motor_t<T>& a, const screw_t<T>& b) { return add(a, b); }
@@ -4945,15 +4823,12 @@ inline void add(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::add_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 6 operations an element).
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void add(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::add_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator+(const screw_t<T>& a, const motor_t<T>& b) { return add(a, b); }
@@ -4978,15 +4853,12 @@ inline void add(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::add_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// add of one a with n elements, r[k] = add(a, b[k]), its work on a alone made once (direct: 6 operations an element).
+// add of one a with n elements, r[k] = add(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void add(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::add_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = add(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = add(x, b[k]);
 }
 template <class T>
 inline screw_t<T> operator+(const screw_t<T>& a, const screw_t<T>& b) { return add(a, b); }
@@ -5011,15 +4883,12 @@ inline void sub(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::sub_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 8 operations an element).
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sub(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sub_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const motor_t<T>& a, const motor_t<T>& b) { return sub(a, b); }
@@ -5044,15 +4913,12 @@ inline void sub(const motor_t<T>* a, const screw_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::sub_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 6 operations an element).
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sub(const motor_t<T>& a, const screw_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<8, 6, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sub_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const motor_t<T>& a, const screw_t<T>& b) { return sub(a, b); }
@@ -5077,15 +4943,12 @@ inline void sub(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::sub_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 6 operations an element).
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sub(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sub_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(x, b[k]);
 }
 template <class T>
 inline motor_t<T> operator-(const screw_t<T>& a, const motor_t<T>& b) { return sub(a, b); }
@@ -5110,15 +4973,12 @@ inline void sub(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, std::si
   else
     for (std::size_t k = 0; k < n; ++k) detail::sub_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// sub of one a with n elements, r[k] = sub(a, b[k]), its work on a alone made once (direct: 6 operations an element).
+// sub of one a with n elements, r[k] = sub(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sub(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (false)
-    detail::staged_one_to_many<6, 6, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sub_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sub(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sub(x, b[k]);
 }
 template <class T>
 inline screw_t<T> operator-(const screw_t<T>& a, const screw_t<T>& b) { return sub(a, b); }
@@ -5143,15 +5003,12 @@ inline void sandwich(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, st
   else
     for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_motor(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 117 operations an element).
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sandwich(const motor_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<8, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sandwich_motor_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(x, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -5174,15 +5031,12 @@ inline void sandwich(const motor_t<T>* a, const screw_t<T>* b, screw_t<T>* r, st
   else
     for (std::size_t k = 0; k < n; ++k) detail::sandwich_motor_screw(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 114 operations an element).
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sandwich(const motor_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<8, 6, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sandwich_motor_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  const motor_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(x, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -5205,15 +5059,12 @@ inline void sandwich(const screw_t<T>* a, const motor_t<T>* b, motor_t<T>* r, st
   else
     for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_motor(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 81 operations an element).
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sandwich(const screw_t<T>& a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<6, 8, 8>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sandwich_screw_motor(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(x, b[k]);
 }
 // a applied to b, a b ~a, for a normalized versor a; keeps b's grades
 template <class T>
@@ -5236,15 +5087,12 @@ inline void sandwich(const screw_t<T>* a, const screw_t<T>* b, screw_t<T>* r, st
   else
     for (std::size_t k = 0; k < n; ++k) detail::sandwich_screw_screw(a[k].v, b[k].v, r[k].v);
 }
-// sandwich of one a with n elements, r[k] = sandwich(a, b[k]), its work on a alone made once (staged: 80 operations an element).
+// sandwich of one a with n elements, r[k] = sandwich(a, b[k]): one call's kernel on a local copy of a, which no
+// store to r can change, so that the compiler makes its work on a alone once.
 template <class T>
 inline void sandwich(const screw_t<T>& a, const screw_t<T>* b, screw_t<T>* r, std::size_t n) {
-  if constexpr (true)
-    detail::staged_one_to_many<6, 6, 6>(
-        a.v, reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
-        [](const T* x, const T* y, T* z) { detail::sandwich_screw_screw(x, y, z); });
-  else
-    for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(a, b[k]);
+  const screw_t<T> x = a;
+  for (std::size_t k = 0; k < n; ++k) r[k] = sandwich(x, b[k]);
 }
 // negation
 template <class T>

@@ -270,7 +270,6 @@ TEST_CASE("library array forms: a kernel of at least 40 operations staged throug
   CHECK(form_of("inline void gp(const mv_t<T>* a, const mv_t<T>* b, mv_t<T>* r, std::size_t n)") ==
         "if constexpr (true)");
   CHECK(text.find("detail::staged_pairs<8, 8, 8>(") != std::string::npos);
-  CHECK(text.find("detail::staged_one_to_many<8, 8, 8>(") != std::string::npos);
 }
 
 TEST_CASE("cli: --library writes OpenCL C, JavaScript, GLSL ES, HLSL and WGSL the same every run") {
