@@ -3686,15 +3686,16 @@ inline void gp_screw_screw(const float* a, const float* b, float* r) { ::cga_rig
 #endif
 }  // namespace x4
 
-// The pairs' array form of a costly kernel (its staged form): blocks of kBlock elements are copied into
+// The pairs' array form of a costly kernel on types of sizes other than powers of two (its staged form):
+// blocks of kBlock elements are copied into
 // structure-of-arrays scratch, the scalar kernel runs across the block, which the compiler vectorizes with
 // one element per lane, and the results are copied back. A direct
 // loop over the elements leaves the compiler coefficients interleaved by the types' sizes (6 for a line),
 // which it vectorizes poorly or not at all. The operands are arrays of T, NA, NB and NR to an element. A block
-// is 64 elements, fewer for large types, so that the scratch stays within about 8 KB (in L1).
+// is 32 elements, fewer for large types, so that the scratch stays within about 4 KB (in L1).
 constexpr std::size_t block_of(std::size_t bytes) {
-  std::size_t b = 64;
-  while (b > 8 && b * bytes > 8192) b /= 2;
+  std::size_t b = 32;
+  while (b > 8 && b * bytes > 4096) b /= 2;
   return b;
 }
 template <std::size_t NA, std::size_t NB, std::size_t NR, class T, class K>
@@ -3833,10 +3834,10 @@ inline motor_t<T> gp(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // gp over n pairs, r[k] = gp(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements (staged: 88 operations an element).
+// elements (direct: 88 operations an element).
 template <class T>
 inline void gp(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
+  if constexpr (false)
     detail::staged_pairs<8, 8, 8>(
         reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
         [](const T* x, const T* y, T* z) { detail::gp_motor_motor(x, y, z); });
@@ -4193,10 +4194,10 @@ inline motor_t<T> dot(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // dot over n pairs, r[k] = dot(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements (staged: 40 operations an element).
+// elements (direct: 40 operations an element).
 template <class T>
 inline void dot(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
+  if constexpr (false)
     detail::staged_pairs<8, 8, 8>(
         reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
         [](const T* x, const T* y, T* z) { detail::dot_motor_motor(x, y, z); });
@@ -4993,10 +4994,10 @@ inline motor_t<T> sandwich(const motor_t<T>& a, const motor_t<T>& b) {
   return r;
 }
 // sandwich over n pairs, r[k] = sandwich(a[k], b[k]): the scalar kernel, which the compiler vectorizes across
-// elements (staged: 117 operations an element).
+// elements (direct: 117 operations an element).
 template <class T>
 inline void sandwich(const motor_t<T>* a, const motor_t<T>* b, motor_t<T>* r, std::size_t n) {
-  if constexpr (true)
+  if constexpr (false)
     detail::staged_pairs<8, 8, 8>(
         reinterpret_cast<const T*>(a), reinterpret_cast<const T*>(b), reinterpret_cast<T*>(r), n,
         [](const T* x, const T* y, T* z) { detail::sandwich_motor_motor(x, y, z); });

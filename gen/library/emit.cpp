@@ -170,13 +170,22 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
         float_kernel = "x4::" + float_kernel;
       }
     }
-    // The array forms run blocks through structure-of-arrays scratch (the C++ template's staged form) where
-    // the kernel is costly enough to pay for the copies: measured on pga3 (g++ 12 -O3, AVX-512, loops of
-    // 4096 in cache), staged against direct, ns per element: sandwich(motor, line) 9.4 -> 5.9, sandwich(motor,
-    // point) 2.0 -> 1.5, gp(motor, motor) 2.9 -> 2.6, but gp(rotor, rotor) 0.7 -> 1.1 and add 0.3 -> 0.8.
+    // The pairs' array form runs blocks through structure-of-arrays scratch (the C++ template's staged form)
+    // where a direct loop vectorizes poorly and the kernel is costly enough to pay for the copies: an operand
+    // or the result whose size is not a power of two (a line's 6), which leaves the compiler coefficients
+    // interleaved by that size, and 40 operations or more. Measured on pga3 (g++ 12 -O3 -march=native,
+    // AVX-512), ns per element, staged against direct: sandwich(motor, line) 5.4 against 9.8 in cache (4096
+    // elements) and 10.2 against 10.6 in memory (2^20, alternated); with sizes 8, 4 and 4 staging wins in cache
+    // but loses in memory (gp(motor, motor) 9.2 against 7.2, sandwich(motor, point) 7.2 against 6.5), and a
+    // cheap kernel loses everywhere (gp(rotor, rotor), 28 operations: 1.1 against 0.7 in cache).
     constexpr long kStagedOps = 40;
     const long ops = opt::program_stats(f.program).total.total();
-    const bool staged = f.op->arity == 2 && ops >= kStagedOps;
+    auto power_of_two = [&](size_t t) {
+      const size_t n = lib.types[t].blades.size();
+      return (n & (n - 1)) == 0;
+    };
+    const bool staged = f.op->arity == 2 && ops >= kStagedOps &&
+                        !(power_of_two(f.a) && power_of_two(f.b) && power_of_two(f.result));
     auto size = [&](size_t t) { return std::to_string(lib.types[t].blades.size()); };
     const std::map<std::string, std::string> v = {
         {"library", lib.name},

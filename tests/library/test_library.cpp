@@ -263,14 +263,14 @@ TEST_CASE("library cga_rigid (the runtime's): every function agrees with the ora
 }
 
 #ifndef CGA_LIBRARY_CUDA
-// The array forms run the scalar kernel, directly or (a costly kernel) through blocks of 64 elements in
+// The array forms run the scalar kernel, directly or (a costly kernel) through blocks of 32 elements in
 // structure-of-arrays scratch: element by element they agree with one call, across block boundaries and in
 // the last, partial block.
 template <class A, class B, class MakeA>
 void check_array_forms(const char* what, MakeA make_a) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1, 1);
-  constexpr size_t n = 150;  // two whole blocks and a partial one, not a multiple of any vector width
+  constexpr size_t n = 150;  // whole blocks and a partial one, not a multiple of any vector width
   std::vector<A> a(n);
   std::vector<B> x(n), pairs(n), one(n);
   for (size_t k = 0; k < n; ++k) {
@@ -296,9 +296,9 @@ TEST_CASE("library pga3: the array forms agree with one call per element") {
     for (float& c : l.v) c = u(rng);
     return pga3::exp(l);
   };
-  check_array_forms<pga3::motor, pga3::point>("motor on points (staged)", motor);
-  check_array_forms<pga3::motor, pga3::line>("motor on lines (staged)", motor);
-  check_array_forms<pga3::motor, pga3::direction>("motor on directions (direct)", motor);
+  check_array_forms<pga3::motor, pga3::point>("motor on points (direct: sizes 8 and 4)", motor);
+  check_array_forms<pga3::motor, pga3::line>("motor on lines (staged: a line is 6)", motor);
+  check_array_forms<pga3::motor, pga3::direction>("motor on directions (direct: 30 operations)", motor);
   std::mt19937 rng(8);
   constexpr size_t n = 150;
   std::vector<pga3::motor> m(n), products(n);
