@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "emit/names.hpp"
 #include "library/lanes.hpp"
@@ -30,6 +31,9 @@ struct Templates {
 
 // Every target has the required templates. A target with `lanes_kernel.in` gets the 4-wide float forms of
 // its bilinear kernels (library/lanes.hpp) as well, and one with `matrix.in` the sandwiches' matrices.
+// matrix_column_NAME.in: one column's piece of a matrix, joined over the columns as {{column_NAME}}.
+constexpr std::string_view kColumnPiece = "matrix_column_";
+
 Templates load(const std::string& dir) {
   Templates t{dir, {}};
   auto read = [&](const char* name, bool required) {
@@ -47,12 +51,11 @@ Templates load(const std::string& dir) {
   read("lanes_kernel", false);
   read("matrix", false);  // the sandwiches' matrices (build.hpp's Matrix), listed by matrix_registry
   read("matrix_registry", false);
-  // matrix_column_NAME.in: one column's piece of a matrix, joined over the columns as {{column_NAME}}.
   std::set<std::string> columns;  // sorted: the same templates read in the same order on every run
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
     const std::string file = e.path().filename().string();
-    if (file.rfind("matrix_column_", 0) == 0 && file.size() > 3 && file.compare(file.size() - 3, 3, ".in") == 0)
+    if (file.rfind(kColumnPiece, 0) == 0 && file.size() > 3 && file.compare(file.size() - 3, 3, ".in") == 0)
       columns.insert(file.substr(0, file.size() - 3));
   }
   for (const std::string& name : columns) read(name.c_str(), true);
@@ -190,8 +193,7 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     const std::map<std::string, std::string> v = {
         {"library", lib.name},
         {"staged", staged ? "true" : "false"},
-        {"array_form", staged ? "staged: " + std::to_string(ops) + " operations an element"
-                              : "direct: " + std::to_string(ops) + " operations an element"},
+        {"array_form", std::string(staged ? "staged: " : "direct: ") + std::to_string(ops) + " operations an element"},
         {"na", size(f.a)},
         {"nb", f.op->arity == 2 ? size(f.b) : "0"},
         {"nr", size(f.result)},
@@ -213,8 +215,8 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     registry += fill(kind + "_registry", v);
   }
   std::string matrix_functions, matrix_registry;
-  for (const Matrix& m : lib.matrices) {
-    if (!matrices) break;
+  const std::vector<Matrix> no_matrices;
+  for (const Matrix& m : matrices ? lib.matrices : no_matrices) {
     const size_t cols = lib.types[m.b].blades.size(), rows = lib.types[m.result].blades.size();
     std::string columns, names, flat, params = "const float* a", args = "a";
     for (size_t j = 0; j < cols; ++j) {
@@ -260,7 +262,7 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
     // Each matrix_column_NAME template, filled per column (its j and the matrix's names) and joined: a list
     // piece ends in ", ", which the last column drops.
     for (const auto& [name, text] : t.text) {
-      if (name.rfind("matrix_column_", 0) != 0) continue;
+      if (name.rfind(kColumnPiece, 0) != 0) continue;
       std::string joined;
       for (size_t j = 0; j < cols; ++j) {
         std::map<std::string, std::string> column = v;
@@ -268,7 +270,7 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
         joined += fill(name, column);
       }
       if (joined.size() >= 2 && joined.compare(joined.size() - 2, 2, ", ") == 0) joined.resize(joined.size() - 2);
-      v["column_" + name.substr(std::string("matrix_column_").size())] = joined;
+      v["column_" + name.substr(kColumnPiece.size())] = joined;
     }
     matrix_functions += fill("matrix", v);
     if (t.has("matrix_registry")) matrix_registry += fill("matrix_registry", v);
