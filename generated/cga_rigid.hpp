@@ -3684,6 +3684,118 @@ inline void gp_screw_screw(const float* a, const float* b, float* r) {
 #else
 inline void gp_screw_screw(const float* a, const float* b, float* r) { ::cga_rigid::detail::gp_screw_screw(a, b, r); }
 #endif
+#if CGAGEN_X4
+// 110 vector operations; the scalar kernel has 117.
+inline void sandwich_motor_motor(const float* a, const float* b, float* r) {
+  const v4 a0 = load<4>(a + 0);
+  const v4 a1 = load<4>(a + 4);
+  const v4 b0 = load<4>(b + 0);
+  const v4 b1 = load<4>(b + 4);
+  const v4 t0_0 = v4{1.0f, 0.0f, 0.0f, 0.0f};
+  const v4 sb0 = splat<0>(b0);
+  const v4 sa0 = perm<0, 2, 3, 1>(a0, a0);
+  const v4 sa1 = splat<0>(a0);
+  const v4 sa2 = perm<0, 3, 1, 2>(a0, a0);
+  const v4 t0_1 = scale((a0 * sa0 + sa1 * sa2), v4{0.0f, 2.0f, 2.0f, 2.0f});
+  const v4 sb1 = perm<0, 2, 3, 1>(b0, b0);
+  const v4 t0_2 = scale((a0 * sa2 - sa1 * sa0), v4{0.0f, 2.0f, 2.0f, 2.0f});
+  const v4 sb2 = perm<0, 3, 1, 2>(b0, b0);
+  const v4 sa3 = perm<0, 2, 0, 0>(a0, a0);
+  const v4 sa4 = perm<0, 3, 2, 3>(a0, a0);
+  const v4 t0_3 = (scale((sa3 * sa3 + sa4 * sa4), v4{0.0f, -2.0f, 2.0f, 2.0f}) + v4{0.0f, 1.0f, -1.0f, -1.0f});
+  store<4>(r + 0, (t0_0 * sb0 + t0_1 * sb1) + (t0_2 * sb2 + t0_3 * b0));
+  const v4 t1_0 = v4{0.0f, 0.0f, 0.0f, 1.0f};
+  const v4 sb3 = splat<3>(b1);
+  const v4 sa5 = perm<1, 2, 3, 3>(a1, a1);
+  const v4 sa6 = perm<1, 3, 0, 3>(a0, a0);
+  const v4 sa7 = perm<0, 0, 1, 3>(a1, a1);
+  const v4 sa8 = perm<2, 1, 1, 3>(a0, a0);
+  const v4 sa9 = perm<3, 1, 0, 3>(a1, a1);
+  const v4 sa10 = splat<3>(a0);
+  const v4 sa11 = perm<2, 4, 2, 3>(a1, v4{});
+  const v4 t1_1 = scale(((scale(a0 * sa5, v4{-1.0f, 1.0f, 1.0f, 0.0f}) + sa6 * sa7) + (scale(sa8 * sa9, v4{-1.0f, 0.0f, 1.0f, 0.0f}) + sa10 * sa11)), v4{2.0f, 4.0f, 2.0f, 0.0f});
+  const v4 sb4 = perm<1, 2, 3, 3>(b0, b0);
+  const v4 sa12 = perm<6, 6, 2, 2>(a0, a1);
+  const v4 sa13 = perm<4, 7, 3, 3>(a0, a1);
+  const v4 sa14 = perm<3, 2, 2, 3>(a0, a0);
+  const v4 sa15 = perm<1, 0, 4, 3>(a1, v4{});
+  const v4 t1_2 = scale(((sa8 * sa13 + scale(sa6 * sa9, v4{1.0f, 1.0f, 0.0f, 0.0f})) - (sa1 * sa12 + sa14 * sa15)), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb5 = perm<2, 3, 4, 4>(b0, b1);
+  const v4 sa16 = perm<5, 0, 2, 2>(a0, a1);
+  const v4 sa17 = perm<6, 2, 3, 3>(a0, a1);
+  const v4 sa18 = flip(sa17, u4{0x80000000u, 0u, 0u, 0u});
+  const v4 t1_3 = scale((sa8 * sa16 + sa6 * sa18), v4{4.0f, -2.0f, -2.0f, 0.0f});
+  const v4 sb6 = perm<3, 4, 5, 5>(b0, b1);
+  const v4 sa19 = perm<3, 0, 2, 3>(a0, a0);
+  const v4 t1_4 = (scale((sa0 * sa0 + sa19 * sa19), v4{2.0f, 2.0f, -2.0f, 0.0f}) + v4{-1.0f, -1.0f, 1.0f, 0.0f});
+  const v4 sa20 = perm<1, 0, 5, 5>(a0, a1);
+  const v4 sa21 = perm<2, 1, 3, 3>(a0, a0);
+  const v4 sa22 = perm<3, 2, 4, 4>(a0, a1);
+  const v4 t1_5 = scale((sa4 * sa20 - sa21 * sa22), v4{2.0f, 2.0f, 4.0f, 0.0f});
+  const v4 sb7 = perm<5, 6, 1, 1>(b0, b1);
+  const v4 sa23 = perm<2, 4, 4, 4>(a0, a1);
+  const v4 sa24 = perm<1, 1, 2, 3>(a0, a0);
+  const v4 sa25 = perm<3, 5, 6, 6>(a0, a1);
+  const v4 sa26 = perm<4, 3, 1, 3>(a1, v4{});
+  const v4 t1_6 = scale((((sa1 * sa23 + sa24 * sa25) + scale(sa0 * sa5, v4{0.0f, -1.0f, -1.0f, 0.0f})) - sa2 * sa26), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb8 = perm<6, 1, 2, 2>(b0, b1);
+  store<4>(r + 4, ((t1_0 * sb3 + t1_1 * sb4) + (t1_2 * sb5 + t1_3 * sb6)) + ((t1_4 * b1 + t1_5 * sb7) + t1_6 * sb8));
+}
+#else
+inline void sandwich_motor_motor(const float* a, const float* b, float* r) { ::cga_rigid::detail::sandwich_motor_motor(a, b, r); }
+#endif
+#if CGAGEN_X4
+// 82 vector operations; the scalar kernel has 81.
+inline void sandwich_screw_motor(const float* a, const float* b, float* r) {
+  const v4 a0 = load<4>(a + 0);
+  const v4 a1 = load<2>(a + 4);
+  const v4 b0 = load<4>(b + 0);
+  const v4 b1 = load<4>(b + 4);
+  const v4 t0_0 = v4{1.0f, 0.0f, 0.0f, 0.0f};
+  const v4 sb0 = splat<0>(b0);
+  const v4 sa0 = perm<0, 0, 1, 0>(a0, a0);
+  const v4 sa1 = perm<0, 1, 2, 2>(a0, a0);
+  const v4 t0_1 = scale(sa0 * sa1, v4{0.0f, 2.0f, 2.0f, 2.0f});
+  const v4 sb1 = perm<0, 2, 3, 1>(b0, b0);
+  const v4 sa2 = perm<0, 0, 0, 1>(a0, a0);
+  const v4 sa3 = perm<0, 2, 1, 2>(a0, a0);
+  const v4 t0_2 = scale(sa2 * sa3, v4{0.0f, 2.0f, 2.0f, 2.0f});
+  const v4 sb2 = perm<0, 3, 1, 2>(b0, b0);
+  const v4 sa4 = perm<0, 1, 4, 4>(a0, v4{});
+  const v4 t0_3 = (scale((sa3 * sa3 + a0 * sa4), v4{0.0f, -2.0f, 2.0f, 2.0f}) + v4{0.0f, 1.0f, -1.0f, -1.0f});
+  store<4>(r + 0, (t0_0 * sb0 + t0_1 * sb1) + (t0_2 * sb2 + t0_3 * b0));
+  const v4 t1_0 = v4{0.0f, 0.0f, 0.0f, 1.0f};
+  const v4 sb3 = splat<3>(b1);
+  const v4 sa5 = perm<3, 4, 5, 5>(a0, a1);
+  const v4 sa6 = perm<2, 1, 0, 3>(a0, a0);
+  const v4 sa7 = perm<5, 5, 3, 3>(a0, a1);
+  const v4 sa8 = perm<0, 4, 2, 3>(sa7, v4{});
+  const v4 t1_1 = scale((a0 * sa5 + sa6 * sa8), v4{2.0f, 4.0f, 2.0f, 0.0f});
+  const v4 sb4 = perm<1, 2, 3, 3>(b0, b0);
+  const v4 sa9 = perm<1, 1, 0, 3>(a0, a0);
+  const v4 sa10 = perm<3, 3, 2, 3>(a0, a0);
+  const v4 sa11 = splat<2>(a0);
+  const v4 sa12 = splat<0>(a1);
+  const v4 t1_2 = scale((scale(sa9 * sa10, v4{1.0f, -1.0f, 1.0f, 0.0f}) + scale(sa11 * sa12, v4{-1.0f, 1.0f, 0.0f, 0.0f})), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb5 = perm<2, 3, 4, 4>(b0, b1);
+  const v4 sa13 = perm<3, 2, 1, 3>(a0, a0);
+  const v4 t1_3 = scale(sa6 * sa13, v4{4.0f, -2.0f, -2.0f, 0.0f});
+  const v4 sb6 = perm<3, 4, 5, 5>(b0, b1);
+  const v4 sa14 = perm<2, 1, 1, 3>(a0, a0);
+  const v4 sa15 = perm<4, 4, 2, 3>(a0, v4{});
+  const v4 t1_4 = (scale((sa14 * sa14 + a0 * sa15), v4{2.0f, 2.0f, -2.0f, 0.0f}) + v4{-1.0f, -1.0f, 1.0f, 0.0f});
+  const v4 sa16 = perm<1, 0, 4, 4>(a0, a1);
+  const v4 t1_5 = scale((sa16 * sa14 - sa15 * sa7), v4{-2.0f, -2.0f, 4.0f, 0.0f});
+  const v4 sb7 = perm<5, 6, 1, 1>(b0, b1);
+  const v4 sa17 = perm<2, 4, 5, 5>(a0, a1);
+  const v4 sa18 = perm<4, 1, 0, 0>(a1, v4{});
+  const v4 t1_6 = scale((sa0 * sa17 - sa6 * sa18), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb8 = perm<6, 1, 2, 2>(b0, b1);
+  store<4>(r + 4, ((t1_0 * sb3 + t1_1 * sb4) + (t1_2 * sb5 + t1_3 * sb6)) + ((t1_4 * b1 + t1_5 * sb7) + t1_6 * sb8));
+}
+#else
+inline void sandwich_screw_motor(const float* a, const float* b, float* r) { ::cga_rigid::detail::sandwich_screw_motor(a, b, r); }
+#endif
 }  // namespace x4
 
 // The pairs' array form of a costly kernel on types of sizes other than powers of two (its staged form):
@@ -4988,7 +5100,7 @@ template <class T>
 inline motor_t<T> sandwich(const motor_t<T>& a, const motor_t<T>& b) {
   motor_t<T> r;
   if constexpr (std::is_same_v<T, float>)
-    detail::sandwich_motor_motor(a.v, b.v, r.v);
+    detail::x4::sandwich_motor_motor(a.v, b.v, r.v);
   else
     detail::sandwich_motor_motor(a.v, b.v, r.v);
   return r;
@@ -5044,7 +5156,7 @@ template <class T>
 inline motor_t<T> sandwich(const screw_t<T>& a, const motor_t<T>& b) {
   motor_t<T> r;
   if constexpr (std::is_same_v<T, float>)
-    detail::sandwich_screw_motor(a.v, b.v, r.v);
+    detail::x4::sandwich_screw_motor(a.v, b.v, r.v);
   else
     detail::sandwich_screw_motor(a.v, b.v, r.v);
   return r;
@@ -5348,9 +5460,9 @@ inline constexpr function_info functions[] = {
     {"sub", 2, "motor", "screw", "motor", nullptr, &detail::sub_motor_screw},
     {"sub", 2, "screw", "motor", "motor", nullptr, &detail::sub_screw_motor},
     {"sub", 2, "screw", "screw", "screw", nullptr, &detail::sub_screw_screw},
-    {"sandwich", 2, "motor", "motor", "motor", nullptr, &detail::sandwich_motor_motor},
+    {"sandwich", 2, "motor", "motor", "motor", nullptr, &detail::x4::sandwich_motor_motor},
     {"sandwich", 2, "motor", "screw", "screw", nullptr, &detail::sandwich_motor_screw},
-    {"sandwich", 2, "screw", "motor", "motor", nullptr, &detail::sandwich_screw_motor},
+    {"sandwich", 2, "screw", "motor", "motor", nullptr, &detail::x4::sandwich_screw_motor},
     {"sandwich", 2, "screw", "screw", "screw", nullptr, &detail::sandwich_screw_screw},
     {"neg", 1, "motor", "", "motor", &detail::neg_motor, nullptr},
     {"neg", 1, "screw", "", "screw", &detail::neg_screw, nullptr},

@@ -160,7 +160,12 @@ std::string emit_library(const Library& lib, const emit::EmitOptions& options, c
         if (static_cast<long>(code->ops) >= scalar_ops) code.reset();
       } else if (const auto linear = linear_form(f.program)) {
         code = linear_code(*linear);
-        if (static_cast<long>(code->ops) >= scalar_ops && linear->out.size() > 4) code.reset();
+        // Measured with g++ 12 -O3 -march=native on pga3's sandwich(motor, line) (118 vector operations, the
+        // scalar kernel 114): 8.7 ns per call against 9.8, and 8.6 ns per element in a loop of calls against 9.4.
+        const size_t vectors = (linear->out.size() + 3) / 4;
+        const bool keep = vectors == 1 || (vectors == 2 && 10 * static_cast<long>(code->ops) <= 11 * scalar_ops) ||
+                          static_cast<long>(code->ops) < scalar_ops;
+        if (!keep) code.reset();
       }
       if (code) {
         lanes_kernels += fill("lanes_kernel", {{"library", lib.name},

@@ -441,7 +441,9 @@ LaneCode matrix_columns_code(const LinearForm& form, bool low) {
 LaneCode linear_code(const LinearForm& form) {
   LaneCode low = linear_columns_code(form, true);
   LaneCode high = linear_columns_code(form, false);
-  return high.ops < low.ops ? high : low;
+  LaneCode best = high.ops < low.ops ? high : low;
+  if (LaneCode diagonal = diagonal_code(form); diagonal.ops < best.ops) best = std::move(diagonal);
+  return best;
 }
 
 LaneCode matrix_code(const LinearForm& form) {

@@ -18,9 +18,11 @@
 //
 // The vectors m_gj of M(a) depend on a alone, so b enters at the last product and its sum: in a chain
 // x = sandwich(m, x) the matrix of each m is off x's critical path, and in a loop of one versor over many
-// elements it is made once. The library keeps it where the result is one vector, whatever its operation
-// count (measured faster per call for a motor on a point or a plane), and elsewhere where it costs fewer
-// vector operations than the scalar kernel has operations.
+// elements it is made once. linear_code takes this form or diagonal_code's below, whichever has fewer
+// operations. The library keeps it where the result is one vector, whatever its operation count (measured
+// faster per call for a motor on a point or a plane), where it is two vectors and has at most 10 % more
+// operations than the scalar kernel (a motor on a line, 118 against 114: measured faster), and elsewhere
+// where it has fewer.
 #pragma once
 
 #include <cstddef>
@@ -72,6 +74,18 @@ struct LinearForm {
 std::optional<LinearForm> linear_form(const opt::Program& program);
 
 LaneCode linear_code(const LinearForm& form);
+
+// The same form a diagonal of M(a) at a time (diagonals.cpp), as klein writes its sandwiches:
+//
+//   r[4g .. 4g+3] = Σ_k t_k ⊙ perm_k(b),   t_k = κ_k ⊙ Σ_d ±(perm_u(a) ⊙ perm_v(a)) (+ a constant vector)
+//
+// Lane l of t_k is the entry of M(a) in row 4g+l and column σ_k(l): a column j that every lane of the group
+// reads is one t (perm_k(b) a broadcast of b_j), the other entries lie on cyclic diagonals. Each t's lanes
+// are made together from products of two shuffles of a, the terms of each lane assigned to the products by a
+// search for the assignment whose shuffles are ones already made (seeded restarts, the same on every run).
+// κ_k scales each lane back from coefficients ±1. The search minimizes an estimate of x86 instructions (a
+// shuffle of two vectors costs more than one of one); `ops` counts each operation once, as above.
+LaneCode diagonal_code(const LinearForm& form);
 
 // The matrix of the same form, M(a) alone: column j (the vectors m_gj above) stored at c<j> + 4g, a column
 // without terms as zeros; the statements of a kernel (const float* a, float* c0, ..., float* c<nb-1>).

@@ -1,0 +1,681 @@
+// The diagonal form of a kernel linear in b (lanes.hpp, diagonal_code): M(a)'s entries taken a diagonal at a
+// time, each diagonal's lanes made together from products of two shuffles of a, as klein writes its
+// sandwiches by hand. The form's choice of diagonals, the search for shuffles that its lanes share, and its
+// statements over the helpers of templates/cpp/library/file.in (namespace x4).
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "library/lanes.hpp"
+
+namespace cgagen::library {
+
+namespace {
+
+constexpr long kAny = -1;             // a lane whose value does not matter
+constexpr long kZero = -2;            // a lane that holds 0
+using Pattern = std::array<long, 4>;  // per lane, the operand's coefficient index (or kAny, kZero)
+
+struct Term {
+  long p = kAny, q = kAny;  // a_p a_q; q kAny for a_p alone, both for a constant
+  double c = 0;
+};
+
+// One vector t to make, lane l the polynomial `lanes[l]` in a, and the shuffle of b it multiplies.
+struct Target {
+  std::array<std::vector<Term>, 4> lanes;
+  Pattern b{kAny, kAny, kAny, kAny};
+};
+
+// Which lanes of a group are stored, and its targets.
+struct Group {
+  size_t width = 0;
+  std::vector<Target> targets;
+};
+
+std::string number(double c) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", c);
+  std::string s = buf;
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s + "f";
+}
+
+std::string constant_vector(const std::array<double, 4>& c) {
+  std::string e = "v4{";
+  for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + number(c[l]);
+  return e + "}";
+}
+
+using Signs = std::array<int, 4>;  // per lane +1 or -1
+constexpr Signs kPlus{1, 1, 1, 1};
+
+// The shuffles of one operand (a or b) made so far, each with a sign per lane, and what a new one costs.
+class Shuffles {
+ public:
+  Shuffles(std::string name, size_t n) : name_(std::move(name)), n_(n) {}
+
+  // The operand's vector whose lanes these are, where p reads one vector in its own lane order (no
+  // operation), or -1.
+  long identity(const Pattern& p) const {
+    long g = -1;
+    for (size_t l = 0; l < 4; ++l) {
+      if (p[l] == kAny) continue;
+      if (p[l] == kZero) return -1;
+      if (p[l] % 4 != static_cast<long>(l) || (g >= 0 && p[l] / 4 != g)) return -1;
+      g = p[l] / 4;
+    }
+    return g;
+  }
+
+  // The made shuffle that p with signs s matches (the lanes that matter agree), or -1; `signed_` false
+  // matches any signs.
+  long find(const Pattern& p, const Signs& s, bool signed_ = true) const {
+    for (size_t k = 0; k < made_.size(); ++k) {
+      bool ok = true;
+      for (size_t l = 0; l < 4 && ok; ++l) ok = p[l] == kAny || (p[l] == made_[k].first[l] && (!signed_ || s[l] == made_[k].second[l]));
+      if (ok) return static_cast<long>(k);
+    }
+    return -1;
+  }
+
+  // A lower bound of what p costs whatever its signs.
+  long bound(const Pattern& p) const {
+    if (empty(p) || identity(p) >= 0 || find(p, kPlus, false) >= 0) return 0;
+    return 1;
+  }
+
+  // What p with signs s costs now, in x86 instructions: 0 for one already made or a vector as loaded, else
+  // its price.
+  long cost(const Pattern& p, const Signs& s = kPlus) const {
+    if (empty(p)) return 0;
+    bool plus = true;
+    for (size_t l = 0; l < 4; ++l) plus = plus && (p[l] == kAny || s[l] == 1);
+    if (plus && identity(p) >= 0) return 0;
+    if (find(p, s) >= 0) return 0;
+    return price(p, s, plus);
+  }
+
+  // The instructions a new shuffle takes on x86 (AVX2 or AVX-512), the measure the search minimizes: a
+  // shuffle of one vector or a broadcast 1 (vpermilps); of two vectors 1 where each half of the lanes reads
+  // one (vshufps), else 2 (an index load and vpermi2ps, or two shuffles); zeros 1 more (a blend with zero)
+  // unless the other lanes are in place; a gather from more vectors 4; signs by a shuffle from the vector
+  // and its negation (the negation made once) or 1 more (an xor).
+  long price(const Pattern& p, const Signs& s, bool plus) const {
+    const Sources src = sources(p);
+    const bool zeros = std::find(p.begin(), p.end(), kZero) != p.end();
+    if (src.size() > 2) return 4 + (plus ? 0 : 1);
+    if (plus) {
+      if (zeros) {
+        Pattern rest = p;
+        for (long& i : rest)
+          if (i == kZero) i = kAny;
+        return identity(rest) >= 0 ? 1 : price(rest, kPlus, true) + 1;
+      }
+      return src.size() == 1 || halves(p, [](size_t, long i) { return i / 4; }) ? 1 : 2;
+    }
+    if (src.size() == 1 && !zeros) {
+      const long negation = negated_.count(src.lo) ? 0 : 1;
+      return negation + (halves(p, [&](size_t l, long) { return static_cast<long>(s[l]); }) ? 1 : 2);
+    }
+    return cost(p) + 1;
+  }
+
+  // The name of p with signs s, made (its statement appended to `body`, `ops` counting it) if new.
+  std::string make(const Pattern& p, const Signs& s, std::string& body, size_t& ops) {
+    bool plus = true;
+    for (size_t l = 0; l < 4; ++l) plus = plus && (p[l] == kAny || s[l] == 1);
+    const long g = identity(p);
+    if (plus && g >= 0) return use(g);
+    const long k = find(p, s);
+    if (k >= 0) return names_[static_cast<size_t>(k)];
+    // The estimate counts the outermost shuffle's price, whatever shuffles it makes first.
+    const bool top = depth_++ == 0;
+    const size_t ops_before = ops;
+    const long priced = price(p, s, plus);
+    // The lanes that do not matter: a broadcast stays one, else the lane's own index where that keeps one
+    // source vector, else the first index that matters. They take sign +.
+    Pattern full = p;
+    Signs signs = s;
+    const Sources src = sources(p);
+    const bool zeros = std::find(p.begin(), p.end(), kZero) != p.end();
+    long first = kAny;
+    for (long i : p)
+      if (i >= 0) {
+        first = i;
+        break;
+      }
+    bool same = !zeros;
+    for (long i : p) same = same && (i == kAny || i == first);
+    for (size_t l = 0; l < 4; ++l) {
+      const long own = src.lo * 4 + static_cast<long>(l);
+      const long partner = p[l ^ 1];
+      if (full[l] == kAny) {
+        // A broadcast's lanes stay one index, one vector's lanes in place; else a lane takes its half's other
+        // lane, so that each half keeps reading one vector.
+        full[l] = same ? first : src.size() == 1 && own < static_cast<long>(n_) ? own : partner >= 0 ? partner : first;
+        signs[l] = partner >= 0 ? s[l ^ 1] : 1;
+      }
+    }
+    bool broadcast = true;
+    for (long i : full) broadcast = broadcast && i == full[0];
+    std::string e;
+    if (zeros && (!plus || src.size() > 1)) {
+      // The lanes that hold 0 set by a shuffle of the shuffle without them, with its signs.
+      Pattern inner = p;
+      for (long& i : inner)
+        if (i == kZero) i = kAny;
+      Signs inner_signs = s;
+      for (size_t l = 0; l < 4; ++l)
+        if (p[l] == kZero) inner_signs[l] = 1;
+      const std::string from = make(inner, inner_signs, body, ops);
+      e = "perm<";
+      for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + std::to_string(full[l] == kZero ? 4 : static_cast<long>(l));
+      e += ">(" + from + ", v4{})";
+      ++ops;
+    } else if (!plus && src.size() == 1) {
+      // Each lane from the vector or from its negation.
+      const long v = src.lo;
+      if (negated_.insert(v).second) {
+        body += "  const v4 n" + name_ + std::to_string(v) + " = -" + use(v) + ";\n";
+        ++ops;
+      }
+      e = "perm<";
+      for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + std::to_string(full[l] % 4 + (signs[l] < 0 ? 4 : 0));
+      e += ">(" + use(v) + ", n" + name_ + std::to_string(v) + ")";
+      ++ops;
+    } else if (!plus) {
+      e = "flip(" + make(p, kPlus, body, ops) + ", u4{";
+      for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + (signs[l] < 0 ? "0x80000000u" : "0u");
+      e += "})";
+      ++ops;
+    } else if (broadcast) {
+      e = "splat<" + std::to_string(full[0] % 4) + ">(" + use(full[0] / 4) + ")";
+      ++ops;
+    } else if (src.size() <= 2) {
+      const long lo = src.lo, hi = src.hi;
+      e = "perm<";
+      for (size_t l = 0; l < 4; ++l)
+        e += std::string(l ? ", " : "") + std::to_string(full[l] == kZero ? 4 : full[l] % 4 + (full[l] / 4 == hi && hi != lo ? 4 : 0));
+      e += ">(" + use(lo) + ", " + (zeros ? std::string("v4{}") : use(hi)) + ")";
+      ++ops;
+    } else {
+      e = "v4{";
+      for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + name_ + "[" + std::to_string(full[l]) + "]";
+      e += "}";
+      ops += 3;
+    }
+    const std::string name = "s" + name_ + std::to_string(made_.size());
+    body += "  const v4 " + name + " = " + e + ";\n";
+    made_.emplace_back(full, signs);
+    names_.push_back(name);
+    --depth_;
+    if (top) extra_ += priced - static_cast<long>(ops - ops_before);
+    return name;
+  }
+
+  // The loads of the operand's vectors that statements read.
+  std::string loads() const {
+    // A normalized versor's sandwich can be a constant, or b whatever a is: the operand goes unread.
+    if (loaded_.empty()) return "  (void)" + name_ + ";\n";
+    std::string s;
+    for (long g : loaded_) {
+      const long w = std::min<long>(4, static_cast<long>(n_) - 4 * g);
+      s += "  const v4 " + name_ + std::to_string(g) + " = load<" + std::to_string(w) + ">(" + name_ + " + " + std::to_string(4 * g) + ");\n";
+    }
+    return s;
+  }
+
+  static bool empty(const Pattern& p) { return p[0] == kAny && p[1] == kAny && p[2] == kAny && p[3] == kAny; }
+
+  // What the shuffles made cost beyond one operation each (the estimate of instructions less `ops`).
+  long extra() const { return extra_; }
+
+ private:
+  // Whether lanes 0 and 1 read one source and lanes 2 and 3 another, by `source` of each lane that matters.
+  template <class F>
+  static bool halves(const Pattern& p, F source) {
+    for (size_t h = 0; h < 4; h += 2)
+      if (p[h] >= 0 && p[h + 1] >= 0 && source(h, p[h]) != source(h + 1, p[h + 1])) return false;
+    return true;
+  }
+
+  // The operand's vectors a pattern reads: how many, the first and the last.
+  struct Sources {
+    int n = 0;
+    long lo = 0, hi = 0;
+    size_t size() const { return static_cast<size_t>(n); }
+  };
+  static Sources sources(const Pattern& p) {
+    uint64_t mask = 0;
+    for (long i : p)
+      if (i >= 0) mask |= uint64_t{1} << (i / 4);
+    Sources s;
+    s.n = std::popcount(mask);
+    if (mask) {
+      s.lo = std::countr_zero(mask);
+      s.hi = 63 - std::countl_zero(mask);
+    }
+    return s;
+  }
+
+  std::string use(long g) {
+    loaded_.insert(g);
+    return name_ + std::to_string(g);
+  }
+
+  std::string name_;
+  size_t n_;
+  std::vector<std::pair<Pattern, Signs>> made_;
+  std::vector<std::string> names_;
+  std::set<long> loaded_;
+  std::set<long> negated_;
+  long extra_ = 0;
+  int depth_ = 0;
+};
+
+// One product of two shuffles of a in a target's sum (v empty: a shuffle alone, a term of one factor), lane
+// l the term picked there.
+struct Pick {
+  Pattern u{kAny, kAny, kAny, kAny}, v{kAny, kAny, kAny, kAny};
+  std::array<double, 4> c{};      // per lane, the coefficient over kappa; NaN while not picked
+  std::array<bool, 4> matters{};  // the lanes whose value counts
+};
+
+// How a pick's coefficients are paid for: 0 all +1 (a sum), 1 all -1 (a difference), 2 mixed ±1 (signs, in a
+// shuffle or flipped), 3 another mix (a product with the coefficients).
+int kind(const Pick& s, bool skip_zeros = false) {
+  bool plus = true, minus = true, unit = true;
+  for (size_t l = 0; l < 4; ++l) {
+    if (!s.matters[l] || std::isnan(s.c[l]) || (skip_zeros && s.c[l] == 0.0)) continue;
+    plus = plus && s.c[l] == 1.0;
+    minus = minus && s.c[l] == -1.0;
+    unit = unit && std::fabs(s.c[l]) == 1.0;
+  }
+  return plus ? 0 : minus ? 1 : unit ? 2 : 3;
+}
+
+Signs signs_of(const Pick& s) {
+  Signs g = kPlus;
+  for (size_t l = 0; l < 4; ++l)
+    if (s.matters[l] && s.c[l] < 0) g[l] = -1;
+  return g;
+}
+
+// p with kZero in the lanes where the pick's coefficient is 0.
+Pattern zeroed(const Pattern& p, const Pick& s) {
+  Pattern z = p;
+  for (size_t l = 0; l < 4; ++l)
+    if (s.matters[l] && s.c[l] == 0.0) z[l] = kZero;
+  return z;
+}
+
+// What a complete pick costs, and where its coefficients go: 0 nowhere (a sum or a difference), 1 the signs
+// on u, 2 on v, 3 a product after, 4 the zeros on u, 5 on v.
+std::pair<long, int> pick_cost(const Pick& s, const Shuffles& sh) {
+  const long plain = sh.cost(s.u) + sh.cost(s.v);
+  const bool zeros = std::any_of(s.c.begin(), s.c.end(), [](double c) { return c == 0.0; });
+  if (zeros) {
+    // A lane without a term in this product: 0 from one factor's shuffle where the other lanes agree in sign.
+    std::pair<long, int> best{plain + 1, 3};
+    if (kind(s, true) <= 1) {
+      const long on_u = sh.cost(zeroed(s.u, s)) + sh.cost(s.v);
+      if (on_u <= best.first) best = {on_u, 4};
+      if (!Shuffles::empty(s.v)) {
+        const long on_v = sh.cost(s.u) + sh.cost(zeroed(s.v, s));
+        if (on_v <= best.first) best = {on_v, 5};
+      }
+    }
+    return best;
+  }
+  switch (kind(s)) {
+    case 0:
+    case 1: return {plain, 0};
+    case 2: {
+      const Signs g = signs_of(s);
+      std::pair<long, int> best{plain + 1, 3};
+      const long on_u = sh.cost(s.u, g) + sh.cost(s.v);
+      if (on_u <= best.first) best = {on_u, 1};  // on a tie the signs: the negation is made once for all
+      if (!Shuffles::empty(s.v)) {
+        const long on_v = sh.cost(s.u) + sh.cost(s.v, g);
+        if (on_v <= best.first) best = {on_v, 2};
+      }
+      return best;
+    }
+    default: return {plain + 1, 3};
+  }
+}
+
+// A deterministic generator for the search's tie orders (the same sequence on every platform).
+struct Rng {
+  uint64_t s;
+  uint64_t next() {
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    return s;
+  }
+};
+
+// A made term of a target's sum: its expression and whether it is subtracted.
+struct Made {
+  std::string e;
+  bool minus = false;
+};
+
+// The products of one target: its terms of the same degree picked lane by lane so that each product's two
+// shuffles are ones already made where possible, each lane divided by kappa[l] first; the shuffles are made
+// in `sh` as they are picked. `rng` (if any) orders the candidates, so that restarts find other ways to share.
+std::vector<Made> make_products(const Target& t, const std::array<double, 4>& kappa, const std::array<bool, 4>& live,
+                                Shuffles& sh, std::string& body, size_t& ops, Rng* rng) {
+  struct Choice {
+    size_t term;
+    bool swap;
+  };
+  std::array<std::vector<Term>, 4> left;
+  for (size_t l = 0; l < 4; ++l)
+    for (const Term& term : t.lanes[l])
+      if (term.p != kAny) left[l].push_back({term.p, term.q, term.c / kappa[l]});
+  std::vector<Made> made;
+  for (int degree : {2, 1}) {
+    for (;;) {
+      std::array<std::vector<Choice>, 4> options;
+      bool any = false;
+      for (size_t l = 0; l < 4; ++l) {
+        for (size_t k = 0; k < left[l].size(); ++k) {
+          const Term& term = left[l][k];
+          if ((term.q != kAny ? 2 : 1) != degree) continue;
+          options[l].push_back({k, false});
+          if (degree == 2 && term.p != term.q) options[l].push_back({k, true});
+        }
+        if (rng)
+          for (size_t k = options[l].size(); k > 1; --k) std::swap(options[l][k - 1], options[l][rng->next() % k]);
+        any = any || !options[l].empty();
+      }
+      if (!any) break;
+      // Past kLeaves combinations the lanes with the most choices keep only their first ones.
+      constexpr size_t kLeaves = 1 << 11;
+      for (;;) {
+        size_t leaves = 1, widest = 0;
+        for (size_t l = 0; l < 4; ++l) {
+          leaves *= std::max<size_t>(1, options[l].size());
+          if (options[l].size() > options[widest].size()) widest = l;
+        }
+        if (leaves <= kLeaves) break;
+        options[widest].resize(options[widest].size() / 2);
+      }
+      // Branch and bound over the lanes' choices; a live lane with no term of this degree left holds zero.
+      Pick best, cur;
+      long best_cost = 1 << 20;
+      int best_where = 0;
+      for (size_t l = 0; l < 4; ++l) {
+        cur.matters[l] = live[l];
+        cur.c[l] = std::nan("");
+      }
+      std::function<void(size_t)> walk = [&](size_t l) {
+        if (best_cost == 0) return;
+        if (sh.bound(cur.u) + sh.bound(cur.v) + (kind(cur) == 3 ? 1 : 0) >= best_cost) return;
+        if (l == 4) {
+          const auto [cost, where] = pick_cost(cur, sh);
+          if (cost < best_cost) {
+            best = cur;
+            best_cost = cost;
+            best_where = where;
+          }
+          return;
+        }
+        if (options[l].empty()) {
+          if (live[l]) cur.c[l] = 0.0;
+          walk(l + 1);
+          cur.c[l] = std::nan("");
+          return;
+        }
+        for (const Choice& ch : options[l]) {
+          const Term& term = left[l][ch.term];
+          cur.u[l] = ch.swap ? term.q : term.p;
+          cur.v[l] = ch.swap ? term.p : term.q;
+          cur.c[l] = term.c;
+          walk(l + 1);
+          cur.u[l] = cur.v[l] = kAny;
+          cur.c[l] = std::nan("");
+        }
+      };
+      walk(0);
+      // Take the picked terms out.
+      for (size_t l = 0; l < 4; ++l) {
+        if (options[l].empty()) continue;
+        for (size_t k = 0; k < left[l].size(); ++k) {
+          const Term& term = left[l][k];
+          const bool hit = term.c == best.c[l] &&
+                           ((term.p == best.u[l] && term.q == best.v[l]) || (term.q == best.u[l] && term.p == best.v[l]));
+          if (hit && (term.q != kAny ? 2 : 1) == degree) {
+            left[l].erase(left[l].begin() + static_cast<long>(k));
+            break;
+          }
+        }
+      }
+      const Signs g = signs_of(best);
+      const std::string u = sh.make(best_where == 4 ? zeroed(best.u, best) : best.u, best_where == 1 ? g : kPlus, body, ops);
+      const bool alone = Shuffles::empty(best.v);
+      std::string e = u;
+      if (!alone) {
+        e += " * " + sh.make(best_where == 5 ? zeroed(best.v, best) : best.v, best_where == 2 ? g : kPlus, body, ops);
+        ++ops;
+      }
+      const int k = kind(best, best_where >= 4);
+      if (best_where == 3) {
+        std::array<double, 4> c{};
+        for (size_t l = 0; l < 4; ++l) c[l] = best.matters[l] ? best.c[l] : 0.0;
+        e = "scale(" + e + ", " + constant_vector(c) + ")";
+        ++ops;
+      }
+      made.push_back({e, k == 1});
+    }
+  }
+  return made;
+}
+
+// The statements of one kernel, every target in order, and their operation count.
+struct Built {
+  std::string body;
+  size_t ops = 0;       // vector operations, each shuffle one (as lanes.cpp counts them)
+  long estimate = 0;    // x86 instructions, the shuffles at their price
+};
+
+// kappa: per lane the magnitude most of its terms have (the largest among equals), so that the slots'
+// coefficients are mostly ±1; a lane that does not count is 0 where some other kappa is not 1 (the
+// target's final product zeroes it).
+std::array<double, 4> kappa_of(const Target& t, const std::array<bool, 4>& live) {
+  std::array<double, 4> kappa{1, 1, 1, 1};
+  for (size_t l = 0; l < 4; ++l) {
+    std::map<double, int> count;
+    for (const Term& term : t.lanes[l])
+      if (term.p != kAny) ++count[std::fabs(term.c)];
+    int most = 0;
+    for (const auto& [mag, n] : count)
+      if (n >= most) {
+        most = n;
+        kappa[l] = mag;
+      }
+    if (!live[l]) kappa[l] = 1;
+  }
+  return kappa;
+}
+
+Built build(const std::vector<Group>& groups, size_t na, size_t nb, Rng* rng) {
+  Built out;
+  Shuffles sa("a", na), sb("b", nb);
+  std::string body;
+  // A balanced sum ("" for none), each addition counted.
+  auto sum = [&](std::vector<std::string> terms) {
+    while (terms.size() > 1) {
+      std::vector<std::string> next;
+      for (size_t k = 0; k + 1 < terms.size(); k += 2) next.push_back("(" + terms[k] + " + " + terms[k + 1] + ")");
+      if (terms.size() % 2) next.push_back(terms.back());
+      out.ops += terms.size() / 2;
+      terms = std::move(next);
+    }
+    return terms.empty() ? std::string() : terms[0];
+  };
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const Group& group = groups[g];
+    std::vector<std::string> products;
+    for (const Target& t : group.targets) {
+      // Lanes that count for the products: stored ones with a term that has a factor of a. The other stored
+      // lanes hold a constant or nothing, so the products must be zero there.
+      std::array<bool, 4> live{};
+      bool needs_zero = false;
+      for (size_t l = 0; l < 4; ++l) {
+        live[l] = l < group.width &&
+                  std::any_of(t.lanes[l].begin(), t.lanes[l].end(), [](const Term& term) { return term.p != kAny; });
+        needs_zero = needs_zero || (l < group.width && !live[l]);
+      }
+      std::array<double, 4> kappa = kappa_of(t, live);
+      std::array<double, 4> constant{};
+      bool any_constant = false;
+      for (size_t l = 0; l < 4; ++l)
+        for (const Term& term : t.lanes[l])
+          if (term.p == kAny) {
+            constant[l] += term.c;
+            any_constant = true;
+          }
+      bool scaled = needs_zero;
+      for (size_t l = 0; l < 4; ++l) scaled = scaled || (live[l] && kappa[l] != 1.0);
+      // Where t is scaled anyway, a lane's kappa takes the sign of most of its terms (a restart's a random one),
+      // so that more products have one sign in every lane.
+      if (scaled)
+        for (size_t l = 0; l < 4; ++l) {
+          if (!live[l]) {
+            kappa[l] = 0;
+            continue;
+          }
+          double sign = 0;
+          for (const Term& term : t.lanes[l])
+            if (term.p != kAny && std::fabs(term.c) == kappa[l]) sign += term.c > 0 ? 1 : -1;
+          if (rng ? rng->next() % 2 == 0 : sign < 0) kappa[l] = -kappa[l];
+        }
+      std::vector<std::string> plus, minus;
+      for (const Made& m : make_products(t, kappa, live, sa, body, out.ops, rng)) (m.minus ? minus : plus).push_back(m.e);
+      std::string value;
+      if (!plus.empty() && !minus.empty()) {
+        value = "(" + sum(plus) + " - " + sum(minus) + ")";
+        ++out.ops;
+      } else if (!plus.empty()) {
+        value = sum(plus);
+      } else if (!minus.empty()) {
+        value = "(-" + sum(minus) + ")";
+        ++out.ops;
+      }
+      if (!value.empty() && scaled) {
+        value = "scale(" + value + ", " + constant_vector(kappa) + ")";
+        ++out.ops;
+      }
+      if (any_constant) {
+        if (!value.empty()) ++out.ops;
+        value = value.empty() ? constant_vector(constant) : "(" + value + " + " + constant_vector(constant) + ")";
+      }
+      if (value.empty()) continue;
+      const std::string name = "t" + std::to_string(g) + "_" + std::to_string(products.size());
+      body += "  const v4 " + name + " = " + value + ";\n";
+      products.push_back(name + " * " + sb.make(t.b, kPlus, body, out.ops));
+      ++out.ops;
+    }
+    std::string r = sum(products);
+    if (r.empty()) r = "v4{}";
+    if (r.front() == '(' && r.back() == ')' && products.size() > 1) r = r.substr(1, r.size() - 2);
+    body += "  store<" + std::to_string(group.width) + ">(r + " + std::to_string(4 * g) + ", " + r + ");\n";
+  }
+  out.body = sa.loads() + sb.loads() + body;
+  out.estimate = static_cast<long>(out.ops) + sa.extra() + sb.extra();
+  return out;
+}
+
+// The targets of each group of four result coefficients: first a column (a broadcast of b_j) for each j that
+// the group reads as `columns` says, then the diagonals of the other j it reads, lane l of diagonal o taking
+// the (l + o)-th of them cyclically.
+// The column choices the search tries: the j that every lane reads, the j that one lane reads, both, none.
+enum class Columns { kFull, kSingle, kBoth, kNone };
+
+std::vector<Group> targets(const LinearForm& form, Columns columns) {
+  std::vector<Group> groups;
+  for (size_t g = 0; g < (form.out.size() + 3) / 4; ++g) {
+    Group group;
+    group.width = std::min<size_t>(4, form.out.size() - 4 * g);
+    std::map<size_t, std::array<std::vector<Term>, 4>> entries;  // j -> lane -> terms
+    for (size_t l = 0; l < group.width; ++l)
+      for (const LinearTerm& t : form.out[4 * g + l]) {
+        Term term;
+        if (t.p != kNone) term.p = static_cast<long>(t.p);
+        if (t.q != kNone) term.q = static_cast<long>(t.q);
+        if (term.p == kAny && term.q != kAny) std::swap(term.p, term.q);
+        term.c = t.c;
+        entries[t.j][l].push_back(term);
+      }
+    std::vector<size_t> rest;
+    for (const auto& [j, lanes] : entries) {
+      size_t readers = 0;
+      for (size_t l = 0; l < group.width; ++l) readers += lanes[l].empty() ? 0 : 1;
+      const bool full = readers == group.width, single = readers == 1 && group.width > 1;
+      const bool column = (full && (columns == Columns::kFull || columns == Columns::kBoth)) ||
+                          (single && (columns == Columns::kSingle || columns == Columns::kBoth));
+      if (column) {
+        Target t;
+        t.lanes = lanes;
+        t.b = {static_cast<long>(j), static_cast<long>(j), static_cast<long>(j), static_cast<long>(j)};
+        group.targets.push_back(t);
+      } else {
+        rest.push_back(j);
+      }
+    }
+    for (size_t o = 0; o < rest.size(); ++o) {
+      Target t;
+      bool any = false;
+      for (size_t l = 0; l < group.width; ++l) {
+        const size_t j = rest[(l + o) % rest.size()];
+        const auto& lanes = entries.at(j);
+        if (lanes[l].empty()) continue;
+        t.lanes[l] = lanes[l];
+        t.b[l] = static_cast<long>(j);
+        any = true;
+      }
+      if (any) group.targets.push_back(t);
+    }
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+}  // namespace
+
+LaneCode diagonal_code(const LinearForm& form) {
+  // Restarts: searches with other tie orders, the first taking each first best choice. More find more
+  // sharing (a motor on a line, 150 terms: 118 operations after 16, 113 after 64) but cost time (the 121
+  // kernels of cga3.gal: 3.6 s after 16, 21 s after 64); the largest kernels get half.
+  size_t terms = 0;
+  for (const auto& out : form.out) terms += out.size();
+  const int restarts = terms > 1000 ? 8 : 16;
+  LaneCode best;
+  long best_estimate = -1;
+  for (Columns columns : {Columns::kFull, Columns::kSingle, Columns::kBoth, Columns::kNone}) {
+    const std::vector<Group> groups = targets(form, columns);
+    for (int k = 0; k < restarts; ++k) {
+      Rng rng{0x9e3779b97f4a7c15ull + static_cast<uint64_t>(k)};
+      const Built b = build(groups, form.na, form.nb, k == 0 ? nullptr : &rng);
+      if (best_estimate < 0 || b.estimate < best_estimate) {
+        best = LaneCode{b.body, b.ops};
+        best_estimate = b.estimate;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace cgagen::library
