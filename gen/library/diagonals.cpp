@@ -41,20 +41,6 @@ struct Group {
   std::vector<Target> targets;
 };
 
-std::string number(double c) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", c);
-  std::string s = buf;
-  if (s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s + "f";
-}
-
-std::string constant_vector(const std::array<double, 4>& c) {
-  std::string e = "v4{";
-  for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + number(c[l]);
-  return e + "}";
-}
-
 using Signs = std::array<int, 4>;  // per lane +1 or -1
 constexpr Signs kPlus{1, 1, 1, 1};
 
@@ -474,7 +460,7 @@ std::vector<Made> make_products(const Target& t, const std::array<double, 4>& ka
       if (best_where == 3) {
         std::array<double, 4> c{};
         for (size_t l = 0; l < 4; ++l) c[l] = best.matters[l] ? best.c[l] : 0.0;
-        e = "scale(" + e + ", " + constant_vector(c) + ")";
+        e = "scale(" + e + ", " + vector_literal(c) + ")";
         ++ops;
       }
       made.push_back({e, k == 1});
@@ -575,12 +561,12 @@ Built build(const std::vector<Group>& groups, size_t na, size_t nb, Rng* rng) {
         ++out.ops;
       }
       if (!value.empty() && scaled) {
-        value = "scale(" + value + ", " + constant_vector(kappa) + ")";
+        value = "scale(" + value + ", " + vector_literal(kappa) + ")";
         ++out.ops;
       }
       if (any_constant) {
         if (!value.empty()) ++out.ops;
-        value = value.empty() ? constant_vector(constant) : "(" + value + " + " + constant_vector(constant) + ")";
+        value = value.empty() ? vector_literal(constant) : "(" + value + " + " + vector_literal(constant) + ")";
       }
       if (value.empty()) continue;
       const std::string name = "t" + std::to_string(g) + "_" + std::to_string(products.size());

@@ -13,6 +13,20 @@
 
 namespace cgagen::library {
 
+std::string float_literal(double c) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", c);
+  std::string s = buf;
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s + "f";
+}
+
+std::string vector_literal(const std::array<double, 4>& c) {
+  std::string e = "v4{";
+  for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + float_literal(c[l]);
+  return e + "}";
+}
+
 namespace {
 
 // A symbol's operand (0 a, 1 b) and coefficient index, or nothing for any other symbol.
@@ -80,13 +94,6 @@ bool read_sum(const GiNaC::ex& e, std::vector<T>& terms, Read read) {
   return true;
 }
 
-std::string number(double c) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", c);
-  std::string s = buf;
-  if (s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s + "f";
-}
 
 auto width(size_t n, size_t g) { return std::min<size_t>(4, n - 4 * g); }
 
@@ -148,13 +155,13 @@ class Builder {
         if (i != kNone) ++ops_;
       }
     }
-    if (columns.empty()) return any_constant ? constant_vector(constant) : "v4{}";
+    if (columns.empty()) return any_constant ? vector_literal(constant) : "v4{}";
     std::string s = sum(std::move(columns));
     if (std::any_of(kappa.begin(), kappa.end(), [](double k) { return k != 1.0; })) {
-      s = "scale(" + s + ", " + constant_vector(kappa) + ")";
+      s = "scale(" + s + ", " + vector_literal(kappa) + ")";
       ++ops_;
     }
-    return any_constant ? sum({s, constant_vector(constant)}) : s;
+    return any_constant ? sum({s, vector_literal(constant)}) : s;
   }
 
   // x or y's coefficient k broadcast to 4 lanes (counted once).
@@ -217,11 +224,6 @@ class Builder {
   using Operand = std::pair<std::vector<long>, std::vector<double>>;
   static constexpr long kFree = -2;
 
-  std::string constant_vector(const std::array<double, 4>& c) const {
-    std::string e = "v4{";
-    for (size_t l = 0; l < 4; ++l) e += std::string(l ? ", " : "") + number(c[l]);
-    return e + "}";
-  }
 
   // The named vector of an operand, made (and counted) the first time.
   std::string operand(const Operand& op, size_t lanes) {
@@ -275,7 +277,7 @@ class Builder {
     } else if (!unit || !positive) {
       std::array<double, 4> c{};
       for (size_t l = 0; l < 4; ++l) c[l] = op.second[l];
-      e = "scale(" + e + ", " + constant_vector(c) + ")";
+      e = "scale(" + e + ", " + vector_literal(c) + ")";
       ++ops_;
     }
     // Lanes past the result's last coefficient are never stored: what they hold does not matter.

@@ -27,6 +27,7 @@
 
 #include <cstddef>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,10 @@
 namespace cgagen::library {
 
 inline constexpr size_t kNone = static_cast<size_t>(-1);  // no factor of that operand
+
+// The C++ spellings of a float constant (9 significant digits) and of a vector of 4 of them.
+std::string float_literal(double c);
+std::string vector_literal(const std::array<double, 4>& c);
 
 struct LaneTerm {
   size_t i = 0, j = 0;  // a_i * b_j (in the linear form's vectors, a_i * a_j; kNone: a missing factor)
