@@ -94,7 +94,6 @@ bool read_sum(const GiNaC::ex& e, std::vector<T>& terms, Read read) {
   return true;
 }
 
-
 auto width(size_t n, size_t g) { return std::min<size_t>(4, n - 4 * g); }
 
 // The statements of one kernel: vectors made of lanes Σ c · x_i · y_j, with x_i broadcast and the y_j a
@@ -223,7 +222,6 @@ class Builder {
   // coefficients.
   using Operand = std::pair<std::vector<long>, std::vector<double>>;
   static constexpr long kFree = -2;
-
 
   // The named vector of an operand, made (and counted) the first time.
   std::string operand(const Operand& op, size_t lanes) {
