@@ -3580,11 +3580,29 @@ namespace x4 {
 #if CGAGEN_X4
 typedef float v4 __attribute__((vector_size(16)));
 typedef unsigned u4 __attribute__((vector_size(16)));
+typedef unsigned long long u2 __attribute__((vector_size(16)));
+// A partial vector's lanes are built from scalars, not copied into a zeroed vector: a value the compiler keeps
+// in registers (a chain's carried line, its last two floats in one 64-bit register) is then moved into place,
+// not stored and reloaded through the stack at a store-forwarding stall.
 template <int N>
 inline v4 load(const float* p) {
-  v4 v{};
-  __builtin_memcpy(&v, p, N * sizeof(float));
-  return v;
+  if constexpr (N == 4) {
+    v4 v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+  } else if constexpr (N == 2) {
+    unsigned long long x;
+    __builtin_memcpy(&x, p, sizeof x);
+    return (v4)(u2){x, 0};
+  } else if constexpr (N == 3) {
+    unsigned long long x;
+    __builtin_memcpy(&x, p, sizeof x);
+    v4 v = (v4)(u2){x, 0};
+    v[2] = p[2];
+    return v;
+  } else {
+    return v4{p[0], 0.0f, 0.0f, 0.0f};
+  }
 }
 template <int N>
 inline void store(float* p, v4 v) { __builtin_memcpy(p, &v, N * sizeof(float)); }
@@ -3592,6 +3610,11 @@ template <int K>
 inline v4 splat(v4 v) { return __builtin_shufflevector(v, v, K, K, K, K); }
 template <int I0, int I1, int I2, int I3>
 inline v4 perm(v4 x, v4 y) { return __builtin_shufflevector(x, y, I0, I1, I2, I3); }
+template <int L, int K>
+inline v4 insert(v4 x, v4 y) {
+  x[L] = y[K];
+  return x;
+}
 inline v4 flip(v4 v, u4 signs) { return (v4)((u4)v ^ signs); }
 inline v4 scale(v4 v, v4 c) { return v * c; }
 #endif
@@ -3685,116 +3708,207 @@ inline void gp_screw_screw(const float* a, const float* b, float* r) {
 inline void gp_screw_screw(const float* a, const float* b, float* r) { ::cga_rigid::detail::gp_screw_screw(a, b, r); }
 #endif
 #if CGAGEN_X4
-// 110 vector operations; the scalar kernel has 117.
+// 102 vector operations; the scalar kernel has 117.
 inline void sandwich_motor_motor(const float* a, const float* b, float* r) {
   const v4 a0 = load<4>(a + 0);
   const v4 a1 = load<4>(a + 4);
   const v4 b0 = load<4>(b + 0);
   const v4 b1 = load<4>(b + 4);
   const v4 t0_0 = v4{1.0f, 0.0f, 0.0f, 0.0f};
-  const v4 sb0 = splat<0>(b0);
-  const v4 sa0 = perm<0, 2, 3, 1>(a0, a0);
-  const v4 sa1 = splat<0>(a0);
-  const v4 sa2 = perm<0, 3, 1, 2>(a0, a0);
-  const v4 t0_1 = scale((a0 * sa0 + sa1 * sa2), v4{0.0f, 2.0f, 2.0f, 2.0f});
-  const v4 sb1 = perm<0, 2, 3, 1>(b0, b0);
-  const v4 t0_2 = scale((a0 * sa2 - sa1 * sa0), v4{0.0f, 2.0f, 2.0f, 2.0f});
-  const v4 sb2 = perm<0, 3, 1, 2>(b0, b0);
-  const v4 sa3 = perm<0, 2, 0, 0>(a0, a0);
-  const v4 sa4 = perm<0, 3, 2, 3>(a0, a0);
-  const v4 t0_3 = (scale((sa3 * sa3 + sa4 * sa4), v4{0.0f, -2.0f, 2.0f, 2.0f}) + v4{0.0f, 1.0f, -1.0f, -1.0f});
-  store<4>(r + 0, (t0_0 * sb0 + t0_1 * sb1) + (t0_2 * sb2 + t0_3 * b0));
-  const v4 t1_0 = v4{0.0f, 0.0f, 0.0f, 1.0f};
-  const v4 sb3 = splat<3>(b1);
-  const v4 sa5 = perm<1, 2, 3, 3>(a1, a1);
-  const v4 sa6 = perm<1, 3, 0, 3>(a0, a0);
-  const v4 sa7 = perm<0, 0, 1, 3>(a1, a1);
-  const v4 sa8 = perm<2, 1, 1, 3>(a0, a0);
-  const v4 sa9 = perm<3, 1, 0, 3>(a1, a1);
-  const v4 sa10 = splat<3>(a0);
-  const v4 sa11 = perm<2, 4, 2, 3>(a1, v4{});
-  const v4 t1_1 = scale(((scale(a0 * sa5, v4{-1.0f, 1.0f, 1.0f, 0.0f}) + sa6 * sa7) + (scale(sa8 * sa9, v4{-1.0f, 0.0f, 1.0f, 0.0f}) + sa10 * sa11)), v4{2.0f, 4.0f, 2.0f, 0.0f});
-  const v4 sb4 = perm<1, 2, 3, 3>(b0, b0);
-  const v4 sa12 = perm<6, 6, 2, 2>(a0, a1);
-  const v4 sa13 = perm<4, 7, 3, 3>(a0, a1);
-  const v4 sa14 = perm<3, 2, 2, 3>(a0, a0);
-  const v4 sa15 = perm<1, 0, 4, 3>(a1, v4{});
-  const v4 t1_2 = scale(((sa8 * sa13 + scale(sa6 * sa9, v4{1.0f, 1.0f, 0.0f, 0.0f})) - (sa1 * sa12 + sa14 * sa15)), v4{2.0f, 2.0f, 2.0f, 0.0f});
-  const v4 sb5 = perm<2, 3, 4, 4>(b0, b1);
-  const v4 sa16 = perm<5, 0, 2, 2>(a0, a1);
-  const v4 sa17 = perm<6, 2, 3, 3>(a0, a1);
-  const v4 sa18 = flip(sa17, u4{0x80000000u, 0u, 0u, 0u});
-  const v4 t1_3 = scale((sa8 * sa16 + sa6 * sa18), v4{4.0f, -2.0f, -2.0f, 0.0f});
-  const v4 sb6 = perm<3, 4, 5, 5>(b0, b1);
-  const v4 sa19 = perm<3, 0, 2, 3>(a0, a0);
-  const v4 t1_4 = (scale((sa0 * sa0 + sa19 * sa19), v4{2.0f, 2.0f, -2.0f, 0.0f}) + v4{-1.0f, -1.0f, 1.0f, 0.0f});
-  const v4 sa20 = perm<1, 0, 5, 5>(a0, a1);
-  const v4 sa21 = perm<2, 1, 3, 3>(a0, a0);
-  const v4 sa22 = perm<3, 2, 4, 4>(a0, a1);
-  const v4 t1_5 = scale((sa4 * sa20 - sa21 * sa22), v4{2.0f, 2.0f, 4.0f, 0.0f});
-  const v4 sb7 = perm<5, 6, 1, 1>(b0, b1);
-  const v4 sa23 = perm<2, 4, 4, 4>(a0, a1);
-  const v4 sa24 = perm<1, 1, 2, 3>(a0, a0);
-  const v4 sa25 = perm<3, 5, 6, 6>(a0, a1);
-  const v4 sa26 = perm<4, 3, 1, 3>(a1, v4{});
-  const v4 t1_6 = scale((((sa1 * sa23 + sa24 * sa25) + scale(sa0 * sa5, v4{0.0f, -1.0f, -1.0f, 0.0f})) - sa2 * sa26), v4{2.0f, 2.0f, 2.0f, 0.0f});
-  const v4 sb8 = perm<6, 1, 2, 2>(b0, b1);
-  store<4>(r + 4, ((t1_0 * sb3 + t1_1 * sb4) + (t1_2 * sb5 + t1_3 * sb6)) + ((t1_4 * b1 + t1_5 * sb7) + t1_6 * sb8));
+  const v4 g0 = t0_0 * b0;
+  const v4 sa0 = perm<2, 0, 0, 3>(a0, a0);
+  const v4 sa1 = perm<3, 2, 3, 3>(a0, a0);
+  const v4 t1_0 = (scale((sa0 * sa0 + sa1 * sa1), v4{-2.0f, 2.0f, 2.0f, 0.0f}) + v4{1.0f, -1.0f, -1.0f, 0.0f});
+  const v4 sb0 = perm<1, 2, 3, 3>(b0, b0);
+  const v4 sa2 = perm<3, 0, 0, 3>(a0, a0);
+  const v4 sa3 = perm<1, 2, 1, 3>(a0, a0);
+  const v4 sa4 = perm<2, 3, 3, 3>(a0, a0);
+  const v4 t1_1 = scale((a0 * sa2 + sa3 * sa4), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb1 = perm<2, 3, 1, 3>(b0, b0);
+  const v4 sa5 = perm<0, 3, 1, 3>(a0, a0);
+  const v4 sa6 = perm<1, 1, 2, 3>(a0, a0);
+  const v4 t1_2 = scale((sa6 * sa1 - sa5 * sa0), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb2 = perm<3, 1, 2, 3>(b0, b0);
+  const v4 g1 = (t1_0 * sb0 + t1_1 * sb1) + t1_2 * sb2;
+  const v4 sa7 = perm<0, 2, 3, 3>(a1, a1);
+  const v4 sa8 = perm<1, 0, 0, 3>(a1, a1);
+  const v4 sa9 = perm<3, 1, 1, 3>(a1, a1);
+  const v4 sa10 = perm<2, 4, 2, 3>(a1, v4{});
+  const v4 t2_0 = scale(((sa6 * sa7 + scale(sa5 * sa8, v4{-1.0f, 1.0f, 1.0f, 0.0f})) + (scale(sa0 * sa9, v4{-1.0f, 0.0f, 1.0f, 0.0f}) + sa1 * sa10)), v4{2.0f, 4.0f, 2.0f, 0.0f});
+  const v4 sa11 = perm<3, 3, 1, 3>(a1, a1);
+  const v4 sa12 = perm<2, 1, 2, 3>(a1, a1);
+  const v4 t2_1 = scale((((sa6 * sa11 + scale(sa0 * sa7, v4{1.0f, -1.0f, 0.0f, 0.0f})) + scale(sa5 * sa12, v4{-1.0f, 1.0f, 0.0f, 0.0f})) - sa1 * sa8), v4{2.0f, 2.0f, 4.0f, 0.0f});
+  const v4 t2_2 = scale(((sa0 * sa8 + scale(sa6 * sa12, v4{-1.0f, 1.0f, 1.0f, 0.0f})) + (scale(sa1 * sa7, v4{0.0f, -1.0f, -1.0f, 0.0f}) + scale(sa5 * sa11, v4{0.0f, -1.0f, -1.0f, 0.0f}))), v4{4.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sa13 = perm<0, 0, 2, 3>(a0, a0);
+  const v4 t2_3 = (scale((sa1 * sa1 + sa13 * sa13), v4{2.0f, 2.0f, -2.0f, 0.0f}) + v4{-1.0f, -1.0f, 1.0f, 0.0f});
+  const v4 sa14 = perm<1, 0, 3, 3>(a0, a0);
+  const v4 sa15 = perm<2, 1, 0, 3>(a0, a0);
+  const v4 sa16 = perm<3, 2, 2, 3>(a0, a0);
+  const v4 t2_4 = scale((sa5 * sa14 - sa15 * sa16), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb3 = perm<1, 2, 0, 3>(b1, b1);
+  const v4 sa17 = perm<0, 0, 3, 3>(a0, a0);
+  const v4 sa18 = perm<3, 3, 2, 3>(a0, a0);
+  const v4 t2_5 = scale((sa17 * sa15 + sa3 * sa18), v4{2.0f, -2.0f, -2.0f, 0.0f});
+  const v4 sb4 = perm<2, 0, 1, 3>(b1, b1);
+  const v4 g2 = ((t2_0 * sb0 + t2_1 * sb1) + (t2_2 * sb2 + t2_3 * b1)) + (t2_4 * sb3 + t2_5 * sb4);
+  const v4 sb5 = splat<3>(b1);
+  const v4 g3 = t0_0 * sb5;
+  const v4 sg0 = perm<0, 4, 5, 6>(g0, g1);
+  store<4>(r + 0, sg0);
+  const v4 sg1 = insert<3, 0>(g2, g3);
+  store<4>(r + 4, sg1);
 }
 #else
 inline void sandwich_motor_motor(const float* a, const float* b, float* r) { ::cga_rigid::detail::sandwich_motor_motor(a, b, r); }
 #endif
 #if CGAGEN_X4
-// 82 vector operations; the scalar kernel has 81.
+// 106 vector operations; the scalar kernel has 114.
+inline void sandwich_motor_screw(const float* a, const float* b, float* r) {
+  const v4 a0 = load<4>(a + 0);
+  const v4 a1 = load<4>(a + 4);
+  const v4 b0 = load<4>(b + 0);
+  const v4 b1 = load<2>(b + 4);
+  const v4 sa0 = perm<1, 0, 0, 3>(a0, a0);
+  const v4 sa1 = perm<2, 3, 1, 3>(a0, a0);
+  const v4 sa2 = perm<3, 2, 3, 3>(a0, a0);
+  const v4 t0_0 = (((scale(a0 * a0, v4{1.0f, -1.0f, -1.0f, 0.0f}) + sa0 * sa0) + scale(sa2 * sa2, v4{-1.0f, 1.0f, 1.0f, 0.0f})) - sa1 * sa1);
+  const v4 sa3 = perm<3, 0, 0, 3>(a0, a0);
+  const v4 sa4 = perm<1, 2, 3, 3>(a0, a0);
+  const v4 t0_1 = scale((a0 * sa3 + sa4 * sa1), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb0 = perm<1, 2, 0, 3>(b0, b0);
+  const v4 sa5 = splat<0>(a0);
+  const v4 sa6 = perm<1, 1, 2, 3>(a0, a0);
+  const v4 t0_2 = scale((sa6 * sa2 - sa5 * sa1), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb1 = perm<2, 0, 1, 3>(b0, b0);
+  const v4 g0 = (t0_0 * b0 + t0_1 * sb0) + t0_2 * sb1;
+  const v4 sa7 = perm<2, 3, 1, 3>(a1, a1);
+  const v4 sa8 = perm<1, 2, 3, 3>(a1, a1);
+  const v4 sa9 = perm<3, 0, 0, 3>(a1, a1);
+  const v4 t1_0 = scale(((sa4 * a1 + sa3 * sa7) + (scale(a0 * sa8, v4{-1.0f, 1.0f, 1.0f, 0.0f}) + scale(sa1 * sa9, v4{-1.0f, 1.0f, 1.0f, 0.0f}))), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 t1_1 = scale((((sa1 * a1 + scale(a0 * sa7, v4{-1.0f, 1.0f, 1.0f, 0.0f})) + scale(sa4 * sa9, v4{1.0f, -1.0f, -1.0f, 0.0f})) - sa3 * sa8), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sa10 = perm<2, 2, 3, 3>(a1, a1);
+  const v4 sa11 = perm<3, 1, 2, 3>(a0, a0);
+  const v4 sa12 = perm<1, 3, 1, 3>(a1, a1);
+  const v4 t1_2 = scale((((scale(sa5 * sa9, v4{-1.0f, 1.0f, 1.0f, 0.0f}) + sa11 * a1) + scale(sa1 * sa12, v4{1.0f, -1.0f, -1.0f, 0.0f})) - sa4 * sa10), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 t1_3 = (((sa5 * sa5 + scale(sa1 * sa1, v4{-1.0f, -1.0f, 1.0f, 0.0f})) + scale(sa2 * sa2, v4{1.0f, 1.0f, -1.0f, 0.0f})) - sa6 * sa6);
+  const v4 sb2 = perm<3, 4, 5, 5>(b0, b1);
+  const v4 sa13 = perm<2, 2, 0, 3>(a0, a0);
+  const v4 sa14 = perm<0, 0, 1, 3>(a0, a0);
+  const v4 sa15 = perm<1, 3, 3, 3>(a0, a0);
+  const v4 t1_4 = scale((sa14 * sa15 - sa13 * sa11), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb3 = perm<4, 5, 3, 3>(b0, b1);
+  const v4 sa16 = perm<2, 1, 3, 3>(a0, a0);
+  const v4 sa17 = perm<1, 2, 1, 3>(a0, a0);
+  const v4 sa18 = perm<3, 3, 2, 3>(a0, a0);
+  const v4 t1_5 = scale((sa5 * sa16 + sa17 * sa18), v4{2.0f, -2.0f, -2.0f, 0.0f});
+  const v4 sb4 = perm<5, 3, 4, 4>(b0, b1);
+  const v4 g1 = ((t1_0 * b0 + t1_1 * sb0) + (t1_2 * sb1 + t1_3 * sb2)) + (t1_4 * sb3 + t1_5 * sb4);
+  const v4 sg0 = insert<3, 0>(g0, g1);
+  store<4>(r + 0, sg0);
+  const v4 sg1 = perm<1, 2, 2, 3>(g1, g1);
+  store<2>(r + 4, sg1);
+}
+#else
+inline void sandwich_motor_screw(const float* a, const float* b, float* r) { ::cga_rigid::detail::sandwich_motor_screw(a, b, r); }
+#endif
+#if CGAGEN_X4
+// 75 vector operations; the scalar kernel has 81.
 inline void sandwich_screw_motor(const float* a, const float* b, float* r) {
   const v4 a0 = load<4>(a + 0);
   const v4 a1 = load<2>(a + 4);
   const v4 b0 = load<4>(b + 0);
   const v4 b1 = load<4>(b + 4);
   const v4 t0_0 = v4{1.0f, 0.0f, 0.0f, 0.0f};
-  const v4 sb0 = splat<0>(b0);
   const v4 sa0 = perm<0, 0, 1, 0>(a0, a0);
   const v4 sa1 = perm<0, 1, 2, 2>(a0, a0);
   const v4 t0_1 = scale(sa0 * sa1, v4{0.0f, 2.0f, 2.0f, 2.0f});
-  const v4 sb1 = perm<0, 2, 3, 1>(b0, b0);
+  const v4 sb0 = perm<0, 2, 3, 1>(b0, b0);
   const v4 sa2 = perm<0, 0, 0, 1>(a0, a0);
   const v4 sa3 = perm<0, 2, 1, 2>(a0, a0);
   const v4 t0_2 = scale(sa2 * sa3, v4{0.0f, 2.0f, 2.0f, 2.0f});
-  const v4 sb2 = perm<0, 3, 1, 2>(b0, b0);
+  const v4 sb1 = perm<0, 3, 1, 2>(b0, b0);
   const v4 sa4 = perm<0, 1, 4, 4>(a0, v4{});
   const v4 t0_3 = (scale((sa3 * sa3 + a0 * sa4), v4{0.0f, -2.0f, 2.0f, 2.0f}) + v4{0.0f, 1.0f, -1.0f, -1.0f});
-  store<4>(r + 0, (t0_0 * sb0 + t0_1 * sb1) + (t0_2 * sb2 + t0_3 * b0));
-  const v4 t1_0 = v4{0.0f, 0.0f, 0.0f, 1.0f};
-  const v4 sb3 = splat<3>(b1);
+  store<4>(r + 0, (t0_0 * b0 + t0_1 * sb0) + (t0_2 * sb1 + t0_3 * b0));
   const v4 sa5 = perm<3, 4, 5, 5>(a0, a1);
   const v4 sa6 = perm<2, 1, 0, 3>(a0, a0);
   const v4 sa7 = perm<5, 5, 3, 3>(a0, a1);
   const v4 sa8 = perm<0, 4, 2, 3>(sa7, v4{});
-  const v4 t1_1 = scale((a0 * sa5 + sa6 * sa8), v4{2.0f, 4.0f, 2.0f, 0.0f});
-  const v4 sb4 = perm<1, 2, 3, 3>(b0, b0);
-  const v4 sa9 = perm<1, 1, 0, 3>(a0, a0);
-  const v4 sa10 = perm<3, 3, 2, 3>(a0, a0);
-  const v4 sa11 = splat<2>(a0);
-  const v4 sa12 = splat<0>(a1);
-  const v4 t1_2 = scale((scale(sa9 * sa10, v4{1.0f, -1.0f, 1.0f, 0.0f}) + scale(sa11 * sa12, v4{-1.0f, 1.0f, 0.0f, 0.0f})), v4{2.0f, 2.0f, 2.0f, 0.0f});
-  const v4 sb5 = perm<2, 3, 4, 4>(b0, b1);
-  const v4 sa13 = perm<3, 2, 1, 3>(a0, a0);
-  const v4 t1_3 = scale(sa6 * sa13, v4{4.0f, -2.0f, -2.0f, 0.0f});
-  const v4 sb6 = perm<3, 4, 5, 5>(b0, b1);
-  const v4 sa14 = perm<2, 1, 1, 3>(a0, a0);
-  const v4 sa15 = perm<4, 4, 2, 3>(a0, v4{});
-  const v4 t1_4 = (scale((sa14 * sa14 + a0 * sa15), v4{2.0f, 2.0f, -2.0f, 0.0f}) + v4{-1.0f, -1.0f, 1.0f, 0.0f});
-  const v4 sa16 = perm<1, 0, 4, 4>(a0, a1);
-  const v4 t1_5 = scale((sa16 * sa14 - sa15 * sa7), v4{-2.0f, -2.0f, 4.0f, 0.0f});
-  const v4 sb7 = perm<5, 6, 1, 1>(b0, b1);
-  const v4 sa17 = perm<2, 4, 5, 5>(a0, a1);
-  const v4 sa18 = perm<4, 1, 0, 0>(a1, v4{});
-  const v4 t1_6 = scale((sa0 * sa17 - sa6 * sa18), v4{2.0f, 2.0f, 2.0f, 0.0f});
-  const v4 sb8 = perm<6, 1, 2, 2>(b0, b1);
-  store<4>(r + 4, ((t1_0 * sb3 + t1_1 * sb4) + (t1_2 * sb5 + t1_3 * sb6)) + ((t1_4 * b1 + t1_5 * sb7) + t1_6 * sb8));
+  const v4 t1_0 = scale((a0 * sa5 + sa6 * sa8), v4{2.0f, 4.0f, 2.0f, 0.0f});
+  const v4 sb2 = perm<1, 2, 3, 3>(b0, b0);
+  const v4 sa9 = perm<2, 3, 3, 3>(a0, a0);
+  const v4 sa10 = insert<0, 0>(a0, a1);
+  const v4 sa11 = perm<1, 2, 1, 3>(a0, a0);
+  const v4 sa12 = perm<3, 4, 4, 4>(a0, a1);
+  const v4 t1_1 = scale((sa11 * sa12 - sa9 * sa10), v4{2.0f, 2.0f, 4.0f, 0.0f});
+  const v4 sb3 = perm<2, 3, 1, 3>(b0, b0);
+  const v4 sa13 = perm<2, 0, 1, 3>(a0, a0);
+  const v4 sa14 = perm<4, 1, 0, 0>(a1, v4{});
+  const v4 t1_2 = scale((sa13 * sa5 - sa6 * sa14), v4{4.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb4 = perm<3, 1, 2, 3>(b0, b0);
+  const v4 sa15 = perm<2, 1, 1, 3>(a0, a0);
+  const v4 sa16 = perm<4, 4, 2, 3>(a0, v4{});
+  const v4 t1_3 = (scale((sa15 * sa15 + a0 * sa16), v4{2.0f, 2.0f, -2.0f, 0.0f}) + v4{-1.0f, -1.0f, 1.0f, 0.0f});
+  const v4 sa17 = perm<1, 0, 2, 3>(a0, a0);
+  const v4 t1_4 = scale(sa17 * sa6, v4{-2.0f, -2.0f, 2.0f, 0.0f});
+  const v4 sb5 = perm<1, 2, 0, 3>(b1, b1);
+  const v4 t1_5 = scale(sa3 * sa6, v4{2.0f, -2.0f, -2.0f, 0.0f});
+  const v4 sb6 = perm<2, 0, 1, 3>(b1, b1);
+  const v4 t1_6 = v4{0.0f, 0.0f, 0.0f, 1.0f};
+  store<4>(r + 4, ((t1_0 * sb2 + t1_1 * sb3) + (t1_2 * sb4 + t1_3 * b1)) + ((t1_4 * sb5 + t1_5 * sb6) + t1_6 * b1));
 }
 #else
 inline void sandwich_screw_motor(const float* a, const float* b, float* r) { ::cga_rigid::detail::sandwich_screw_motor(a, b, r); }
+#endif
+#if CGAGEN_X4
+// 78 vector operations; the scalar kernel has 80.
+inline void sandwich_screw_screw(const float* a, const float* b, float* r) {
+  const v4 a0 = load<4>(a + 0);
+  const v4 a1 = load<2>(a + 4);
+  const v4 b0 = load<4>(b + 0);
+  const v4 b1 = load<2>(b + 4);
+  const v4 sa0 = perm<1, 0, 0, 3>(a0, a0);
+  const v4 sa1 = perm<2, 2, 1, 3>(a0, a0);
+  const v4 t0_0 = (a0 * a0 - (sa0 * sa0 + sa1 * sa1));
+  const v4 sa2 = perm<1, 2, 0, 3>(a0, a0);
+  const v4 t0_1 = scale(a0 * sa2, v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb0 = perm<1, 2, 0, 3>(b0, b0);
+  const v4 sa3 = perm<2, 0, 1, 3>(a0, a0);
+  const v4 t0_2 = scale(a0 * sa3, v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sb1 = perm<2, 0, 1, 3>(b0, b0);
+  const v4 g0 = (t0_0 * b0 + t0_1 * sb0) + t0_2 * sb1;
+  const v4 sa4 = insert<1, 1>(a0, a1);
+  const v4 sa5 = perm<3, 0, 5, 5>(a0, a1);
+  const v4 sa6 = perm<2, 1, 0, 3>(a0, a0);
+  const v4 sa7 = perm<5, 4, 3, 3>(a0, a1);
+  const v4 sa8 = perm<4, 3, 4, 3>(a0, v4{});
+  const v4 t1_0 = scale(((sa4 * sa5 + sa6 * sa7) + sa1 * sa8), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sa9 = perm<3, 4, 5, 5>(a0, a1);
+  const v4 sa10 = perm<2, 3, 3, 3>(a0, a0);
+  const v4 sa11 = insert<0, 0>(a0, a1);
+  const v4 sa12 = perm<4, 4, 0, 0>(a1, v4{});
+  const v4 t1_1 = scale(((sa2 * sa9 + sa1 * sa12) - sa10 * sa11), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sa13 = perm<0, 1, 0, 3>(a0, a0);
+  const v4 sa14 = perm<1, 1, 0, 0>(a1, a1);
+  const v4 sa15 = perm<0, 4, 4, 0>(a1, v4{});
+  const v4 t1_2 = scale(((sa3 * sa9 + sa0 * sa15) - sa13 * sa14), v4{2.0f, 2.0f, 2.0f, 0.0f});
+  const v4 sa16 = perm<0, 0, 1, 3>(a0, a0);
+  const v4 sa17 = perm<1, 2, 2, 3>(a0, a0);
+  const v4 t1_3 = (sa6 * sa6 - (sa16 * sa16 + sa17 * sa17));
+  const v4 sb2 = perm<3, 4, 5, 5>(b0, b1);
+  const v4 sa18 = perm<2, 1, 2, 3>(a0, a0);
+  const v4 t1_4 = scale(sa0 * sa18, v4{-2.0f, -2.0f, 2.0f, 0.0f});
+  const v4 sb3 = perm<4, 5, 3, 3>(b0, b1);
+  const v4 t1_5 = scale(sa13 * sa1, v4{2.0f, -2.0f, -2.0f, 0.0f});
+  const v4 sb4 = perm<5, 3, 4, 4>(b0, b1);
+  const v4 g1 = ((t1_0 * b0 + t1_1 * sb0) + (t1_2 * sb1 + t1_3 * sb2)) + (t1_4 * sb3 + t1_5 * sb4);
+  const v4 sg0 = insert<3, 0>(g0, g1);
+  store<4>(r + 0, sg0);
+  const v4 sg1 = perm<1, 2, 2, 3>(g1, g1);
+  store<2>(r + 4, sg1);
+}
+#else
+inline void sandwich_screw_screw(const float* a, const float* b, float* r) { ::cga_rigid::detail::sandwich_screw_screw(a, b, r); }
 #endif
 }  // namespace x4
 
@@ -5128,7 +5242,7 @@ template <class T>
 inline screw_t<T> sandwich(const motor_t<T>& a, const screw_t<T>& b) {
   screw_t<T> r;
   if constexpr (std::is_same_v<T, float>)
-    detail::sandwich_motor_screw(a.v, b.v, r.v);
+    detail::x4::sandwich_motor_screw(a.v, b.v, r.v);
   else
     detail::sandwich_motor_screw(a.v, b.v, r.v);
   return r;
@@ -5184,7 +5298,7 @@ template <class T>
 inline screw_t<T> sandwich(const screw_t<T>& a, const screw_t<T>& b) {
   screw_t<T> r;
   if constexpr (std::is_same_v<T, float>)
-    detail::sandwich_screw_screw(a.v, b.v, r.v);
+    detail::x4::sandwich_screw_screw(a.v, b.v, r.v);
   else
     detail::sandwich_screw_screw(a.v, b.v, r.v);
   return r;
@@ -5461,9 +5575,9 @@ inline constexpr function_info functions[] = {
     {"sub", 2, "screw", "motor", "motor", nullptr, &detail::sub_screw_motor},
     {"sub", 2, "screw", "screw", "screw", nullptr, &detail::sub_screw_screw},
     {"sandwich", 2, "motor", "motor", "motor", nullptr, &detail::x4::sandwich_motor_motor},
-    {"sandwich", 2, "motor", "screw", "screw", nullptr, &detail::sandwich_motor_screw},
+    {"sandwich", 2, "motor", "screw", "screw", nullptr, &detail::x4::sandwich_motor_screw},
     {"sandwich", 2, "screw", "motor", "motor", nullptr, &detail::x4::sandwich_screw_motor},
-    {"sandwich", 2, "screw", "screw", "screw", nullptr, &detail::sandwich_screw_screw},
+    {"sandwich", 2, "screw", "screw", "screw", nullptr, &detail::x4::sandwich_screw_screw},
     {"neg", 1, "motor", "", "motor", &detail::neg_motor, nullptr},
     {"neg", 1, "screw", "", "screw", &detail::neg_screw, nullptr},
     {"reverse", 1, "motor", "", "motor", &detail::reverse_motor, nullptr},

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "library/lanes.hpp"
@@ -32,11 +33,16 @@ struct Target {
   Pattern b{kAny, kAny, kAny, kAny};
 };
 
-// Which lanes of a group are stored, and its targets.
+// The result coefficients a group's lanes compute (lane l row rows[l]; width = rows.size()), and its targets.
 struct Group {
+  std::vector<size_t> rows;
   size_t width = 0;
   std::vector<Target> targets;
 };
+
+// Where the result's coefficients are computed: per group vector, the rows of its lanes. The stored layout
+// puts rows 4g .. 4g+3 in group g; another layout is shuffled into it before the stores.
+using Layout = std::vector<std::vector<size_t>>;
 
 // One product of two shuffles of a in a target's sum (v empty: a shuffle alone, a term of one factor), lane
 // l the term picked there.
@@ -266,10 +272,43 @@ std::array<double, 4> kappa_of(const Target& t, const std::array<bool, 4>& live)
   return kappa;
 }
 
-Built build(const std::vector<Group>& groups, size_t na, size_t nb, Rng* rng) {
+// A target's lanes up to a sign per lane, as a key: two targets whose lanes are the same polynomials, or their
+// negations, are made once (a motor turns a line's two halves by the same rotation). `sign` gets the lanes'
+// signs against the key.
+std::string target_key(const Target& t, size_t width, Signs& sign) {
+  std::string key = std::to_string(width);
+  for (size_t l = 0; l < 4; ++l) {
+    std::vector<Term> terms = t.lanes[l];
+    for (Term& term : terms)
+      if (term.q != kAny && term.q < term.p) std::swap(term.p, term.q);
+    std::sort(terms.begin(), terms.end(), [](const Term& x, const Term& y) { return std::tie(x.p, x.q, x.c) < std::tie(y.p, y.q, y.c); });
+    sign[l] = terms.empty() || terms[0].c > 0 ? 1 : -1;
+    key += "|";
+    char buf[64];
+    for (const Term& term : terms) {
+      std::snprintf(buf, sizeof buf, "%ld,%ld,%.17g;", term.p, term.q, term.c * sign[l]);
+      key += buf;
+    }
+  }
+  return key;
+}
+
+bool stored_layout(const Layout& layout, size_t n) {
+  if (layout.size() != (n + 3) / 4) return false;
+  for (size_t g = 0; g < layout.size(); ++g)
+    for (size_t l = 0; l < layout[g].size(); ++l)
+      if (layout[g][l] != 4 * g + l) return false;
+  return true;
+}
+
+Built build(const std::vector<Group>& groups, size_t na, size_t nb, size_t n_out, Rng* rng) {
   Built out;
   Shuffles sa("a", na), sb("b", nb);
   std::string body;
+  std::map<std::string, std::pair<std::string, Signs>> made_targets;  // target_key -> its name and signs
+  Layout layout;
+  for (const Group& group : groups) layout.push_back(group.rows);
+  const bool stored = stored_layout(layout, n_out);
   // A balanced sum ("" for none), each addition counted.
   auto sum = [&](std::vector<std::string> terms) {
     while (terms.size() > 1) {
@@ -285,6 +324,31 @@ Built build(const std::vector<Group>& groups, size_t na, size_t nb, Rng* rng) {
     const Group& group = groups[g];
     std::vector<std::string> products;
     for (const Target& t : group.targets) {
+      Signs sign;
+      const std::string key = target_key(t, group.width, sign);
+      if (auto hit = made_targets.find(key); hit != made_targets.end()) {
+        // The same lanes but for signs: the signs on b's shuffle where that costs no more than a flip of t.
+        Signs g = kPlus;
+        bool flipped = false;
+        for (size_t l = 0; l < 4; ++l) {
+          if (t.b[l] == kAny) continue;
+          g[l] = sign[l] * hit->second.second[l];
+          flipped = flipped || g[l] < 0;
+        }
+        std::string tv = hit->second.first, bv;
+        if (flipped && sb.cost(t.b, g) > sb.cost(t.b) + 1) {
+          tv = "flip(" + tv + ", u4{";
+          for (size_t l = 0; l < 4; ++l) tv += std::string(l ? ", " : "") + (g[l] < 0 ? "0x80000000u" : "0u");
+          tv += "})";
+          ++out.ops;
+          bv = sb.make(t.b, kPlus, body, out.ops);
+        } else {
+          bv = sb.make(t.b, g, body, out.ops);
+        }
+        products.push_back(tv + " * " + bv);
+        ++out.ops;
+        continue;
+      }
       // Lanes that count for the products: stored ones with a term that has a factor of a. The other stored
       // lanes hold a constant or nothing, so the products must be zero there.
       std::array<bool, 4> live{};
@@ -341,16 +405,33 @@ Built build(const std::vector<Group>& groups, size_t na, size_t nb, Rng* rng) {
       if (value.empty()) continue;
       const std::string name = "t" + std::to_string(g) + "_" + std::to_string(products.size());
       body += "  const v4 " + name + " = " + value + ";\n";
+      made_targets.emplace(key, std::make_pair(name, sign));
       products.push_back(name + " * " + sb.make(t.b, kPlus, body, out.ops));
       ++out.ops;
     }
     std::string r = sum(products);
     if (r.empty()) r = "v4{}";
     if (r.front() == '(' && r.back() == ')' && products.size() > 1) r = r.substr(1, r.size() - 2);
-    body += "  store<" + std::to_string(group.width) + ">(r + " + std::to_string(4 * g) + ", " + r + ");\n";
+    if (stored)
+      body += "  store<" + std::to_string(group.width) + ">(r + " + std::to_string(4 * g) + ", " + r + ");\n";
+    else
+      body += "  const v4 g" + std::to_string(g) + " = " + r + ";\n";
+  }
+  // Another layout: each stored vector shuffled from the groups' (at most two of them, as `layouts` makes).
+  Shuffles sg("g", 4 * groups.size());
+  if (!stored) {
+    std::vector<std::pair<size_t, size_t>> where(n_out);  // row -> (group, lane)
+    for (size_t g = 0; g < layout.size(); ++g)
+      for (size_t l = 0; l < layout[g].size(); ++l) where[layout[g][l]] = {g, l};
+    for (size_t c = 0; 4 * c < n_out; ++c) {
+      const size_t width = std::min<size_t>(4, n_out - 4 * c);
+      Pattern p{kAny, kAny, kAny, kAny};
+      for (size_t l = 0; l < width; ++l) p[l] = static_cast<long>(4 * where[4 * c + l].first + where[4 * c + l].second);
+      body += "  store<" + std::to_string(width) + ">(r + " + std::to_string(4 * c) + ", " + sg.make(p, kPlus, body, out.ops) + ");\n";
+    }
   }
   out.body = sa.loads() + sb.loads() + body;
-  out.estimate = static_cast<long>(out.ops) + sa.extra() + sb.extra();
+  out.estimate = static_cast<long>(out.ops) + sa.extra() + sb.extra() + sg.extra();
   return out;
 }
 
@@ -360,14 +441,18 @@ Built build(const std::vector<Group>& groups, size_t na, size_t nb, Rng* rng) {
 // The column choices the search tries: the j that every lane reads, the j that one lane reads, both, none.
 enum class Columns { kFull, kSingle, kBoth, kNone };
 
-std::vector<Group> targets(const LinearForm& form, Columns columns) {
+// `blocks` (if any) splits b's coefficients into blocks, and a diagonal then stays within one block: lane l
+// of diagonal o of a block takes its (l + o)-th coefficient that the group reads.
+std::vector<Group> targets(const LinearForm& form, Columns columns, const Layout& layout,
+                           const std::vector<std::vector<size_t>>* blocks) {
   std::vector<Group> groups;
-  for (size_t g = 0; g < (form.out.size() + 3) / 4; ++g) {
+  for (const std::vector<size_t>& rows : layout) {
     Group group;
-    group.width = std::min<size_t>(4, form.out.size() - 4 * g);
+    group.rows = rows;
+    group.width = rows.size();
     std::map<size_t, std::array<std::vector<Term>, 4>> entries;  // j -> lane -> terms
     for (size_t l = 0; l < group.width; ++l)
-      for (const LinearTerm& t : form.out[4 * g + l]) {
+      for (const LinearTerm& t : form.out[rows[l]]) {
         Term term;
         if (t.p != kNone) term.p = static_cast<long>(t.p);
         if (t.q != kNone) term.q = static_cast<long>(t.q);
@@ -391,22 +476,97 @@ std::vector<Group> targets(const LinearForm& form, Columns columns) {
         rest.push_back(j);
       }
     }
-    for (size_t o = 0; o < rest.size(); ++o) {
-      Target t;
-      bool any = false;
-      for (size_t l = 0; l < group.width; ++l) {
-        const size_t j = rest[(l + o) % rest.size()];
-        const auto& lanes = entries.at(j);
-        if (lanes[l].empty()) continue;
-        t.lanes[l] = lanes[l];
-        t.b[l] = static_cast<long>(j);
-        any = true;
+    std::vector<std::vector<size_t>> runs{rest};  // the coefficients each run of diagonals cycles through
+    if (blocks) {
+      runs.clear();
+      for (const std::vector<size_t>& block : *blocks) {
+        std::vector<size_t> run;
+        for (size_t j : block)
+          if (std::find(rest.begin(), rest.end(), j) != rest.end()) run.push_back(j);
+        if (!run.empty()) runs.push_back(std::move(run));
       }
-      if (any) group.targets.push_back(t);
     }
+    for (const std::vector<size_t>& run : runs)
+      for (size_t o = 0; o < run.size(); ++o) {
+        Target t;
+        bool any = false;
+        for (size_t l = 0; l < group.width; ++l) {
+          const size_t j = run[(l + o) % run.size()];
+          const auto& lanes = entries.at(j);
+          if (lanes[l].empty()) continue;
+          t.lanes[l] = lanes[l];
+          t.b[l] = static_cast<long>(j);
+          any = true;
+        }
+        if (any) group.targets.push_back(t);
+      }
     groups.push_back(std::move(group));
   }
   return groups;
+}
+
+// Where the rows go and how diagonals run: the stored layout with diagonals through all of b, and where they
+// differ, the rows grouped by the coefficients of b they read and diagonals within blocks of b's coefficients
+// read by the same row classes. A motor on a line: the Euclidean half reads the Euclidean half of b, the ideal
+// half all of b; so grouped, both halves turn by the same rotation, whose diagonals are made once.
+struct Arrangement {
+  Layout layout;
+  std::vector<std::vector<size_t>> blocks;  // empty: diagonals through all of b
+};
+
+std::vector<Arrangement> arrangements(const LinearForm& form) {
+  const size_t n = form.out.size();
+  Layout stored;
+  for (size_t g = 0; 4 * g < n; ++g) {
+    stored.emplace_back();
+    for (size_t l = 4 * g; l < std::min(n, 4 * g + 4); ++l) stored.back().push_back(l);
+  }
+  // The row classes: rows that read the same coefficients of b, in the order of their first rows.
+  std::vector<std::vector<size_t>> supports(n);
+  for (size_t i = 0; i < n; ++i) {
+    for (const LinearTerm& t : form.out[i]) supports[i].push_back(t.j);
+    std::sort(supports[i].begin(), supports[i].end());
+    supports[i].erase(std::unique(supports[i].begin(), supports[i].end()), supports[i].end());
+  }
+  std::vector<std::vector<size_t>> classes;  // rows
+  for (size_t i = 0; i < n; ++i) {
+    size_t c = 0;
+    while (c < classes.size() && supports[classes[c][0]] != supports[i]) ++c;
+    if (c == classes.size()) classes.emplace_back();
+    classes[c].push_back(i);
+  }
+  // b's blocks: its coefficients read by the same classes.
+  std::map<std::vector<size_t>, std::vector<size_t>> by_readers;
+  std::vector<std::vector<size_t>> order;
+  for (size_t j = 0; j < form.nb; ++j) {
+    std::vector<size_t> readers;
+    for (size_t c = 0; c < classes.size(); ++c)
+      if (std::binary_search(supports[classes[c][0]].begin(), supports[classes[c][0]].end(), j)) readers.push_back(c);
+    if (readers.empty()) continue;
+    if (!by_readers.count(readers)) order.push_back(readers);
+    by_readers[readers].push_back(j);
+  }
+  std::vector<std::vector<size_t>> blocks;
+  for (const auto& readers : order) blocks.push_back(by_readers[readers]);
+  if (blocks.size() < 2) blocks.clear();
+
+  std::vector<Arrangement> out{{stored, {}}};
+  if (!blocks.empty()) out.push_back({stored, blocks});
+  Layout grouped;
+  for (const std::vector<size_t>& rows : classes)
+    for (size_t k = 0; k < rows.size(); k += 4) grouped.emplace_back(rows.begin() + static_cast<long>(k), rows.begin() + static_cast<long>(std::min(rows.size(), k + 4)));
+  if (grouped == stored) return out;
+  // Each stored vector is then one shuffle of at most two groups.
+  for (size_t c = 0; 4 * c < n; ++c) {
+    std::vector<size_t> from;
+    for (size_t g = 0; g < grouped.size(); ++g)
+      for (size_t i : grouped[g])
+        if (i / 4 == c && std::find(from.begin(), from.end(), g) == from.end()) from.push_back(g);
+    if (from.size() > 2) return out;
+  }
+  out.push_back({grouped, {}});
+  if (!blocks.empty()) out.push_back({grouped, blocks});
+  return out;
 }
 
 }  // namespace
@@ -420,17 +580,19 @@ LaneCode diagonal_code(const LinearForm& form) {
   const int restarts = terms > 1000 ? 8 : 16;
   LaneCode best;
   long best_estimate = -1;
-  for (Columns columns : {Columns::kFull, Columns::kSingle, Columns::kBoth, Columns::kNone}) {
-    const std::vector<Group> groups = targets(form, columns);
-    for (int k = 0; k < restarts; ++k) {
-      Rng rng{0x9e3779b97f4a7c15ull + static_cast<uint64_t>(k)};
-      const Built b = build(groups, form.na, form.nb, k == 0 ? nullptr : &rng);
-      if (best_estimate < 0 || b.estimate < best_estimate) {
-        best = LaneCode{b.body, b.ops};
-        best_estimate = b.estimate;
+  for (const Arrangement& arrangement : arrangements(form))
+    for (Columns columns : {Columns::kFull, Columns::kSingle, Columns::kBoth, Columns::kNone}) {
+      const std::vector<Group> groups =
+          targets(form, columns, arrangement.layout, arrangement.blocks.empty() ? nullptr : &arrangement.blocks);
+      for (int k = 0; k < restarts; ++k) {
+        Rng rng{0x9e3779b97f4a7c15ull + static_cast<uint64_t>(k)};
+        const Built b = build(groups, form.na, form.nb, form.out.size(), k == 0 ? nullptr : &rng);
+        if (best_estimate < 0 || b.estimate < best_estimate) {
+          best = LaneCode{b.body, b.ops};
+          best_estimate = b.estimate;
+        }
       }
     }
-  }
   return best;
 }
 

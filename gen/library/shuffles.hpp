@@ -83,7 +83,7 @@ class Shuffles {
           if (i == kZero) i = kAny;
         return identity(rest) >= 0 ? 1 : price(rest, kPlus, true) + 1;
       }
-      return src.size() == 1 || halves(p, [](size_t, long i) { return i / 4; }) ? 1 : 2;
+      return src.size() == 1 || halves(p, [](size_t, long i) { return i / 4; }) || insertion(p).lane >= 0 ? 1 : 2;
     }
     if (src.size() == 1 && !zeros) {
       const long negation = negated_.count(src.lo) ? 0 : 1;
@@ -130,8 +130,18 @@ class Shuffles {
     }
     bool broadcast = true;
     for (long i : full) broadcast = broadcast && i == full[0];
+    const Insertion ins = plus && !zeros && src.size() == 2 && !halves(p, [](size_t, long i) { return i / 4; })
+                              ? insertion(p)
+                              : Insertion{};
     std::string e;
-    if (zeros && (!plus || src.size() > 1)) {
+    if (ins.lane >= 0) {
+      // One vector in place but for one lane taken from the other (vinsertps, one cycle).
+      for (size_t l = 0; l < 4; ++l) full[l] = ins.base * 4 + static_cast<long>(l);
+      full[static_cast<size_t>(ins.lane)] = p[static_cast<size_t>(ins.lane)];
+      e = "insert<" + std::to_string(ins.lane) + ", " + std::to_string(p[static_cast<size_t>(ins.lane)] % 4) + ">(" +
+          use(ins.base) + ", " + use(p[static_cast<size_t>(ins.lane)] / 4) + ")";
+      ++ops;
+    } else if (zeros && (!plus || src.size() > 1)) {
       // The lanes that hold 0 set by a shuffle of the shuffle without them, with its signs.
       Pattern inner = p;
       for (long& i : inner)
@@ -209,6 +219,28 @@ class Shuffles {
     for (size_t h = 0; h < 4; h += 2)
       if (p[h] >= 0 && p[h + 1] >= 0 && source(h, p[h]) != source(h + 1, p[h + 1])) return false;
     return true;
+  }
+
+  // Where p is one vector in its own lane order but for one lane that another vector gives: that vector and the
+  // lane (lane -1 where p is not).
+  struct Insertion {
+    long base = -1, lane = -1;
+  };
+  static Insertion insertion(const Pattern& p) {
+    const Sources src = sources(p);
+    if (src.size() != 2) return {};
+    for (long base : {src.lo, src.hi}) {
+      long odd = -1;
+      int count = 0;
+      for (size_t l = 0; l < 4; ++l) {
+        if (p[l] < 0) continue;
+        if (p[l] / 4 == base && p[l] % 4 == static_cast<long>(l)) continue;
+        odd = static_cast<long>(l);
+        ++count;
+      }
+      if (count == 1 && p[static_cast<size_t>(odd)] / 4 != base) return {base, odd};
+    }
+    return {};
   }
 
   // The operand's vectors a pattern reads: how many, the first and the last.
